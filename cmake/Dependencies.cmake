@@ -1,0 +1,9 @@
+# Every dependency is a Debian 12 package (see scripts/deps.sh).
+find_package(glm CONFIG REQUIRED)
+find_package(nlohmann_json 3 CONFIG REQUIRED)
+find_package(Threads REQUIRED)
+
+# OpenImageIO 2.4's imported target lists /usr/include/opencv4, which Debian
+# does not ship unless OpenCV is installed: drop it so configure succeeds.
+find_package(OpenImageIO CONFIG REQUIRED)
+include(cmake/FixOpenImageIO.cmake)

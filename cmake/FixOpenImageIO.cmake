@@ -1,0 +1,7 @@
+foreach(prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
+  get_target_property(_dirs OpenImageIO::OpenImageIO ${prop})
+  if(_dirs)
+    list(FILTER _dirs EXCLUDE REGEX "opencv4")
+    set_target_properties(OpenImageIO::OpenImageIO PROPERTIES ${prop} "${_dirs}")
+  endif()
+endforeach()

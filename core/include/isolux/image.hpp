@@ -1,0 +1,55 @@
+// Plain rasters shared by every stage: RGBA sprites and frames, boolean masks
+// (opacity maps, obstacle maps) and rectangles in world pixels.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+namespace isolux {
+
+// An axis-aligned rectangle of pixels: [x, x+w) x [y, y+h).
+struct Rect {
+    int x = 0, y = 0, w = 0, h = 0;
+
+    bool empty() const { return w <= 0 || h <= 0; }
+    bool contains(int px, int py) const { return px >= x && py >= y && px < x + w && py < y + h; }
+    friend bool operator==(const Rect&, const Rect&) = default;
+};
+
+// Intersection of two rectangles (empty when they do not meet).
+Rect intersect(const Rect& a, const Rect& b);
+
+// An 8-bit RGBA image, row-major, straight (not premultiplied) alpha.
+struct Image {
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> rgba;  // width * height * 4
+
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), rgba(std::size_t(w) * h * 4, 0) {}
+    std::uint8_t* at(int x, int y) { return &rgba[(std::size_t(y) * width + x) * 4]; }
+    const std::uint8_t* at(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
+};
+
+// A boolean raster placed at (x0, y0) in its parent's pixels (world pixels for
+// the obstacle map, sprite pixels for a sprite's own masks). One byte a pixel,
+// 0 or 1. Reading outside the rectangle gives false.
+struct Mask {
+    int x0 = 0, y0 = 0, width = 0, height = 0;
+    std::vector<std::uint8_t> bits;
+
+    Mask() = default;
+    Mask(Rect r) : x0(r.x), y0(r.y), width(r.w), height(r.h), bits(std::size_t(r.w) * r.h, 0) {}
+    Rect rect() const { return {x0, y0, width, height}; }
+    bool get(int x, int y) const {
+        x -= x0;
+        y -= y0;
+        return x >= 0 && y >= 0 && x < width && y < height && bits[std::size_t(y) * width + x];
+    }
+    void set(int x, int y, bool v = true) {
+        x -= x0;
+        y -= y0;
+        if (x >= 0 && y >= 0 && x < width && y < height) bits[std::size_t(y) * width + x] = v;
+    }
+    long count() const;
+};
+
+}  // namespace isolux

@@ -1,0 +1,45 @@
+// A scene: what a user saves and reloads (seed, map, tileset, preset, lights,
+// camera).
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "isolux/map.hpp"
+#include "isolux/params.hpp"
+
+namespace isolux {
+
+struct Light {
+    double x = 0, y = 0;                 // centre, world pixels
+    std::optional<int> area_a, area_b;   // half-extents; the preset's when unset
+    std::uint8_t r = 255, g = 255, b = 255;
+    double intensity = 1.0;              // scales the paper's 255 / (1 + d)
+
+    friend bool operator==(const Light&, const Light&) = default;
+};
+
+// The view onto the world. width/height 0 mean "the whole map".
+struct Camera {
+    double x = 0, y = 0;  // top-left, world pixels
+    int width = 0, height = 0;
+    friend bool operator==(const Camera&, const Camera&) = default;
+};
+
+inline constexpr const char* default_seed = "isolux";
+inline constexpr int default_map_side = 16;
+
+struct Scene {
+    std::string seed = default_seed;
+    int width = default_map_side, height = default_map_side;
+    Layout layout = Layout::diamond;
+    std::string tileset;  // manifest path; empty: the default tileset
+    Params params;
+    std::vector<Light> lights;
+    Camera camera;
+
+    friend bool operator==(const Scene&, const Scene&) = default;
+};
+
+}  // namespace isolux

@@ -1,0 +1,39 @@
+// A tileset: floor blocks and overlay sprites (paper section 3, Figure 2).
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "isolux/image.hpp"
+
+namespace isolux {
+
+enum class SpriteKind { floor, overlay };
+
+struct Sprite {
+    std::string name;
+    SpriteKind kind = SpriteKind::overlay;
+    std::vector<std::string> tags;  // floors: grass dirt sand stone water; overlays: tree bush rock wall
+    Image image;                    // the sprite's pixels, cut from its sheet
+    int anchor_x = 0, anchor_y = 0; // sprite pixel placed on the tile's centre
+    std::optional<double> opacity_threshold;  // overrides the preset's when set
+
+    bool has_tag(std::string_view t) const;
+};
+
+struct Tileset {
+    int tile_width = 128, tile_height = 64;  // the floor diamond, pixels
+    std::vector<Sprite> sprites;
+    std::string source;  // the manifest's path, for messages
+
+    // Indices of sprites of `kind` carrying `tag`; all of that kind's untagged
+    // sprites when none carries it (the manifest contract: untagged sprites are
+    // used at random).
+    std::vector<int> find(SpriteKind kind, std::string_view tag) const;
+};
+
+// Checks the rules a tileset must meet to build maps (at least one floor
+// sprite, non-empty sprites, sane tile size); throws Error naming the entry.
+void validate(const Tileset& t);
+
+}  // namespace isolux

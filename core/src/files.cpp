@@ -1,0 +1,542 @@
+// All file I/O of isolux::core: images through OpenImageIO, JSON through
+// nlohmann-json. Errors name the file and the entry; writes are atomic.
+#include "isolux/files.hpp"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <atomic>
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <system_error>
+#include <unistd.h>
+
+#include "isolux/error.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace isolux {
+
+namespace {
+
+std::string quoted(const fs::path& p) { return p.string(); }
+
+// A sibling temporary path that keeps the extension (OpenImageIO picks the
+// writer from it) and is unique per process and call.
+fs::path temp_sibling(const fs::path& path) {
+    static std::atomic<unsigned> counter{0};
+    fs::path tmp = path;
+    tmp.replace_filename("." + path.stem().string() + ".tmp" + std::to_string(::getpid()) + "_" +
+                         std::to_string(counter++) + path.extension().string());
+    return tmp;
+}
+
+void commit_temp(const fs::path& tmp, const fs::path& path) {
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw Error(quoted(path) + ": cannot write: " + ec.message());
+    }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- images
+
+Image load_image(const fs::path& path) {
+    if (!fs::exists(path)) throw Error(quoted(path) + ": file not found");
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);  // keep PNG's straight alpha as stored
+    auto in = OIIO::ImageInput::open(path.string(), &config);
+    if (!in) throw Error(quoted(path) + ": not a readable image (" + OIIO::geterror() + ")");
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.width > max_image_side || spec.height > max_image_side)
+        throw Error(quoted(path) + ": image size " + std::to_string(spec.width) + "x" +
+                    std::to_string(spec.height) + " is outside [1, " + std::to_string(max_image_side) + "]");
+    const int nch = spec.nchannels;
+    if (nch < 1 || nch > 16) throw Error(quoted(path) + ": unsupported channel count " + std::to_string(nch));
+    std::vector<std::uint8_t> buf(std::size_t(spec.width) * spec.height * nch);
+    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT8, buf.data()))
+        throw Error(quoted(path) + ": corrupt image data (" + in->geterror() + ")");
+    in->close();
+    Image out(spec.width, spec.height);
+    const int alpha = spec.alpha_channel >= 0 ? spec.alpha_channel : (nch == 2 || nch >= 4 ? nch - 1 : -1);
+    for (std::size_t i = 0, n = std::size_t(spec.width) * spec.height; i < n; ++i) {
+        const std::uint8_t* s = &buf[i * nch];
+        std::uint8_t* d = &out.rgba[i * 4];
+        if (nch <= 2) {
+            d[0] = d[1] = d[2] = s[0];  // grey
+        } else {
+            d[0] = s[0], d[1] = s[1], d[2] = s[2];
+        }
+        d[3] = alpha >= 0 ? s[alpha] : 255;
+    }
+    return out;
+}
+
+void save_image(const fs::path& path, const Image& image) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(c));
+    const bool exr = ext == ".exr";
+    if (!exr && ext != ".png") throw Error(quoted(path) + ": unsupported image extension (use .png or .exr)");
+    auto out = OIIO::ImageOutput::create(exr ? "openexr" : "png");
+    if (!out) throw Error(quoted(path) + ": no image writer (" + OIIO::geterror() + ")");
+    OIIO::ImageSpec spec(image.width, image.height, 4, exr ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    fs::path tmp = temp_sibling(path);
+    if (!out->open(tmp.string(), spec)) throw Error(quoted(path) + ": cannot write (" + out->geterror() + ")");
+    bool ok = out->write_image(OIIO::TypeDesc::UINT8, image.rgba.data());
+    ok = out->close() && ok;
+    if (!ok) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw Error(quoted(path) + ": cannot write (" + out->geterror() + ")");
+    }
+    commit_temp(tmp, path);
+}
+
+void save_gray16(const fs::path& path, int width, int height, const std::vector<std::uint16_t>& values) {
+    auto out = OIIO::ImageOutput::create("png");
+    if (!out) throw Error(quoted(path) + ": no PNG writer (" + OIIO::geterror() + ")");
+    OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::UINT16);
+    fs::path tmp = temp_sibling(path);
+    if (!out->open(tmp.string(), spec)) throw Error(quoted(path) + ": cannot write (" + out->geterror() + ")");
+    bool ok = out->write_image(OIIO::TypeDesc::UINT16, values.data());
+    ok = out->close() && ok;
+    if (!ok) throw Error(quoted(path) + ": cannot write (" + out->geterror() + ")");
+    commit_temp(tmp, path);
+}
+
+void write_file_atomic(const fs::path& path, std::string_view contents) {
+    fs::path tmp = temp_sibling(path);
+    {
+        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+        if (!f) throw Error(quoted(path) + ": cannot write (cannot create " + quoted(tmp) + ")");
+        f.write(contents.data(), std::streamsize(contents.size()));
+        f.flush();
+        if (!f) {
+            f.close();
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw Error(quoted(path) + ": cannot write (disk full?)");
+        }
+    }
+    commit_temp(tmp, path);
+}
+
+// ---------------------------------------------------------------- JSON helpers
+
+namespace {
+
+std::string read_text(const fs::path& path) {
+    if (!fs::exists(path)) throw Error(quoted(path) + ": file not found");
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw Error(quoted(path) + ": cannot open");
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+json parse_json(std::string_view text, std::string_view source) {
+    try {
+        return json::parse(text);
+    } catch (const json::parse_error& e) {
+        throw Error(std::string(source) + ": malformed JSON at byte " + std::to_string(e.byte));
+    }
+}
+
+// Field access that names the file and the field in every error.
+struct Fields {
+    const json& obj;
+    std::string where;  // "file.json" or "file.json: sprites[2] (\"oak\")"
+
+    [[noreturn]] void fail(const std::string& field, const std::string& what) const {
+        throw Error(where + ": " + field + " " + what);
+    }
+    bool has(const char* k) const { return obj.contains(k) && !obj[k].is_null(); }
+    const json& get(const char* k) const { return obj[k]; }
+
+    long long integer(const char* k, long long lo, long long hi) const {
+        const json& v = obj[k];
+        if (!v.is_number_integer()) fail(k, "must be an integer, got " + std::string(v.type_name()));
+        long long x = v.is_number_unsigned() ? (long long)std::min<unsigned long long>(v.get<unsigned long long>(), (unsigned long long)LLONG_MAX) : v.get<long long>();
+        if (x < lo || x > hi)
+            fail(k, "= " + std::to_string(x) + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return x;
+    }
+    double real(const char* k) const {
+        const json& v = obj[k];
+        if (!v.is_number()) fail(k, "must be a number, got " + std::string(v.type_name()));
+        double x = v.get<double>();
+        if (!std::isfinite(x)) fail(k, "must be finite");
+        return x;
+    }
+    std::string text(const char* k) const {
+        const json& v = obj[k];
+        if (!v.is_string()) fail(k, "must be a string, got " + std::string(v.type_name()));
+        return v.get<std::string>();
+    }
+    bool boolean(const char* k) const {
+        const json& v = obj[k];
+        if (!v.is_boolean()) fail(k, "must be true or false, got " + std::string(v.type_name()));
+        return v.get<bool>();
+    }
+    void warn_unknown(std::initializer_list<const char*> known, std::vector<std::string>* warnings) const {
+        if (!warnings) return;
+        for (auto it = obj.begin(); it != obj.end(); ++it) {  // nlohmann's object is a std::map: ordered
+            bool ok = false;
+            for (const char* k : known) ok = ok || it.key() == k;
+            if (!ok) warnings->push_back(where + ": unknown field \"" + it.key() + "\" ignored");
+        }
+    }
+};
+
+void check_object(const json& j, const std::string& where) {
+    if (!j.is_object()) throw Error(where + ": must be a JSON object, got " + std::string(j.type_name()));
+}
+
+void check_schema(const Fields& f, std::vector<std::string>* warnings) {
+    if (!f.has("schema_version")) {
+        if (warnings) warnings->push_back(f.where + ": no schema_version; reading as version 1");
+        return;
+    }
+    long long v = f.integer("schema_version", 1, 1000000);
+    if (v > schema_version)
+        f.fail("schema_version", "= " + std::to_string(v) + " is newer than this isolux reads (" +
+                                     std::to_string(schema_version) + ")");
+}
+
+const std::initializer_list<const char*> param_fields = {
+    "delta_y", "noise_window", "ray_skip", "trace_every", "area_a", "area_b", "ambient_clarity",
+    "opacity_threshold", "blur_radius", "falloff_scale", "mode", "dark_unlit", "rays"};
+
+Params params_from(const Fields& f) {
+    Params p;
+    using L = ParamLimits;
+    if (f.has("delta_y")) p.delta_y = int(f.integer("delta_y", 1, L::max_delta_y));
+    if (f.has("noise_window")) p.noise_window = int(f.integer("noise_window", 1, L::max_noise_window));
+    if (f.has("ray_skip")) p.ray_skip = int(f.integer("ray_skip", 1, L::max_ray_skip));
+    if (f.has("trace_every")) p.trace_every = int(f.integer("trace_every", 1, L::max_trace_every));
+    if (f.has("area_a")) p.area_a = int(f.integer("area_a", 0, L::max_area));
+    if (f.has("area_b")) p.area_b = int(f.integer("area_b", 0, L::max_area));
+    if (f.has("ambient_clarity")) p.ambient_clarity = f.real("ambient_clarity");
+    if (f.has("opacity_threshold")) p.opacity_threshold = f.real("opacity_threshold");
+    if (f.has("blur_radius")) p.blur_radius = int(f.integer("blur_radius", 0, L::max_blur_radius));
+    if (f.has("falloff_scale")) p.falloff_scale = f.real("falloff_scale");
+    if (f.has("mode")) p.mode = parse_mode(f.text("mode"), f.where + ": mode");
+    if (f.has("dark_unlit")) p.dark_unlit = f.boolean("dark_unlit");
+    if (f.has("rays")) p.rays = parse_rays(f.text("rays"), f.where + ": rays");
+    validate(p, f.where);
+    return p;
+}
+
+json params_json(const Params& p) {
+    return json{{"delta_y", p.delta_y},
+                {"noise_window", p.noise_window},
+                {"ray_skip", p.ray_skip},
+                {"trace_every", p.trace_every},
+                {"area_a", p.area_a},
+                {"area_b", p.area_b},
+                {"ambient_clarity", p.ambient_clarity},
+                {"opacity_threshold", p.opacity_threshold},
+                {"blur_radius", p.blur_radius},
+                {"falloff_scale", p.falloff_scale},
+                {"mode", std::string(to_string(p.mode))},
+                {"dark_unlit", p.dark_unlit},
+                {"rays", std::string(to_string(p.rays))}};
+}
+
+std::string hex_color(const Light& l) {
+    static const char* d = "0123456789abcdef";
+    std::string s;
+    for (std::uint8_t c : {l.r, l.g, l.b}) {
+        s += d[c >> 4];
+        s += d[c & 15];
+    }
+    return s;
+}
+
+}  // namespace
+
+bool parse_hex_color(std::string_view s, std::uint8_t& r, std::uint8_t& g, std::uint8_t& b) {
+    if (!s.empty() && s[0] == '#') s.remove_prefix(1);
+    if (s.size() != 6) return false;
+    unsigned v[6];
+    for (int i = 0; i < 6; ++i) {
+        char c = s[i];
+        if (c >= '0' && c <= '9') v[i] = unsigned(c - '0');
+        else if (c >= 'a' && c <= 'f') v[i] = unsigned(c - 'a' + 10);
+        else if (c >= 'A' && c <= 'F') v[i] = unsigned(c - 'A' + 10);
+        else return false;
+    }
+    r = std::uint8_t(v[0] * 16 + v[1]);
+    g = std::uint8_t(v[2] * 16 + v[3]);
+    b = std::uint8_t(v[4] * 16 + v[5]);
+    return true;
+}
+
+// ---------------------------------------------------------------- presets
+
+Params preset_from_json(std::string_view text, std::string_view source, std::vector<std::string>* warnings) {
+    json j = parse_json(text, source);
+    check_object(j, std::string(source));
+    Fields f{j, std::string(source)};
+    check_schema(f, warnings);
+    std::vector<const char*> known(param_fields);
+    known.push_back("schema_version");
+    known.push_back("name");
+    if (warnings)
+        for (auto it = j.begin(); it != j.end(); ++it)
+            if (std::find_if(known.begin(), known.end(), [&](const char* k) { return it.key() == k; }) == known.end())
+                warnings->push_back(f.where + ": unknown field \"" + it.key() + "\" ignored");
+    return params_from(f);
+}
+
+std::string preset_to_json(const Params& p) {
+    json j = params_json(p);
+    j["schema_version"] = schema_version;
+    return j.dump(2) + "\n";
+}
+
+Params load_preset(const fs::path& path, std::vector<std::string>* warnings) {
+    return preset_from_json(read_text(path), path.string(), warnings);
+}
+
+void save_preset(const fs::path& path, const Params& p) {
+    validate(p, path.string());
+    write_file_atomic(path, preset_to_json(p));
+}
+
+// ---------------------------------------------------------------- scenes
+
+Scene scene_from_json(std::string_view text, std::string_view source, std::vector<std::string>* warnings) {
+    json j = parse_json(text, source);
+    const std::string src(source);
+    check_object(j, src);
+    Fields f{j, src};
+    check_schema(f, warnings);
+    f.warn_unknown({"schema_version", "seed", "width", "height", "layout", "tileset", "preset", "lights", "camera"},
+                   warnings);
+    Scene s;
+    if (f.has("seed")) s.seed = f.text("seed");
+    if (f.has("width")) s.width = int(f.integer("width", 1, max_map_side));
+    if (f.has("height")) s.height = int(f.integer("height", 1, max_map_side));
+    if (f.has("layout")) s.layout = parse_layout(f.text("layout"), src + ": layout");
+    if (f.has("tileset")) s.tileset = f.text("tileset");
+    if (f.has("preset")) {
+        const json& p = j["preset"];
+        if (p.is_string()) {
+            s.params = builtin_preset(p.get<std::string>());
+        } else {
+            check_object(p, src + ": preset");
+            Fields pf{p, src + ": preset"};
+            std::vector<const char*> known(param_fields);
+            known.push_back("name");
+            if (warnings)
+                for (auto it = p.begin(); it != p.end(); ++it)
+                    if (std::find_if(known.begin(), known.end(), [&](const char* k) { return it.key() == k; }) == known.end())
+                        warnings->push_back(pf.where + ": unknown field \"" + it.key() + "\" ignored");
+            s.params = params_from(pf);
+        }
+    }
+    if (f.has("lights")) {
+        const json& arr = j["lights"];
+        if (!arr.is_array()) f.fail("lights", "must be an array");
+        if (arr.size() > 100000) f.fail("lights", "holds more than 100000 lights");
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string where = src + ": lights[" + std::to_string(i) + "]";
+            check_object(arr[i], where);
+            Fields lf{arr[i], where};
+            lf.warn_unknown({"x", "y", "a", "b", "color", "intensity"}, warnings);
+            Light l;
+            if (!lf.has("x") || !lf.has("y")) lf.fail("x, y", "are required");
+            l.x = lf.real("x");
+            l.y = lf.real("y");
+            if (std::abs(l.x) > 1e9 || std::abs(l.y) > 1e9) lf.fail("x, y", "must be within ±1e9 pixels");
+            if (lf.has("a")) l.area_a = int(lf.integer("a", 0, ParamLimits::max_area));
+            if (lf.has("b")) l.area_b = int(lf.integer("b", 0, ParamLimits::max_area));
+            if (lf.has("color") && !parse_hex_color(lf.text("color"), l.r, l.g, l.b))
+                lf.fail("color", "must be RRGGBB hex, got \"" + lf.text("color") + "\"");
+            if (lf.has("intensity")) {
+                l.intensity = lf.real("intensity");
+                if (l.intensity < 0 || l.intensity > 1000) lf.fail("intensity", "must be in [0, 1000]");
+            }
+            s.lights.push_back(l);
+        }
+    }
+    if (f.has("camera")) {
+        const json& c = j["camera"];
+        check_object(c, src + ": camera");
+        Fields cf{c, src + ": camera"};
+        cf.warn_unknown({"x", "y", "width", "height"}, warnings);
+        if (cf.has("x")) s.camera.x = cf.real("x");
+        if (cf.has("y")) s.camera.y = cf.real("y");
+        if (cf.has("width")) s.camera.width = int(cf.integer("width", 0, max_image_side));
+        if (cf.has("height")) s.camera.height = int(cf.integer("height", 0, max_image_side));
+    }
+    return s;
+}
+
+std::string scene_to_json(const Scene& s) {
+    json lights = json::array();
+    for (const Light& l : s.lights) {
+        json o{{"x", l.x}, {"y", l.y}, {"color", hex_color(l)}, {"intensity", l.intensity}};
+        if (l.area_a) o["a"] = *l.area_a;
+        if (l.area_b) o["b"] = *l.area_b;
+        lights.push_back(o);
+    }
+    json j{{"schema_version", schema_version},
+           {"seed", s.seed},
+           {"width", s.width},
+           {"height", s.height},
+           {"layout", std::string(to_string(s.layout))},
+           {"tileset", s.tileset},
+           {"preset", params_json(s.params)},
+           {"lights", lights},
+           {"camera", {{"x", s.camera.x}, {"y", s.camera.y}, {"width", s.camera.width}, {"height", s.camera.height}}}};
+    return j.dump(2) + "\n";
+}
+
+Scene load_scene(const fs::path& path, std::vector<std::string>* warnings) {
+    Scene s = scene_from_json(read_text(path), path.string(), warnings);
+    if (!s.tileset.empty() && fs::path(s.tileset).is_relative())
+        s.tileset = (path.parent_path() / s.tileset).lexically_normal().string();
+    return s;
+}
+
+void save_scene(const fs::path& path, const Scene& scene) {
+    validate(scene.params, path.string());
+    Scene copy = scene;
+    if (!copy.tileset.empty()) {
+        fs::path base = fs::absolute(path).parent_path();
+        fs::path rel = fs::absolute(copy.tileset).lexically_relative(base);
+        if (!rel.empty()) copy.tileset = rel.string();
+    }
+    write_file_atomic(path, scene_to_json(copy));
+}
+
+// ---------------------------------------------------------------- tilesets
+
+Tileset load_tileset(const fs::path& manifest) {
+    const std::string src = manifest.string();
+    json j = parse_json(read_text(manifest), src);
+    check_object(j, src);
+    Fields f{j, src};
+    check_schema(f, nullptr);
+    Tileset ts;
+    ts.source = src;
+    if (f.has("tile")) {
+        const json& t = j["tile"];
+        check_object(t, src + ": tile");
+        Fields tf{t, src + ": tile"};
+        if (tf.has("width")) ts.tile_width = int(tf.integer("width", 2, 4096));
+        if (tf.has("height")) ts.tile_height = int(tf.integer("height", 2, 4096));
+    }
+    if (!f.has("sprites") || !j["sprites"].is_array()) f.fail("sprites", "must be an array of sprites");
+    const json& arr = j["sprites"];
+    std::map<fs::path, Image> sheets;  // ordered: loading order does not depend on hashing
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+        std::string where = src + ": sprites[" + std::to_string(i) + "]";
+        check_object(arr[i], where);
+        Fields sf{arr[i], where};
+        Sprite s;
+        if (!sf.has("name")) sf.fail("name", "is required");
+        s.name = sf.text("name");
+        where += " (\"" + s.name + "\")";
+        sf.where = where;
+        if (!sf.has("image")) sf.fail("image", "is required");
+        fs::path image_path = manifest.parent_path() / sf.text("image");
+        auto it = sheets.find(image_path);
+        if (it == sheets.end()) {
+            try {
+                it = sheets.emplace(image_path, load_image(image_path)).first;
+            } catch (const Error& e) {
+                throw Error(where + ": image: " + e.what());
+            }
+        }
+        const Image& sheet = it->second;
+        Rect rect{0, 0, sheet.width, sheet.height};
+        if (sf.has("rect")) {
+            const json& r = arr[i]["rect"];
+            if (!r.is_array() || r.size() != 4 || !std::all_of(r.begin(), r.end(), [](const json& v) { return v.is_number_integer(); }))
+                sf.fail("rect", "must be [x, y, w, h] integers");
+            rect = {r[0].get<int>(), r[1].get<int>(), r[2].get<int>(), r[3].get<int>()};
+            if (rect.w <= 0 || rect.h <= 0) sf.fail("rect", "has zero size: zero-size sprite");
+            if (rect.x < 0 || rect.y < 0 || rect.x + rect.w > sheet.width || rect.y + rect.h > sheet.height)
+                sf.fail("rect", "[" + std::to_string(rect.x) + ", " + std::to_string(rect.y) + ", " +
+                                    std::to_string(rect.w) + ", " + std::to_string(rect.h) + "] lies outside " +
+                                    image_path.filename().string() + " (" + std::to_string(sheet.width) + "x" +
+                                    std::to_string(sheet.height) + ")");
+        }
+        s.image = Image(rect.w, rect.h);
+        for (int y = 0; y < rect.h; ++y)
+            std::copy_n(sheet.at(rect.x, rect.y + y), std::size_t(rect.w) * 4, s.image.at(0, y));
+        if (!sf.has("kind")) sf.fail("kind", "is required (floor or overlay)");
+        std::string kind = sf.text("kind");
+        if (kind == "floor") s.kind = SpriteKind::floor;
+        else if (kind == "overlay") s.kind = SpriteKind::overlay;
+        else sf.fail("kind", "\"" + kind + "\" is unknown (use floor or overlay)");
+        if (sf.has("anchor")) {
+            const json& a = arr[i]["anchor"];
+            if (!a.is_array() || a.size() != 2 || !a[0].is_number_integer() || !a[1].is_number_integer())
+                sf.fail("anchor", "must be [x, y] integers");
+            s.anchor_x = a[0].get<int>();
+            s.anchor_y = a[1].get<int>();
+            if (std::abs(s.anchor_x) > 100000 || std::abs(s.anchor_y) > 100000) sf.fail("anchor", "is too far off the sprite");
+        } else if (s.kind == SpriteKind::floor) {
+            s.anchor_x = rect.w / 2;  // the diamond's centre, with the diamond at the sprite's top
+            s.anchor_y = ts.tile_height / 2;
+        } else {
+            s.anchor_x = rect.w / 2;  // standing on the sprite's bottom centre
+            s.anchor_y = rect.h - 1;
+        }
+        if (sf.has("tags")) {
+            const json& t = arr[i]["tags"];
+            if (!t.is_array()) sf.fail("tags", "must be an array of strings");
+            for (const json& v : t) {
+                if (!v.is_string()) sf.fail("tags", "must be an array of strings");
+                s.tags.push_back(v.get<std::string>());
+            }
+        }
+        if (sf.has("opacity_threshold")) {
+            double th = sf.real("opacity_threshold");
+            if (th < 0 || th > 1) sf.fail("opacity_threshold", "must be in [0, 1]");
+            s.opacity_threshold = th;
+        }
+        ts.sprites.push_back(std::move(s));
+    }
+    validate(ts);
+    return ts;
+}
+
+void save_generated_tileset(const fs::path& folder, const GeneratedTileset& g) {
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    if (ec) throw Error(folder.string() + ": cannot create folder: " + ec.message());
+    json sprites = json::array();
+    for (std::size_t i = 0; i < g.tileset.sprites.size(); ++i) {
+        const Sprite& s = g.tileset.sprites[i];
+        const std::string file = g.image_files[i];
+        const std::string height_file = fs::path(file).stem().string() + ".height.png";
+        save_image(folder / file, s.image);
+        save_gray16(folder / height_file, s.image.width, s.image.height, g.heights[i]);
+        sprites.push_back({{"name", s.name},
+                           {"image", file},
+                           {"anchor", {s.anchor_x, s.anchor_y}},
+                           {"kind", s.kind == SpriteKind::floor ? "floor" : "overlay"},
+                           {"tags", s.tags},
+                           {"height_map", height_file}});
+    }
+    json j{{"schema_version", schema_version},
+           {"tile", {{"width", g.tileset.tile_width}, {"height", g.tileset.tile_height}}},
+           {"sprites", sprites}};
+    write_file_atomic(folder / "tileset.json", j.dump(2) + "\n");
+}
+
+}  // namespace isolux

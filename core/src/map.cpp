@@ -1,0 +1,240 @@
+// Paper section 3: seeded maps of blocks, assembled by a layout, drawn back to front.
+#include "isolux/map.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <string>
+
+#include "isolux/error.hpp"
+#include "isolux/hash.hpp"
+
+namespace isolux {
+
+std::string_view to_string(Layout l) {
+    switch (l) {
+        case Layout::paper: return "paper";
+        case Layout::diamond: return "diamond";
+        case Layout::staggered: return "staggered";
+    }
+    return "diamond";
+}
+
+Layout parse_layout(std::string_view s, std::string_view source) {
+    if (s == "paper") return Layout::paper;
+    if (s == "diamond") return Layout::diamond;
+    if (s == "staggered") return Layout::staggered;
+    throw Error(std::string(source) + ": layout \"" + std::string(s) +
+                "\" is not one of paper, diamond, staggered");
+}
+
+void tile_center(Layout layout, int tw, int th, int col, int row, int& x, int& y) {
+    const int hw = tw / 2, hh = th / 2;
+    switch (layout) {
+        case Layout::paper:
+            // Block n sits right of block n-1; after a line break it goes below
+            // the previous line's first block p (its centre on p's bottom
+            // corner) and halfway between p and p+1: each line shifts by half
+            // a block, giving a parallelogram.
+            x = col * tw + row * hw;
+            y = row * hh;
+            return;
+        case Layout::diamond:
+            x = (col - row) * hw;
+            y = (col + row) * hh;
+            return;
+        case Layout::staggered:
+            x = col * tw + (row & 1) * hw;
+            y = row * hh;
+            return;
+    }
+}
+
+namespace {
+
+enum class Biome { water, sand, meadow, forest, dirt, stone };
+
+Biome biome_at(std::uint64_t seed, int col, int row) {
+    // Two independent noise fields, sampled per tile so a tile's content does
+    // not depend on the map's size: a larger map extends a smaller one.
+    double e = fractal_noise(mix64(seed ^ 0x656C6576ull), col / 9.0, row / 9.0, 4);
+    double m = fractal_noise(mix64(seed ^ 0x6D6F6973ull), col / 7.0, row / 7.0, 3);
+    if (e < 0.33) return Biome::water;
+    if (e < 0.39) return Biome::sand;
+    if (e > 0.70) return Biome::stone;
+    if (m > 0.58) return Biome::forest;
+    if (m > 0.40) return Biome::meadow;
+    return Biome::dirt;
+}
+
+int pick(const Tileset& ts, SpriteKind kind, std::string_view tag, Pcg32& rng) {
+    std::vector<int> c = ts.find(kind, tag);
+    if (c.empty()) return -1;
+    return c[rng.below(std::uint32_t(c.size()))];
+}
+
+void add_overlay(Tile& t, int sprite, const Map& m, Pcg32& rng) {
+    if (sprite < 0 || t.overlay_count >= 3) return;
+    // Overlays share the tile: spread them over slots inside the diamond so
+    // they overlap like the paper's Figure 2 without standing on one point.
+    static constexpr int slots[4][2] = {{0, 0}, {-1, 0}, {1, 0}, {0, 1}};
+    int slot = t.overlay_count == 0 ? int(rng.below(2)) * 3 % 4 : t.overlay_count;
+    int jx = int(rng.below(9)) - 4, jy = int(rng.below(5)) - 2;
+    Overlay& o = t.overlays[t.overlay_count++];
+    o.sprite = sprite;
+    o.dx = slots[slot][0] * m.tile_width / 5 + jx * m.tile_width / 128;
+    o.dy = slots[slot][1] * m.tile_height / 5 + jy * m.tile_height / 64;
+}
+
+}  // namespace
+
+Map generate_map(std::string_view seed, int width, int height, Layout layout, const Tileset& ts) {
+    if (width < 1 || height < 1 || width > max_map_side || height > max_map_side)
+        throw Error("map size " + std::to_string(width) + "x" + std::to_string(height) +
+                    " is out of range: each side must be in [1, " + std::to_string(max_map_side) +
+                    "] tiles");
+    validate(ts);
+    Map m;
+    m.width = width;
+    m.height = height;
+    m.layout = layout;
+    m.tile_width = ts.tile_width;
+    m.tile_height = ts.tile_height;
+    m.tiles.resize(std::size_t(width) * height);
+    const std::uint64_t s = hash_seed(seed);
+    for (int row = 0; row < height; ++row) {
+        for (int col = 0; col < width; ++col) {
+            Tile& t = m.tiles[std::size_t(row) * width + col];
+            Pcg32 rng(hash_point(s, col, row, 0x74696C65ull));
+            auto chance = [&](int percent) { return int(rng.below(100)) < percent; };
+            const SpriteKind F = SpriteKind::floor, O = SpriteKind::overlay;
+            switch (biome_at(s, col, row)) {
+                case Biome::water:
+                    t.floor = pick(ts, F, "water", rng);
+                    break;
+                case Biome::sand:
+                    t.floor = pick(ts, F, "sand", rng);
+                    if (chance(6)) add_overlay(t, pick(ts, O, "rock", rng), m, rng);
+                    break;
+                case Biome::meadow:
+                    t.floor = pick(ts, F, "grass", rng);
+                    if (chance(22)) {
+                        int r = int(rng.below(100));
+                        add_overlay(t, pick(ts, O, r < 55 ? "bush" : r < 85 ? "tree" : "rock", rng), m, rng);
+                    }
+                    break;
+                case Biome::forest: {
+                    t.floor = pick(ts, F, chance(85) ? "grass" : "dirt", rng);
+                    int n = chance(80) ? 1 + int(rng.below(3)) : 0;
+                    for (int i = 0; i < n; ++i)
+                        add_overlay(t, pick(ts, O, chance(70) ? "tree" : "bush", rng), m, rng);
+                    break;
+                }
+                case Biome::dirt:
+                    t.floor = pick(ts, F, "dirt", rng);
+                    if (chance(5)) add_overlay(t, pick(ts, O, "wall", rng), m, rng);
+                    else if (chance(14)) add_overlay(t, pick(ts, O, chance(50) ? "rock" : "bush", rng), m, rng);
+                    break;
+                case Biome::stone:
+                    t.floor = pick(ts, F, "stone", rng);
+                    if (chance(30)) add_overlay(t, pick(ts, O, "rock", rng), m, rng);
+                    else if (chance(6)) add_overlay(t, pick(ts, O, "wall", rng), m, rng);
+                    break;
+            }
+            if (t.floor < 0) t.floor = pick(ts, F, "grass", rng);  // tileset lacks that floor: any floor
+            if (t.floor < 0) t.floor = ts.find(F, "")[0];
+        }
+    }
+    return m;
+}
+
+PlacedMap place_sprites(const Map& map, const Tileset& ts) {
+    struct Key {
+        int y, x, tile, layer;
+        bool operator<(const Key& o) const {
+            if (y != o.y) return y < o.y;
+            if (x != o.x) return x < o.x;
+            if (tile != o.tile) return tile < o.tile;
+            return layer < o.layer;
+        }
+    };
+    std::vector<std::pair<Key, SpriteInstance>> floors, overlays;
+    for (int row = 0; row < map.height; ++row) {
+        for (int col = 0; col < map.width; ++col) {
+            int idx = row * map.width + col;
+            const Tile& t = map.tiles[idx];
+            int cx = 0, cy = 0;
+            tile_center(map.layout, map.tile_width, map.tile_height, col, row, cx, cy);
+            auto make = [&](int sprite, int gx, int gy) {
+                const Sprite& s = ts.sprites.at(sprite);
+                SpriteInstance in;
+                in.sprite = sprite;
+                in.ground_x = gx;
+                in.ground_y = gy;
+                in.x = gx - s.anchor_x;
+                in.y = gy - s.anchor_y;
+                in.tile = idx;
+                return in;
+            };
+            floors.push_back({{cy, cx, idx, 0}, make(t.floor, cx, cy)});
+            for (int i = 0; i < t.overlay_count; ++i) {
+                const Overlay& o = t.overlays[i];
+                overlays.push_back({{cy + o.dy, cx + o.dx, idx, i + 1}, make(o.sprite, cx + o.dx, cy + o.dy)});
+            }
+        }
+    }
+    auto by_key = [](const auto& a, const auto& b) { return a.first < b.first; };
+    std::sort(floors.begin(), floors.end(), by_key);  // keys are unique: the order is total
+    std::sort(overlays.begin(), overlays.end(), by_key);
+
+    PlacedMap out;
+    out.instances.reserve(floors.size() + overlays.size());
+    for (auto& f : floors) out.instances.push_back(f.second);
+    out.first_overlay = out.instances.size();
+    for (auto& o : overlays) out.instances.push_back(o.second);
+
+    int x0 = INT_MAX, y0 = INT_MAX, x1 = INT_MIN, y1 = INT_MIN;
+    for (const SpriteInstance& in : out.instances) {
+        const Image& im = ts.sprites[in.sprite].image;
+        x0 = std::min(x0, in.x);
+        y0 = std::min(y0, in.y);
+        x1 = std::max(x1, in.x + im.width);
+        y1 = std::max(y1, in.y + im.height);
+    }
+    for (SpriteInstance& in : out.instances) {
+        in.x -= x0;
+        in.y -= y0;
+        in.ground_x -= x0;
+        in.ground_y -= y0;
+    }
+    out.bounds = {0, 0, x1 - x0, y1 - y0};
+    return out;
+}
+
+Image render_sprites(const Tileset& ts, const PlacedMap& placed, Rect view) {
+    Image out(view.w, view.h);
+    for (const SpriteInstance& in : placed.instances) {
+        const Image& s = ts.sprites[in.sprite].image;
+        Rect r = intersect({in.x, in.y, s.width, s.height}, view);
+        if (r.empty()) continue;
+        for (int y = r.y; y < r.y + r.h; ++y) {
+            for (int x = r.x; x < r.x + r.w; ++x) {
+                const std::uint8_t* sp = s.at(x - in.x, y - in.y);
+                unsigned sa = sp[3];
+                if (sa == 0) continue;
+                std::uint8_t* dp = out.at(x - view.x, y - view.y);
+                unsigned da = dp[3];
+                if (sa == 255 || da == 0) {
+                    dp[0] = sp[0], dp[1] = sp[1], dp[2] = sp[2], dp[3] = std::uint8_t(sa);
+                    continue;
+                }
+                // Straight-alpha "over" in integers, exact on every machine.
+                unsigned ws = sa * 255, wd = da * (255 - sa), wo = ws + wd;
+                for (int c = 0; c < 3; ++c) dp[c] = std::uint8_t((sp[c] * ws + dp[c] * wd + wo / 2) / wo);
+                dp[3] = std::uint8_t((wo + 127) / 255);
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace isolux

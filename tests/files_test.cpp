@@ -1,0 +1,301 @@
+// Presets, scenes, tilesets and images: round trips, and bad input that gives a
+// clear error naming the file and the entry.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "isolux/error.hpp"
+#include "isolux/files.hpp"
+#include "isolux/tileset_generator.hpp"
+#include "test_util.hpp"
+
+using namespace isolux;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        path = fs::temp_directory_path() /
+               ("isolux_test_" + std::to_string(::getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+    fs::path write(const std::string& name, const std::string& text) const {
+        std::ofstream(path / name, std::ios::binary) << text;
+        return path / name;
+    }
+};
+
+// The message of the Error that `f` throws, or "" when it throws none.
+template <class F>
+std::string error_of(F f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+#define EXPECT_MENTIONS(msg, text) EXPECT_NE((msg).find(text), std::string::npos) << (msg)
+
+}  // namespace
+
+TEST(Preset, roundTripsEveryParameter) {
+    TempDir d;
+    Params p;
+    p.delta_y = 30;
+    p.noise_window = 4;
+    p.ray_skip = 3;
+    p.trace_every = 2;
+    p.area_a = 64;
+    p.area_b = 40;
+    p.ambient_clarity = 0.25;
+    p.opacity_threshold = 0.3;
+    p.blur_radius = 0;
+    p.falloff_scale = 6.5;
+    p.mode = Mode::shadow;
+    p.dark_unlit = true;
+    p.rays = Rays::every_pixel;
+    save_preset(d.path / "p.json", p);
+    EXPECT_EQ(load_preset(d.path / "p.json"), p);
+}
+
+TEST(Preset, unknownFieldsWarnAndTheRestLoads) {
+    TempDir d;
+    std::vector<std::string> warnings;
+    Params p = load_preset(d.write("p.json", R"({"schema_version": 1, "delta_y": 12, "sparkle": true})"), &warnings);
+    EXPECT_EQ(p.delta_y, 12);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_MENTIONS(warnings[0], "sparkle");
+    EXPECT_MENTIONS(warnings[0], "p.json");
+}
+
+TEST(Preset, wrongTypesAndOutOfRangeValuesNameTheFileAndField) {
+    TempDir d;
+    std::string m = error_of([&] { load_preset(d.write("a.json", R"({"noise_window": "big"})")); });
+    EXPECT_MENTIONS(m, "a.json");
+    EXPECT_MENTIONS(m, "noise_window");
+    m = error_of([&] { load_preset(d.write("b.json", R"({"ambient_clarity": 1.5})")); });
+    EXPECT_MENTIONS(m, "b.json");
+    EXPECT_MENTIONS(m, "ambient_clarity");
+    m = error_of([&] { load_preset(d.write("c.json", R"({"area_a": -1})")); });
+    EXPECT_MENTIONS(m, "area_a");
+    m = error_of([&] { load_preset(d.write("d.json", R"({"mode": "laser"})")); });
+    EXPECT_MENTIONS(m, "mode");
+    EXPECT_MENTIONS(m, "laser");
+    m = error_of([&] { load_preset(d.write("e.json", R"({"ray_skip": 0})")); });
+    EXPECT_MENTIONS(m, "ray_skip");
+    m = error_of([&] { load_preset(d.write("f.json", R"({"trace_every": 2.5})")); });
+    EXPECT_MENTIONS(m, "trace_every");
+    m = error_of([&] { load_preset(d.write("g.json", R"({"delta_y": 99999999999999999999})")); });
+    EXPECT_MENTIONS(m, "delta_y");
+}
+
+TEST(Preset, malformedJsonAndNewerSchemasAreErrors) {
+    TempDir d;
+    std::string m = error_of([&] { load_preset(d.write("bad.json", R"({"delta_y": )")); });
+    EXPECT_MENTIONS(m, "bad.json");
+    EXPECT_MENTIONS(m, "malformed JSON");
+    m = error_of([&] { load_preset(d.write("new.json", R"({"schema_version": 7})")); });
+    EXPECT_MENTIONS(m, "schema_version");
+    m = error_of([&] { load_preset(d.write("arr.json", "[1, 2]")); });
+    EXPECT_MENTIONS(m, "object");
+    m = error_of([&] { load_preset(d.path / "missing.json"); });
+    EXPECT_MENTIONS(m, "missing.json");
+}
+
+TEST(Files, savingIsAtomicAndLeavesNoTemporaryFiles) {
+    TempDir d;
+    fs::path p = d.path / "p.json";
+    save_preset(p, Params{});
+    Params q;
+    q.delta_y = 40;
+    save_preset(p, q);
+    EXPECT_EQ(load_preset(p).delta_y, 40);
+    int files = 0;
+    for ([[maybe_unused]] auto& e : fs::directory_iterator(d.path)) ++files;
+    EXPECT_EQ(files, 1);
+    // An invalid preset is refused before anything is written: the old file stays.
+    q.noise_window = 0;
+    EXPECT_THROW(save_preset(p, q), Error);
+    EXPECT_EQ(load_preset(p).delta_y, 40);
+}
+
+TEST(Scene, roundTripsSeedMapLightsAndCamera) {
+    TempDir d;
+    Scene s;
+    s.seed = "forest of ünïcode";
+    s.width = 20;
+    s.height = 12;
+    s.layout = Layout::staggered;
+    s.tileset = (d.path / "tiles" / "tileset.json").string();
+    s.params.ambient_clarity = 0.7;
+    Light a;
+    a.x = 100.5;
+    a.y = 200;
+    Light b;
+    b.x = -40;
+    b.y = 3;
+    b.area_a = 30;
+    b.area_b = 20;
+    b.r = 255, b.g = 128, b.b = 0;
+    b.intensity = 2;
+    s.lights = {a, b};
+    s.camera = {10, 20, 640, 480};
+    save_scene(d.path / "s.json", s);
+    Scene t = load_scene(d.path / "s.json");
+    EXPECT_EQ(t, s);
+    // The tileset is stored relative to the scene, so a moved folder still loads.
+    std::ifstream f(d.path / "s.json");
+    std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    EXPECT_MENTIONS(text, "\"tiles/tileset.json\"");
+}
+
+TEST(Scene, badLightsNameTheLight) {
+    TempDir d;
+    std::string m = error_of([&] { load_scene(d.write("s.json", R"({"lights": [{"x": 1, "y": 2}, {"x": 1}]})")); });
+    EXPECT_MENTIONS(m, "lights[1]");
+    m = error_of([&] { load_scene(d.write("t.json", R"({"lights": [{"x": 1, "y": 2, "color": "zz0000"}]})")); });
+    EXPECT_MENTIONS(m, "color");
+    m = error_of([&] { load_scene(d.write("u.json", R"({"width": 0})")); });
+    EXPECT_MENTIONS(m, "width");
+    m = error_of([&] { load_scene(d.write("v.json", R"({"layout": "hex"})")); });
+    EXPECT_MENTIONS(m, "layout");
+}
+
+// ---------------------------------------------------------------- tilesets
+
+namespace {
+std::string manifest_with(const std::string& sprite) {
+    return R"({"schema_version": 1, "tile": {"width": 64, "height": 32}, "sprites": [
+        {"name": "ground", "image": "floor.png", "kind": "floor", "tags": ["grass"]},)" +
+           sprite + "]}";
+}
+void write_png(const fs::path& p, int w, int h) {
+    Image im(w, h);
+    for (auto& v : im.rgba) v = 200;
+    save_image(p, im);
+}
+}  // namespace
+
+TEST(Tileset, badEntriesNameTheFileAndTheEntry) {
+    TempDir d;
+    write_png(d.path / "floor.png", 64, 48);
+    d.write("notes.png", "this is not an image");
+    struct Case {
+        std::string sprite, expect;
+    } cases[] = {
+        {R"({"name": "ghost", "image": "nowhere.png", "kind": "overlay"})", "nowhere.png"},
+        {R"({"name": "text", "image": "notes.png", "kind": "overlay"})", "not a readable image"},
+        {R"({"name": "cut", "image": "floor.png", "rect": [32, 0, 64, 10], "kind": "overlay"})", "lies outside"},
+        {R"({"name": "odd", "image": "floor.png", "kind": "ceiling"})", "ceiling"},
+        {R"({"name": "flat", "image": "floor.png", "rect": [0, 0, 0, 5], "kind": "overlay"})", "zero-size"},
+        {R"({"name": "noimg", "kind": "overlay"})", "image"},
+    };
+    for (const Case& c : cases) {
+        fs::path m = d.write("tileset.json", manifest_with(c.sprite));
+        std::string msg = error_of([&] { load_tileset(m); });
+        EXPECT_MENTIONS(msg, "tileset.json");
+        EXPECT_MENTIONS(msg, "sprites[1]");
+        EXPECT_MENTIONS(msg, c.expect);
+    }
+}
+
+TEST(Tileset, aTilesetWithoutFloorsIsRefused) {
+    TempDir d;
+    write_png(d.path / "tree.png", 16, 16);
+    fs::path m = d.write("t.json", R"({"sprites": [{"name": "tree", "image": "tree.png", "kind": "overlay"}]})");
+    std::string msg = error_of([&] { load_tileset(m); });
+    EXPECT_MENTIONS(msg, "t.json");
+    EXPECT_MENTIONS(msg, "floor");
+}
+
+TEST(Tileset, loadsPaletteSixteenBitAndGreyPngs) {
+    Tileset t = test::foreign_tileset();
+    ASSERT_EQ(t.sprites.size(), 5u);
+    // Palette with tRNS: index 0 transparent, index 1 = (90, 170, 60).
+    const Sprite& meadow = t.sprites[0];
+    EXPECT_EQ(meadow.image.width, 64);
+    EXPECT_EQ(meadow.image.at(0, 0)[3], 0);
+    const std::uint8_t* p = meadow.image.at(32, 16);
+    EXPECT_EQ(p[3], 255);
+    EXPECT_TRUE((p[0] == 90 && p[1] == 170 && p[2] == 60) || (p[0] == 60 && p[1] == 120 && p[2] == 40));
+    // The sheet's second rect: the water floor.
+    const std::uint8_t* w = t.sprites[1].image.at(32, 16);
+    EXPECT_TRUE((w[0] == 40 && w[1] == 90 && w[2] == 200) || (w[0] == 200 && w[1] == 190 && w[2] == 120));
+    // 16-bit RGBA: full alpha 65535 -> 255, trunk colour 0.45 -> 115.
+    const Sprite& tree = t.sprites[2];
+    EXPECT_EQ(tree.image.height, 128);
+    EXPECT_EQ(tree.image.at(32, 100)[3], 255);
+    EXPECT_NEAR(tree.image.at(32, 100)[0], 115, 1);
+    EXPECT_EQ(tree.image.at(0, 127)[3], 0);
+    // Grey + alpha: grey copied to r, g, b.
+    const Sprite& rock = t.sprites[3];
+    const std::uint8_t* r = rock.image.at(20, 14);
+    EXPECT_EQ(r[0], r[1]);
+    EXPECT_EQ(r[1], r[2]);
+    EXPECT_EQ(r[0], 150 - 14 * 2);
+    EXPECT_EQ(rock.opacity_threshold.value_or(-1), 0.25);
+    // 16-bit grey without alpha: opaque.
+    const Sprite& post = t.sprites[4];
+    EXPECT_EQ(post.image.at(5, 10)[3], 255);
+    EXPECT_NEAR(post.image.at(5, 10)[0], (20000 + 5000) * 255.0 / 65535, 1);
+}
+
+TEST(Tileset, defaultTilesetHasEveryFloorAndOverlayKind) {
+    Tileset t = test::default_tileset();
+    EXPECT_EQ(t.tile_width, 128);
+    EXPECT_EQ(t.tile_height, 64);
+    for (const char* tag : {"grass", "dirt", "sand", "stone", "water"}) {
+        auto found = t.find(SpriteKind::floor, tag);
+        ASSERT_FALSE(found.empty()) << tag;
+        EXPECT_TRUE(t.sprites[found[0]].has_tag(tag));
+    }
+    for (const char* tag : {"tree", "bush", "rock", "wall"}) {
+        auto found = t.find(SpriteKind::overlay, tag);
+        ASSERT_FALSE(found.empty()) << tag;
+        EXPECT_TRUE(t.sprites[found[0]].has_tag(tag));
+    }
+    EXPECT_GE(t.find(SpriteKind::overlay, "tree").size(), 3u);
+    for (const Sprite& s : t.sprites) {
+        EXPECT_EQ(s.image.width, 128) << s.name;
+        EXPECT_EQ(s.image.height, 128) << s.name;
+    }
+}
+
+TEST(Tileset, committedAssetsAreTheGeneratorsOutput) {
+    GeneratedTileset g = generate_default_tileset();
+    Tileset committed = test::default_tileset();
+    ASSERT_EQ(g.tileset.sprites.size(), committed.sprites.size());
+    for (std::size_t i = 0; i < committed.sprites.size(); ++i) {
+        const Sprite &a = g.tileset.sprites[i], &b = committed.sprites[i];
+        EXPECT_EQ(a.name, b.name);
+        EXPECT_EQ(a.anchor_x, b.anchor_x);
+        EXPECT_EQ(a.anchor_y, b.anchor_y);
+        EXPECT_EQ(a.image.rgba, b.image.rgba) << a.name << ": run isolux-cli tileset --out assets/default";
+    }
+}
+
+TEST(Tileset, generatorWritesHeightMapsThatMatchTheShapes) {
+    TempDir d;
+    GeneratedTileset g = generate_default_tileset(0.5);
+    save_generated_tileset(d.path, g);
+    Tileset back = load_tileset(d.path / "tileset.json");
+    EXPECT_EQ(back.tile_width, 64);
+    auto max_height = [&](const std::string& name) {
+        for (std::size_t i = 0; i < g.tileset.sprites.size(); ++i)
+            if (g.tileset.sprites[i].name == name)
+                return *std::max_element(g.heights[i].begin(), g.heights[i].end());
+        return std::uint16_t(0);
+    };
+    EXPECT_GT(max_height("pine"), max_height("bush"));
+    EXPECT_GT(max_height("bush"), 0);
+    EXPECT_EQ(max_height("grass"), 0);  // the floor's top is the ground plane
+    Image h = load_image(d.path / "pine.height.png");
+    EXPECT_EQ(h.width, 64);
+}
