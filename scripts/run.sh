@@ -6,5 +6,5 @@ cd "$(dirname "$0")/.."
 bash scripts/deps.sh
 bash scripts/build.sh
 mkdir -p out
-./build/release/app/isolux-cli render --seed isolux --out out/isolux.png "$@"
+./build/release/app/isolux-cli render --scene assets/scenes/default.json --out out/isolux.png "$@"
 echo "open out/isolux.png to see the map"

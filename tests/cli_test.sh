@@ -63,5 +63,29 @@ done
 if cmp -s "$src/assets/default/tileset.json" "$tmp/tiles/tileset.json"; then pass=$((pass + 1)); else
   echo "FAIL tileset.json differs from the committed one"; fail=$((fail + 1)); fi
 
+# Lighting (paper 3.2): lights, layers, frames and every override flag.
+check light_final 0 "" -- render --size 6x6 --light 400,250 --light 600,300,64,48,ffa040 --out "$tmp/lf.png"
+check light_layer 0 "" -- render --size 6x6 --light 400,250 --layer light --out "$tmp/ll.png"
+check light_outside_map 0 "" -- render --size 6x6 --light -100,-100,200,200 --out "$tmp/lo.png"
+check frames 0 "" -- render --size 6x6 --light 400,250 --frames 5 --camera-step 3,2 --trace-every 2 --out "$tmp/fr.png"
+if grep -q "frame 4:" "$tmp/out"; then pass=$((pass + 1)); else echo "FAIL --frames printed no per-frame stages"; fail=$((fail + 1)); fi
+check overrides 0 "" -- render --size 6x6 --light 400,250 --ray-skip 2 --ambient 0.3 --mode shadow --delta-y 20 \
+  --noise-window 2 --area 50,40 --blur 1 --trace-every 2 --falloff-scale 4 --dark-unlit --rays every_pixel --out "$tmp/ov.png"
+check neg_area 2 "--area" -- render --size 3x3 --area -1,5 --out "$tmp/x.png"
+check noise_zero 2 "noise" -- render --size 3x3 --noise-window 0 --out "$tmp/x.png"
+check ambient_high 2 "ambient" -- render --size 3x3 --ambient 1.5 --out "$tmp/x.png"
+check ambient_low 2 "ambient" -- render --size 3x3 --ambient -0.1 --out "$tmp/x.png"
+check skip_zero 2 "ray_skip" -- render --size 3x3 --ray-skip 0 --out "$tmp/x.png"
+check every_zero 2 "trace_every" -- render --size 3x3 --trace-every 0 --out "$tmp/x.png"
+check bad_mode 2 "mode" -- render --size 3x3 --mode laser --out "$tmp/x.png"
+check bad_light 2 "--light" -- render --size 3x3 --light 1 --out "$tmp/x.png"
+check bad_light_color 2 "colour" -- render --size 3x3 --light 1,2,3,4,xyz --out "$tmp/x.png"
+check bad_light_area 2 "--light" -- render --size 3x3 --light 1,2,-3,4 --out "$tmp/x.png"
+check bad_falloff 2 "falloff" -- render --size 3x3 --falloff-scale 0 --out "$tmp/x.png"
+check light_twice_same 0 "" -- render --size 6x6 --light 400,250 --out "$tmp/l1.png"
+check light_twice_same2 0 "" -- render --size 6x6 --light 400,250 --out "$tmp/l2.png"
+if cmp -s "$tmp/l1.png" "$tmp/l2.png"; then pass=$((pass + 1)); else echo "FAIL lit render not byte-identical"; fail=$((fail + 1)); fi
+if cmp -s "$tmp/l1.png" "$tmp/a.png"; then echo "FAIL a light changed nothing"; fail=$((fail + 1)); else pass=$((pass + 1)); fi
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

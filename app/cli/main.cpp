@@ -2,6 +2,7 @@
 // no GL context; it only parses arguments and calls isolux::core.
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -10,6 +11,7 @@
 #include "common/world.hpp"
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
+#include "isolux/frame.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_map.hpp"
 #include "isolux/tileset_generator.hpp"
@@ -22,7 +24,16 @@ constexpr long long max_render_pixels = 1LL << 28;  // 256 Mpx: 1 GiB of RGBA
 
 struct RenderArgs {
     std::string seed, size, layout, tileset, preset, scene, view, out;
-    std::string layer = "map";
+    std::string layer = "final";
+    std::vector<std::string> lights;
+    int frames = 1;
+    std::string camera_step;
+    bool no_opacity_correction = false;
+    // Preset overrides: set only when given.
+    std::optional<int> ray_skip, delta_y, noise_window, blur, trace_every;
+    std::optional<double> ambient, falloff_scale, opacity_threshold;
+    std::optional<std::string> mode, rays, area;
+    bool dark_unlit = false;
 };
 
 bool parse_ints(const std::string& s, char sep, std::vector<long long>& out) {
@@ -42,6 +53,55 @@ bool parse_ints(const std::string& s, char sep, std::vector<long long>& out) {
         if (end == std::string::npos) return true;
         pos = end + 1;
     }
+}
+
+bool parse_reals(const std::string& s, std::vector<double>& out) {
+    out.clear();
+    std::size_t pos = 0;
+    while (true) {
+        std::size_t end = s.find(',', pos);
+        std::string part = s.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+        std::size_t used = 0;
+        try {
+            out.push_back(std::stod(part, &used));
+        } catch (...) {
+            return false;
+        }
+        if (used != part.size() || !std::isfinite(out.back())) return false;
+        if (end == std::string::npos) return true;
+        pos = end + 1;
+    }
+}
+
+// --light X,Y[,A,B[,RRGGBB]]
+Light parse_light(const std::string& text) {
+    const std::string where = "--light \"" + text + "\"";
+    std::vector<std::string> parts;
+    for (std::size_t pos = 0;;) {
+        std::size_t end = text.find(',', pos);
+        parts.push_back(text.substr(pos, end == std::string::npos ? std::string::npos : end - pos));
+        if (end == std::string::npos) break;
+        pos = end + 1;
+    }
+    if (parts.size() != 2 && parts.size() != 4 && parts.size() != 5)
+        throw Error(where + ": expected X,Y or X,Y,A,B or X,Y,A,B,RRGGBB");
+    Light l;
+    std::vector<double> xy;
+    if (!parse_reals(parts[0] + "," + parts[1], xy) || std::abs(xy[0]) > 1e9 || std::abs(xy[1]) > 1e9)
+        throw Error(where + ": X and Y must be numbers within ±1e9");
+    l.x = xy[0];
+    l.y = xy[1];
+    if (parts.size() >= 4) {
+        std::vector<long long> ab;
+        if (!parse_ints(parts[2] + "," + parts[3], ',', ab) || ab[0] < 0 || ab[1] < 0 ||
+            ab[0] > ParamLimits::max_area || ab[1] > ParamLimits::max_area)
+            throw Error(where + ": A and B must be integers in [0, " + std::to_string(ParamLimits::max_area) + "]");
+        l.area_a = int(ab[0]);
+        l.area_b = int(ab[1]);
+    }
+    if (parts.size() == 5 && !parse_hex_color(parts[4], l.r, l.g, l.b))
+        throw Error(where + ": colour must be RRGGBB hex");
+    return l;
 }
 
 Scene scene_from_args(const RenderArgs& a) {
@@ -69,7 +129,29 @@ Scene scene_from_args(const RenderArgs& a) {
         s.params = builtin ? builtin_preset(a.preset) : load_preset(a.preset, &warnings);
         for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
     }
-    validate(s.params, "parameters");
+    Params& p = s.params;
+    if (a.ray_skip) p.ray_skip = *a.ray_skip;
+    if (a.delta_y) p.delta_y = *a.delta_y;
+    if (a.noise_window) p.noise_window = *a.noise_window;
+    if (a.blur) p.blur_radius = *a.blur;
+    if (a.trace_every) p.trace_every = *a.trace_every;
+    if (a.ambient) p.ambient_clarity = *a.ambient;
+    if (a.falloff_scale) p.falloff_scale = *a.falloff_scale;
+    if (a.opacity_threshold) p.opacity_threshold = *a.opacity_threshold;
+    if (a.mode) p.mode = parse_mode(*a.mode, "--mode");
+    if (a.rays) p.rays = parse_rays(*a.rays, "--rays");
+    if (a.dark_unlit) p.dark_unlit = true;
+    if (a.area) {
+        std::vector<long long> v;
+        if (!parse_ints(*a.area, ',', v) || v.size() != 2)
+            throw Error("--area \"" + *a.area + "\": expected A,B (half-extents in pixels)");
+        if (v[0] < 0 || v[1] < 0 || v[0] > ParamLimits::max_area || v[1] > ParamLimits::max_area)
+            throw Error("--area " + *a.area + ": a and b must be in [0, " + std::to_string(ParamLimits::max_area) + "]");
+        p.area_a = int(v[0]);
+        p.area_b = int(v[1]);
+    }
+    validate(p, "parameters");
+    for (const std::string& text : a.lights) s.lights.push_back(parse_light(text));
     return s;
 }
 
@@ -107,6 +189,38 @@ int run_render(const RenderArgs& a) {
                         std::uint8_t* p = out.at(x, y);
                         p[0] = p[1] = p[2] = p[3] = 255;
                     }
+        }
+    } else if (a.layer == "light" || a.layer == "final") {
+        std::vector<double> step{0, 0};
+        if (!a.camera_step.empty() && (!parse_reals(a.camera_step, step) || step.size() != 2))
+            throw Error("--camera-step \"" + a.camera_step + "\": expected DX,DY");
+        FrameState st;
+        st.options.opacity_correction = !a.no_opacity_correction;
+        Camera cam = s.camera;
+        cam.x = view.x;
+        cam.y = view.y;
+        cam.width = view.w;
+        cam.height = view.h;
+        for (int f = 0; f < a.frames; ++f) {
+            Camera c = cam;
+            c.x += step[0] * f;
+            c.y += step[1] * f;
+            FrameReport rep = render_frame(st, w, s, c, f);
+            if (a.frames > 1) {
+                std::cout << "frame " << f << ":";
+                for (int k = 0; k < stage_count; ++k)
+                    if (rep.ran[k]) std::cout << " " << to_string(Stage(k));
+                std::cout << " (" << rep.lights_traced << " lights traced)\n";
+            }
+        }
+        if (a.layer == "final") {
+            out = st.final;
+        } else {
+            out = Image(st.light.rect.w, st.light.rect.h);
+            for (std::size_t i = 0, n = std::size_t(out.width) * out.height; i < n; ++i) {
+                for (int k = 0; k < 3; ++k) out.rgba[i * 4 + k] = st.light.rgb[i * 3 + k];
+                out.rgba[i * 4 + 3] = 255;
+            }
         }
     } else if (a.layer == "opacity") {
         out = Image(view.w, view.h);
@@ -146,8 +260,26 @@ int main(int argc, char** argv) {
     render->add_option("--tileset", ra.tileset, "Tileset manifest (default: assets/default/tileset.json)");
     render->add_option("--preset", ra.preset, "Preset JSON file, or a built-in: paper, fast, quality");
     render->add_option("--scene", ra.scene, "Scene JSON file; other flags override its fields");
-    render->add_option("--layer", ra.layer, "map, obstacles or opacity")
-        ->check(CLI::IsMember({"map", "obstacles", "opacity"}));
+    render->add_option("--layer", ra.layer, "final (default), light, map, obstacles or opacity")
+        ->check(CLI::IsMember({"final", "light", "map", "obstacles", "opacity"}));
+    render->add_option("--light", ra.lights, "A light X,Y[,A,B[,RRGGBB]] in world pixels (repeatable)");
+    render->add_option("--frames", ra.frames, "Frames to run; the last is written (default 1)")
+        ->check(CLI::Range(1, 100000));
+    render->add_option("--camera-step", ra.camera_step, "Camera movement per frame DX,DY (pixels)");
+    render->add_flag("--no-opacity-correction", ra.no_opacity_correction,
+                     "Skip the opacity-map correction (shows the paper's Figure 6 problem)");
+    render->add_option("--ray-skip", ra.ray_skip, "k: trace every k-th border ray (>= 1)");
+    render->add_option("--rays", ra.rays, "border (Algorithm 2) or every_pixel (the 4ab reference)");
+    render->add_option("--ambient", ra.ambient, "Ambient clarity in [0, 1]");
+    render->add_option("--mode", ra.mode, "light, shadow or flat");
+    render->add_option("--delta-y", ra.delta_y, "Δy: lines Algorithm 1 reads (>= 1)");
+    render->add_option("--noise-window", ra.noise_window, "n: noise filter window (>= 1)");
+    render->add_option("--area", ra.area, "a,b: light half-extents in pixels (>= 0)");
+    render->add_option("--blur", ra.blur, "Box blur radius (>= 0)");
+    render->add_option("--trace-every", ra.trace_every, "l: retrace every l frames (>= 1)");
+    render->add_option("--falloff-scale", ra.falloff_scale, "i = 255 / (1 + d / falloff_scale), > 0");
+    render->add_option("--opacity-threshold", ra.opacity_threshold, "Alpha above this is opaque, [0, 1]");
+    render->add_flag("--dark-unlit", ra.dark_unlit, "Algorithm 3's variant: unlit pixels go dark");
     render->add_option("--view", ra.view, "World-pixel rectangle X,Y,W,H to render (default: the whole map)");
     render->add_option("--out", ra.out, "Output image (.png or .exr)")->required();
 

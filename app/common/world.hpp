@@ -1,22 +1,12 @@
-// A scene's world: its tileset, generated map and placed sprites, built once
-// and shared by the front ends.
+// Builds a scene's world for the front ends: the scene's tileset (the default
+// one when empty), then isolux::make_world.
 #pragma once
-#include <string>
-
-#include "isolux/map.hpp"
 #include "isolux/scene.hpp"
-#include "isolux/tileset.hpp"
+#include "isolux/world.hpp"
 
 namespace isolux {
 
-struct World {
-    Tileset tileset;
-    Map map;
-    PlacedMap placed;
-};
-
-// Loads the scene's tileset (the default one when empty), generates the map
-// from its seed and places the sprites. Throws Error.
+// Throws Error naming the tileset file on bad input.
 World build_world(const Scene& scene);
 
 }  // namespace isolux

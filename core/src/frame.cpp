@@ -1,0 +1,175 @@
+// Paper Figure 4: the overall steps, once per frame, each only when needed.
+#include "isolux/frame.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "isolux/blur.hpp"
+#include "isolux/composite.hpp"
+#include "isolux/obstacle_map.hpp"
+#include "isolux/opacity_correction.hpp"
+#include "isolux/opacity_map.hpp"
+
+namespace isolux {
+
+std::string_view to_string(Stage s) {
+    switch (s) {
+        case Stage::sprites: return "sprites";
+        case Stage::obstacle_map: return "obstacle_map";
+        case Stage::trace: return "trace";
+        case Stage::opacity_correction: return "opacity_correction";
+        case Stage::blur: return "blur";
+        case Stage::shift: return "shift";
+        case Stage::composite: return "composite";
+    }
+    return "?";
+}
+
+Rect camera_view(const Camera& c, const World& w) {
+    const double x = std::clamp(std::floor(c.x), -1e9, 1e9), y = std::clamp(std::floor(c.y), -1e9, 1e9);
+    const int width = c.width > 0 ? c.width : w.placed.bounds.w;
+    const int height = c.height > 0 ? c.height : w.placed.bounds.h;
+    return {int(x), int(y), width, height};
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Timer {
+    FrameReport& report;
+    Stage stage;
+    Clock::time_point start = Clock::now();
+    ~Timer() {
+        report.ran[int(stage)] = true;
+        report.ms[int(stage)] += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    }
+};
+
+Rect grow(Rect r, int by) { return {r.x - by, r.y - by, r.w + 2 * by, r.h + 2 * by}; }
+
+bool covers(Rect outer, Rect inner) { return intersect(outer, inner) == inner; }
+
+Rect bounding(Rect a, Rect b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    const int x0 = std::min(a.x, b.x), y0 = std::min(a.y, b.y);
+    const int x1 = std::max(a.x + a.w, b.x + b.w), y1 = std::max(a.y + a.h, b.y + b.h);
+    return {x0, y0, x1 - x0, y1 - y0};
+}
+
+bool same_obstacle_params(const Params& a, const Params& b) {
+    return a.delta_y == b.delta_y && a.noise_window == b.noise_window && a.opacity_threshold == b.opacity_threshold;
+}
+
+bool same_trace_params(const Params& a, const Params& b) {
+    return a.area_a == b.area_a && a.area_b == b.area_b && a.ray_skip == b.ray_skip && a.rays == b.rays &&
+           a.mode == b.mode && a.falloff_scale == b.falloff_scale;
+}
+
+bool same_composite_params(const Params& a, const Params& b) {
+    return a.ambient_clarity == b.ambient_clarity && a.dark_unlit == b.dark_unlit && a.mode == b.mode;
+}
+
+}  // namespace
+
+FrameReport render_frame(FrameState& st, const World& world, const Scene& scene, const Camera& camera, long frame) {
+    FrameReport rep;
+    const Params& p = scene.params;
+    const Rect view = camera_view(camera, world);
+    const bool world_changed = st.world_revision != world.revision;
+
+    // The view's sprites (drawn by the GPU in the app).
+    if (world_changed || !(st.view == view) || st.sprites.width != view.w) {
+        Timer t{rep, Stage::sprites};
+        st.sprites = render_sprites(world.tileset, world.placed, view);
+    }
+
+    // Which lights could light the texture, and the obstacles their rays cross.
+    const Rect tex_rect = grow(view, st.options.margin);
+    Rect needed = tex_rect;
+    for (const Light& l : scene.lights) {
+        const Rect area = light_area(l, p);
+        if (!intersect(area, tex_rect).empty()) needed = bounding(needed, area);
+    }
+    needed = intersect(needed, world.placed.bounds);
+
+    bool obstacles_rebuilt = false;
+    if (world_changed || !st.has_obstacles || !same_obstacle_params(st.obstacle_params, p) ||
+        !covers(st.obstacle_region, needed)) {
+        Timer t{rep, Stage::obstacle_map};
+        // Some room around what is needed, so a panning camera does not
+        // rebuild every frame; never more than the map.
+        st.obstacle_region = needed.empty() ? needed : intersect(grow(needed, 256), world.placed.bounds);
+        st.obstacles = build_obstacle_map(world.tileset, world.placed, p, st.obstacle_region);
+        st.opacity.clear();
+        for (const Sprite& s : world.tileset.sprites)
+            st.opacity.push_back(opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)));
+        st.obstacle_params = p;
+        st.world_revision = world.revision;
+        st.has_obstacles = true;
+        obstacles_rebuilt = true;
+    }
+
+    const bool must = !st.has_trace || obstacles_rebuilt || !same_trace_params(st.trace_params, p);
+    const bool due = frame % p.trace_every == 0 &&
+                     (st.trace_lights != scene.lights || !covers(st.traced.rect, view));
+    const bool retrace = must || due;
+    if (retrace) {
+        st.traced = LightTexture(tex_rect);
+        std::vector<LightMask> masks;
+        {
+            Timer t{rep, Stage::trace};
+            for (const Light& l : scene.lights) {
+                const Rect clip = intersect(light_area(l, p), tex_rect);
+                if (clip.empty()) continue;  // its area misses the texture: nothing to trace
+                masks.push_back(trace_light(st.obstacles, std::int64_t(std::floor(l.x)), std::int64_t(std::floor(l.y)),
+                                            light_a(l, p), light_b(l, p), p, clip));
+                ++rep.lights_traced;
+            }
+        }
+        if (st.options.opacity_correction && p.mode != Mode::flat && !masks.empty()) {
+            Timer t{rep, Stage::opacity_correction};
+            for (LightMask& m : masks) rep.sprites_corrected += correct_with_opacity_maps(m, world.placed, st.opacity);
+        }
+        std::size_t k = 0;
+        for (const Light& l : scene.lights)
+            if (!intersect(light_area(l, p), tex_rect).empty()) accumulate_light(st.traced, masks[k++], l, p);
+        st.has_trace = true;
+        st.trace_frame = frame;
+        st.trace_params = p;
+        st.trace_lights = scene.lights;
+        st.blurred_radius = -1;
+    }
+
+    bool light_changed = false;
+    if (st.blurred_radius != p.blur_radius) {
+        if (p.blur_radius > 0) {
+            Timer t{rep, Stage::blur};
+            st.blurred = box_blur(st.traced, p.blur_radius);
+        } else {
+            st.blurred = st.traced;
+        }
+        st.blurred_radius = p.blur_radius;
+        light_changed = true;
+    }
+    if (light_changed || !(st.light.rect == view)) {
+        // Between retraces this is the paper's inverse translation: the
+        // world-anchored texture read at the moved view.
+        Timer t{rep, Stage::shift};
+        st.light = shift_light_texture(st.blurred, view);
+        light_changed = true;
+    }
+
+    if (light_changed || !st.has_final || !(st.view == view) || world_changed ||
+        !same_composite_params(st.composite_params, p)) {
+        Timer t{rep, Stage::composite};
+        st.final = composite(st.sprites, view, st.light, p);
+        st.composite_params = p;
+        st.has_final = true;
+    }
+    st.view = view;
+    return rep;
+}
+
+}  // namespace isolux

@@ -1,0 +1,41 @@
+// Paper 3.2, Figures 6 and 7: "the opacity maps of the sprites are subtracted
+// or added to the light texture. If the iterated sprite is at a higher
+// position than the center of the light in the vertical direction, the
+// opacity map of the same is added ... Otherwise ... subtracted."
+#include "isolux/opacity_correction.hpp"
+
+namespace isolux {
+
+int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const std::vector<Mask>& opacity) {
+    int touched = 0;
+    const Rect clip = mask.clip;
+    for (std::size_t k = placed.first_overlay; k < placed.instances.size(); ++k) {
+        const SpriteInstance& in = placed.instances[k];
+        const Mask& op = opacity[in.sprite];
+        const Rect r = intersect({in.x, in.y, op.width, op.height}, clip);
+        if (r.empty()) continue;
+        ++touched;
+        // "Stands": where the sprite meets the ground (its anchor), not its
+        // top or centre: a tall tree behind a light stands above it even when
+        // its canopy reaches below the light's centre on screen.
+        const std::uint8_t value = in.ground_y < mask.cy ? 1 : 0;
+        for (int y = r.y; y < r.y + r.h; ++y) {
+            const std::uint8_t* src = &op.bits[std::size_t(y - in.y) * op.width + (r.x - in.x)];
+            std::uint8_t* dst = &mask.lit[std::size_t(y - clip.y) * clip.w + (r.x - clip.x)];
+            for (int x = 0; x < r.w; ++x)
+                if (src[x]) dst[x] = value;
+        }
+        // In shadow mode the corrected pixels count as reached, so an
+        // unlit (subtracted) sprite pixel joins the shadow.
+        if (!mask.reached.empty())
+            for (int y = r.y; y < r.y + r.h; ++y) {
+                const std::uint8_t* src = &op.bits[std::size_t(y - in.y) * op.width + (r.x - in.x)];
+                std::uint8_t* dst = &mask.reached[std::size_t(y - clip.y) * clip.w + (r.x - clip.x)];
+                for (int x = 0; x < r.w; ++x)
+                    if (src[x]) dst[x] = 1;
+            }
+    }
+    return touched;
+}
+
+}  // namespace isolux
