@@ -173,3 +173,21 @@ TEST(Map, worksWithOtherArtAndSizes) {
         for (int k = 0; k < t.overlay_count; ++k) trees += f.sprites[t.overlays[k].sprite].name == "lollipop";
     EXPECT_GT(trees, 0);
 }
+
+TEST(Map, tileAtFindsTheTileUnderAPixel) {
+    for (Layout l : {Layout::paper, Layout::diamond, Layout::staggered}) {
+        Map m = generate_map("pick", 7, 5, l, tiles());
+        PlacedMap p = place_sprites(m, tiles());
+        for (int r = 0; r < 5; ++r)
+            for (int c = 0; c < 7; ++c) {
+                int cx, cy, col = -1, row = -1;
+                tile_center(l, 128, 64, c, r, cx, cy);
+                // A point a little off the centre, well inside the diamond.
+                ASSERT_TRUE(tile_at(m, p, cx + p.shift_x + 20.5, cy + p.shift_y - 6.5, col, row));
+                EXPECT_EQ(col, c);
+                EXPECT_EQ(row, r);
+            }
+        int col, row;
+        EXPECT_FALSE(tile_at(m, p, -5000, -5000, col, row));
+    }
+}

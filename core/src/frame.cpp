@@ -80,7 +80,7 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
     const bool world_changed = st.world_revision != world.revision;
 
     // The view's sprites (drawn by the GPU in the app).
-    if (world_changed || !(st.view == view) || st.sprites.width != view.w) {
+    if (st.options.cpu_sprites && (world_changed || !(st.view == view) || st.sprites.width != view.w)) {
         Timer t{rep, Stage::sprites};
         st.sprites = render_sprites(world.tileset, world.placed, view);
     }
@@ -140,6 +140,11 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
         st.trace_params = p;
         st.trace_lights = scene.lights;
         st.blurred_radius = -1;
+        rep.retraced = true;
+    }
+    if (!st.options.cpu_blur_and_composite) {
+        st.view = view;
+        return rep;
     }
 
     bool light_changed = false;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <string>
 
 #include "isolux/error.hpp"
@@ -207,7 +208,37 @@ PlacedMap place_sprites(const Map& map, const Tileset& ts) {
         in.ground_y -= y0;
     }
     out.bounds = {0, 0, x1 - x0, y1 - y0};
+    out.shift_x = -x0;
+    out.shift_y = -y0;
     return out;
+}
+
+bool tile_at(const Map& map, const PlacedMap& placed, double wx, double wy, int& col, int& row) {
+    const double x = wx - placed.shift_x, y = wy - placed.shift_y;
+    const double hw = map.tile_width / 2.0, hh = map.tile_height / 2.0;
+    // A first guess by inverting the layout, then the best of its neighbours
+    // by the diamond's own distance |dx|/hw + |dy|/hh.
+    double gc = 0, gr = 0;
+    switch (map.layout) {
+        case Layout::diamond: gc = (x / hw + y / hh) / 2; gr = (y / hh - x / hw) / 2; break;
+        case Layout::paper: gr = y / hh; gc = (x - gr * hw) / map.tile_width; break;
+        case Layout::staggered: gr = y / hh; gc = x / map.tile_width; break;
+    }
+    const int c0 = int(std::floor(gc + 0.5)), r0 = int(std::floor(gr + 0.5));
+    double best = 1e300;
+    for (int r = r0 - 2; r <= r0 + 2; ++r)
+        for (int c = c0 - 2; c <= c0 + 2; ++c) {
+            if (c < 0 || r < 0 || c >= map.width || r >= map.height) continue;
+            int cx = 0, cy = 0;
+            tile_center(map.layout, map.tile_width, map.tile_height, c, r, cx, cy);
+            const double d = std::abs(x - cx) / hw + std::abs(y - cy) / hh;
+            if (d < best) {
+                best = d;
+                col = c;
+                row = r;
+            }
+        }
+    return best <= 1.0;
 }
 
 Image render_sprites(const Tileset& ts, const PlacedMap& placed, Rect view) {

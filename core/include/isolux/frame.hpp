@@ -24,12 +24,17 @@ struct FrameReport {
     std::array<double, stage_count> ms{};  // wall time per stage, milliseconds
     int lights_traced = 0;       // lights whose rays were traced this frame
     int sprites_corrected = 0;   // sprite instances the opacity correction touched
+    bool retraced = false;       // FrameState::traced changed this frame
     bool ran_stage(Stage s) const { return ran[int(s)]; }
 };
 
 struct FrameOptions {
     int margin = 64;                  // light texture = view + margin on each side (the paper's "slightly greater")
     bool opacity_correction = true;   // off only to show the raw light texture (the paper's Figure 6)
+    // The app draws sprites, blurs and composites on the GPU: it turns these
+    // off and reads FrameState::traced instead.
+    bool cpu_sprites = true;
+    bool cpu_blur_and_composite = true;
 };
 
 // What a frame keeps for the next one. Default-constructed: nothing cached.

@@ -65,12 +65,16 @@ struct PlacedMap {
     Rect bounds;  // world pixels covered by any sprite; x = y = 0
     std::vector<SpriteInstance> instances;
     std::size_t first_overlay = 0;  // instances[first_overlay..] are overlays
+    int shift_x = 0, shift_y = 0;   // world = layout pixels + shift (tile_center's frame to the world's)
 };
 
 PlacedMap place_sprites(const Map& map, const Tileset& tileset);
 
 // The centre of tile (col, row) in layout pixels, before PlacedMap's shift.
 void tile_center(Layout layout, int tile_w, int tile_h, int col, int row, int& x, int& y);
+
+// The tile whose floor diamond holds world pixel (wx, wy); false when none does.
+bool tile_at(const Map& map, const PlacedMap& placed, double wx, double wy, int& col, int& row);
 
 // Draws the instances overlapping `view` (world pixels) back to front, alpha
 // over a transparent background.

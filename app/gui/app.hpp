@@ -1,0 +1,79 @@
+// The running app: the editor (document and actions), the renderer (all GL),
+// and the UI's own transient state. Panels are functions over this.
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+
+#include "gui/editor.hpp"
+#include "gui/renderer.hpp"
+#include "gui/script.hpp"
+
+struct GLFWwindow;
+
+namespace isolux {
+
+// Per-stage times over the last frames, for the Stats panel.
+struct Stats {
+    static constexpr int frames = 240;
+    // core stages (see Stage), then GPU: upload, sprites, blur, composite.
+    static constexpr int series = stage_count + 4;
+    std::array<std::array<float, frames>, series> ms{};
+    std::array<bool, stage_count> last_ran{};
+    int head = 0;
+    float frame_ms = 0, fps = 0;
+    int lights_traced = 0;
+};
+
+struct Ui {
+    bool editing = false;  // a slider or field is being dragged: one undo step at its end
+    Scene edit_before;
+    int dragging_light = -1;
+    Scene drag_before;
+    bool panning = false;
+    double pan_x = 0, pan_y = 0;
+    std::string file_action;  // the file popup's action, "" when closed
+    std::string path;         // its path field
+    bool recovery_offered = false;
+    std::string seed;
+    int size[2] = {16, 16};
+    int layout = 1;
+    double cursor_x = 0, cursor_y = 0;  // world pixel under the mouse
+    bool cursor_in_view = false;
+};
+
+struct App {
+    GLFWwindow* window = nullptr;
+    Renderer renderer;
+    Editor editor;
+    Ui ui;
+    Stats stats;
+    FrameState flat_frame;  // flat lighting for the split view
+    std::optional<Script> script;
+    double now = 0;        // seconds since start
+    Rect view;             // world pixels shown this frame
+    double view_x = 0, view_y = 0;  // window position of the view's top-left
+    int window_w = 0, window_h = 0;
+    bool overlay_dirty = true;
+    Overlays overlay_key;
+    Params overlay_params;
+    std::vector<Light> overlay_lights;
+    Rect overlay_region;
+    std::string screenshot;  // --screenshot path
+    long screenshot_frames = 0;
+    bool quit = false;
+    int exit_code = 0;
+};
+
+// Panels and the status bar: read the app's state, call the editor's actions.
+void draw_panels(App& app);
+
+// Viewport input: pan, zoom, place, drag and delete lights, shortcuts, the
+// character. Skipped while ImGui wants the mouse or keyboard.
+void handle_viewport_input(App& app, double dt);
+
+// Exports (PNG or EXR by extension): the final frame as shown, the light
+// texture and the obstacle map of the view.
+bool export_image(App& app, const std::string& what, const std::string& path);
+
+}  // namespace isolux

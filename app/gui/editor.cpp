@@ -1,0 +1,309 @@
+#include "gui/editor.hpp"
+
+#include <cmath>
+
+#include "common/world.hpp"
+#include "isolux/error.hpp"
+#include "isolux/files.hpp"
+
+namespace fs = std::filesystem;
+
+namespace isolux {
+
+namespace {
+
+bool same_world_fields(const Scene& a, const Scene& b) {
+    return a.seed == b.seed && a.width == b.width && a.height == b.height && a.layout == b.layout &&
+           a.tileset == b.tileset;
+}
+
+void remember_file(Editor& e, const fs::path& path) {
+    add_recent(e.settings, fs::absolute(path).lexically_normal().string());
+    try {
+        save_settings(e.config, e.settings);
+    } catch (const Error&) {
+        // Settings are a convenience: failing to save them loses no work.
+    }
+}
+
+void center_camera(Editor& e) {
+    e.cam_x = 0;
+    e.cam_y = 0;
+    e.zoom = 1;
+}
+
+}  // namespace
+
+void set_status(Editor& e, std::string text, bool error) {
+    e.status = std::move(text);
+    e.status_error = error;
+}
+
+Editor make_editor(const Scene& scene, const fs::path& config) {
+    Editor e;
+    e.scene = scene;
+    e.config = config;
+    std::string warning;
+    e.settings = load_settings(config, &warning);
+    if (!warning.empty()) set_status(e, warning, true);
+    e.world = build_world(scene);
+    e.world_source = scene;
+    e.frame.options.cpu_sprites = false;
+    e.frame.options.cpu_blur_and_composite = false;
+    if (scene.camera.width > 0) {
+        e.cam_x = scene.camera.x;
+        e.cam_y = scene.camera.y;
+    }
+    return e;
+}
+
+void commit_edit(Editor& e, const Scene& before, double now) {
+    if (before == e.scene) return;
+    e.undo_stack.push_back(before);
+    if (e.undo_stack.size() > max_undo) e.undo_stack.erase(e.undo_stack.begin());
+    e.redo_stack.clear();
+    e.dirty = true;
+    e.autosave_due = now + autosave_delay;
+}
+
+bool sync_world(Editor& e) {
+    if (same_world_fields(e.scene, e.world_source)) return true;
+    try {
+        World w = build_world(e.scene);
+        e.world = std::move(w);
+        e.world_source = e.scene;
+        FrameOptions keep = e.frame.options;
+        e.frame = FrameState{};
+        e.frame.options = keep;
+        return true;
+    } catch (const Error& err) {
+        set_status(e, err.what(), true);
+        e.scene.seed = e.world_source.seed;
+        e.scene.width = e.world_source.width;
+        e.scene.height = e.world_source.height;
+        e.scene.layout = e.world_source.layout;
+        e.scene.tileset = e.world_source.tileset;
+        return false;
+    }
+}
+
+void place_light(Editor& e, double x, double y, double now) {
+    Scene before = e.scene;
+    Light l;
+    l.x = std::floor(x) + 0.5;
+    l.y = std::floor(y) + 0.5;
+    e.scene.lights.push_back(l);
+    e.selected = int(e.scene.lights.size()) - 1;
+    commit_edit(e, before, now);
+    set_status(e, "placed light " + std::to_string(e.selected + 1));
+}
+
+void remove_light(Editor& e, int index, double now) {
+    if (index < 0 || index >= int(e.scene.lights.size())) return;
+    Scene before = e.scene;
+    e.scene.lights.erase(e.scene.lights.begin() + index);
+    if (e.selected == index) e.selected = -1;
+    else if (e.selected > index) --e.selected;
+    commit_edit(e, before, now);
+    set_status(e, "removed light " + std::to_string(index + 1));
+}
+
+void move_light(Editor& e, int index, double x, double y) {
+    if (index < 0 || index >= int(e.scene.lights.size())) return;
+    e.scene.lights[index].x = std::floor(x) + 0.5;
+    e.scene.lights[index].y = std::floor(y) + 0.5;
+}
+
+void set_params(Editor& e, const Params& p, double now) {
+    try {
+        validate(p, "parameters");
+    } catch (const Error& err) {
+        set_status(e, err.what(), true);
+        return;
+    }
+    Scene before = e.scene;
+    e.scene.params = p;
+    commit_edit(e, before, now);
+}
+
+void regenerate(Editor& e, const std::string& seed, int width, int height, Layout layout, double now) {
+    Scene before = e.scene;
+    e.scene.seed = seed;
+    e.scene.width = width;
+    e.scene.height = height;
+    e.scene.layout = layout;
+    if (sync_world(e)) {
+        commit_edit(e, before, now);
+        set_status(e, "generated \"" + seed + "\" (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+    }
+}
+
+bool undo(Editor& e, double now) {
+    if (e.undo_stack.empty()) return false;
+    e.redo_stack.push_back(e.scene);
+    e.scene = e.undo_stack.back();
+    e.undo_stack.pop_back();
+    sync_world(e);
+    if (e.selected >= int(e.scene.lights.size())) e.selected = -1;
+    e.dirty = true;
+    e.autosave_due = now + autosave_delay;
+    set_status(e, "undo");
+    return true;
+}
+
+bool redo(Editor& e, double now) {
+    if (e.redo_stack.empty()) return false;
+    e.undo_stack.push_back(e.scene);
+    e.scene = e.redo_stack.back();
+    e.redo_stack.pop_back();
+    sync_world(e);
+    if (e.selected >= int(e.scene.lights.size())) e.selected = -1;
+    e.dirty = true;
+    e.autosave_due = now + autosave_delay;
+    set_status(e, "redo");
+    return true;
+}
+
+bool save_scene_to(Editor& e, const fs::path& path) {
+    try {
+        Scene s = e.scene;
+        s.camera = {e.cam_x, e.cam_y, 0, 0};
+        save_scene(path, s);
+    } catch (const Error& err) {
+        set_status(e, err.what(), true);
+        return false;
+    }
+    e.scene_path = path;
+    e.dirty = false;
+    e.autosave_due = -1;
+    discard_autosave(e);
+    remember_file(e, path);
+    set_status(e, "saved " + path.string());
+    return true;
+}
+
+bool load_scene_from(Editor& e, const fs::path& path, double now) {
+    std::vector<std::string> warnings;
+    Scene loaded;
+    try {
+        loaded = load_scene(path, &warnings);
+        // Build first: a scene whose tileset is broken must not replace the document.
+        World w = build_world(loaded);
+        Scene before = e.scene;
+        e.scene = loaded;
+        e.world = std::move(w);
+        e.world_source = loaded;
+        FrameOptions keep = e.frame.options;
+        e.frame = FrameState{};
+        e.frame.options = keep;
+        commit_edit(e, before, now);
+    } catch (const Error& err) {
+        set_status(e, err.what(), true);
+        return false;
+    }
+    e.cam_x = loaded.camera.x;
+    e.cam_y = loaded.camera.y;
+    e.selected = -1;
+    e.scene_path = path;
+    e.dirty = false;
+    e.autosave_due = -1;
+    remember_file(e, path);
+    set_status(e, warnings.empty() ? "loaded " + path.string() : warnings.front(), !warnings.empty());
+    return true;
+}
+
+bool export_preset(Editor& e, const fs::path& path) {
+    try {
+        save_preset(path, e.scene.params);
+    } catch (const Error& err) {
+        set_status(e, err.what(), true);
+        return false;
+    }
+    remember_file(e, path);
+    set_status(e, "exported preset " + path.string());
+    return true;
+}
+
+bool import_preset(Editor& e, const fs::path& path, double now) {
+    std::vector<std::string> warnings;
+    try {
+        Params p = load_preset(path, &warnings);
+        set_params(e, p, now);
+    } catch (const Error& err) {
+        set_status(e, err.what(), true);
+        return false;
+    }
+    remember_file(e, path);
+    set_status(e, warnings.empty() ? "loaded preset " + path.string() : warnings.front(), !warnings.empty());
+    return true;
+}
+
+bool load_tileset_from(Editor& e, const fs::path& manifest, double now) {
+    Scene before = e.scene;
+    e.scene.tileset = manifest.string();
+    if (!sync_world(e)) return false;
+    commit_edit(e, before, now);
+    center_camera(e);
+    set_status(e, "loaded tileset " + manifest.string());
+    return true;
+}
+
+fs::path autosave_path(const Editor& e) { return e.config / "autosave.json"; }
+
+bool autosave_tick(Editor& e, double now) {
+    if (e.autosave_due < 0 || now < e.autosave_due || !e.dirty) return false;
+    e.autosave_due = -1;
+    try {
+        std::error_code ec;
+        fs::create_directories(e.config, ec);
+        Scene s = e.scene;
+        s.camera = {e.cam_x, e.cam_y, 0, 0};
+        save_scene(autosave_path(e), s);
+    } catch (const Error& err) {
+        set_status(e, std::string("autosave failed: ") + err.what(), true);
+        return false;
+    }
+    return true;
+}
+
+bool has_recovery(const Editor& e) { return fs::exists(autosave_path(e)); }
+
+bool recover_autosave(Editor& e, double now) {
+    const fs::path p = autosave_path(e);
+    if (!load_scene_from(e, p, now)) return false;
+    e.scene_path.clear();  // recovered work is unsaved until the user saves it
+    e.dirty = true;
+    set_status(e, "recovered the autosaved scene: save it to keep it");
+    return true;
+}
+
+void discard_autosave(Editor& e) {
+    std::error_code ec;
+    fs::remove(autosave_path(e), ec);
+}
+
+Scene render_scene(const Editor& e) {
+    Scene s = e.scene;
+    if (e.character.enabled) {
+        Light l = e.character.light;
+        l.x = e.character.x;
+        l.y = e.character.y;
+        s.lights.push_back(l);
+    }
+    return s;
+}
+
+int light_at(const Editor& e, double x, double y, double radius) {
+    int best = -1;
+    double best_d = radius;
+    for (int i = 0; i < int(e.scene.lights.size()); ++i) {
+        const double d = std::hypot(e.scene.lights[i].x - x, e.scene.lights[i].y - y);
+        if (d <= best_d) {
+            best_d = d;
+            best = i;
+        }
+    }
+    return best;
+}
+
+}  // namespace isolux

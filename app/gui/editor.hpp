@@ -1,0 +1,115 @@
+// The editor's document and actions, with no GL and no ImGui: panels and
+// scripted input call these; tests call them directly.
+#pragma once
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gui/config.hpp"
+#include "isolux/frame.hpp"
+#include "isolux/scene.hpp"
+#include "isolux/world.hpp"
+
+namespace isolux {
+
+struct Overlays {
+    bool obstacles = false;
+    float obstacles_opacity = 0.85f;
+    bool opacity_maps = false;  // added (green) and subtracted (red) per light
+    float opacity_maps_opacity = 0.5f;
+    bool delta_y_bands = false;  // the rows Algorithm 1 reads on each sprite
+    float delta_y_opacity = 0.4f;
+    bool light_areas = true;     // the a x b rectangles
+    float light_areas_opacity = 0.6f;
+    bool raw_light = false;      // the light texture instead of the final frame
+    bool split_view = false;     // paper lighting left, flat lighting right (Figure 10)
+    float split = 0.5f;
+    friend bool operator==(const Overlays&, const Overlays&) = default;
+};
+
+// A character walking the map with a light (WASD), showing the l-frames shift.
+struct Character {
+    bool enabled = false;
+    bool follow = true;
+    double x = 0, y = 0;
+    double speed = 240;  // world pixels per second
+    Light light;
+};
+
+struct Editor {
+    Scene scene;  // the document: what is saved, undone and autosaved
+    World world;
+    Scene world_source;  // the scene the world was built from (seed, size, layout, tileset)
+    FrameState frame;  // core's caches for this view
+    long frame_number = 0;
+
+    double cam_x = 0, cam_y = 0, zoom = 1;  // view top-left (world px), window px per world px
+    int selected = -1;                      // selected light, or -1
+    std::vector<Scene> undo_stack, redo_stack;
+    bool dirty = false;                     // changes since the last save or load
+    std::filesystem::path scene_path;       // where the document was last saved or loaded
+
+    std::string status;  // the last message, shown in the status bar
+    bool status_error = false;
+
+    Overlays overlays;
+    Character character;
+
+    std::filesystem::path config;  // per-user config folder
+    Settings settings;
+    double autosave_due = -1;  // seconds (editor clock) when an autosave is due; -1: none
+};
+
+inline constexpr double autosave_delay = 2.0;  // seconds after a change
+inline constexpr std::size_t max_undo = 256;
+
+// A new editor on `scene`; builds its world. Throws Error when even the
+// default tileset cannot be loaded.
+Editor make_editor(const Scene& scene, const std::filesystem::path& config);
+
+// Messages: every action reports here instead of throwing.
+void set_status(Editor& e, std::string text, bool error = false);
+
+// Records the document before an edit (one undo step) and marks it dirty.
+// `before` is the document as it was; for slider drags the panel keeps it
+// from the drag's start and commits once at the end.
+void commit_edit(Editor& e, const Scene& before, double now);
+
+// Rebuilds the world when the scene's seed, size, layout or tileset differ
+// from what it was built from. On error the previous world stays, the scene's
+// world fields are restored and the status says why. Returns false on error.
+bool sync_world(Editor& e);
+
+// Edits, each one undo step.
+void place_light(Editor& e, double x, double y, double now);
+void remove_light(Editor& e, int index, double now);
+void move_light(Editor& e, int index, double x, double y);  // no undo step: call commit_edit at drag end
+void set_params(Editor& e, const Params& p, double now);   // validated; bad values refused with a message
+void regenerate(Editor& e, const std::string& seed, int width, int height, Layout layout, double now);
+bool undo(Editor& e, double now);
+bool redo(Editor& e, double now);
+
+// Files. Errors go to the status line; the document is never lost.
+bool save_scene_to(Editor& e, const std::filesystem::path& path);
+bool load_scene_from(Editor& e, const std::filesystem::path& path, double now);
+bool export_preset(Editor& e, const std::filesystem::path& path);
+bool import_preset(Editor& e, const std::filesystem::path& path, double now);
+bool load_tileset_from(Editor& e, const std::filesystem::path& manifest, double now);
+
+// Autosave: writes the document to config/autosave.json when due. Returns
+// true when it wrote.
+bool autosave_tick(Editor& e, double now);
+std::filesystem::path autosave_path(const Editor& e);
+// Whether an autosave from an earlier session waits to be recovered.
+bool has_recovery(const Editor& e);
+bool recover_autosave(Editor& e, double now);
+void discard_autosave(Editor& e);
+
+// The scene as rendered: the document plus the character's light.
+Scene render_scene(const Editor& e);
+
+// The light under world pixel (x, y) (within `radius` pixels), or -1.
+int light_at(const Editor& e, double x, double y, double radius);
+
+}  // namespace isolux

@@ -1,0 +1,337 @@
+// isolux: the desktop editor and live previewer. GLFW + OpenGL 3.3 core +
+// Dear ImGui over isolux::core. With no display it says so and renders the
+// scene with the headless renderer instead.
+#include <CLI/CLI.hpp>
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+
+#include "common/assets.hpp"
+#include "common/world.hpp"
+#include "gui/app.hpp"
+#include "gui/overlays.hpp"
+#include "gui/window.hpp"
+#include "isolux/error.hpp"
+#include "isolux/files.hpp"
+
+using namespace isolux;
+namespace fs = std::filesystem;
+
+namespace {
+
+// No display: the same scene through core's CPU frame, written as a PNG.
+int render_headless(const Scene& scene, const std::string& out, const std::string& why) {
+    std::cerr << "isolux: " << why << ": the editor needs a display.\n"
+              << "isolux: rendering the scene with the headless renderer instead (the same as isolux-cli render)\n";
+    World w = build_world(scene);
+    FrameState st;
+    render_frame(st, w, scene, scene.camera, 0);
+    save_image(out, st.final);
+    std::cerr << "isolux: wrote " << out << " (" << st.final.width << "x" << st.final.height
+              << "). For more, run isolux-cli render --help.\n";
+    return 0;
+}
+
+void run_script_step(App& app) {
+    if (!app.script) return;
+    Script& s = *app.script;
+    ImGuiIO& io = ImGui::GetIO();
+    if (s.release >= 0) {
+        io.MouseDown[s.release] = false;
+        s.release = -1;
+    }
+    if (s.key_up >= 0) {
+        io.KeysDown[s.key_up] = false;
+        io.KeyCtrl = false;
+        s.key_up = -1;
+    }
+    if (!s.drag_path.empty()) {
+        // The GLFW backend resets the buttons from the real mouse each frame:
+        // hold the button for the whole drag.
+        io.MouseDown[0] = true;
+        io.MousePos = ImVec2(float(s.drag_path.front().first), float(s.drag_path.front().second));
+        s.drag_path.erase(s.drag_path.begin());
+        if (s.drag_path.empty()) s.release = 0;
+        return;
+    }
+    if (s.wait > 0) {
+        --s.wait;
+        return;
+    }
+    if (s.next >= s.steps.size()) return;
+    const ScriptStep& step = s.steps[s.next++];
+    auto num = [&](int i) { return std::stod(step.args[i]); };
+    Editor& e = app.editor;
+    if (step.op == "wait") s.wait = int(num(0));
+    else if (step.op == "click" || step.op == "rclick") {
+        const int button = step.op == "click" ? 0 : 1;
+        io.MousePos = ImVec2(float(num(0)), float(num(1)));
+        io.MouseDown[button] = true;
+        s.release = button;
+    } else if (step.op == "drag") {
+        io.MousePos = ImVec2(float(num(0)), float(num(1)));
+        io.MouseDown[0] = true;
+        for (int i = 1; i <= 4; ++i)
+            s.drag_path.push_back({num(0) + (num(2) - num(0)) * i / 4, num(1) + (num(3) - num(1)) * i / 4});
+    } else if (step.op == "key") {
+        std::string k = step.args[0];
+        if (k.rfind("ctrl+", 0) == 0) {
+            io.KeyCtrl = true;
+            k = k.substr(5);
+        }
+        int code = -1;
+        if (k.size() == 1 && std::isalpha(unsigned(k[0]))) code = GLFW_KEY_A + (std::toupper(unsigned(k[0])) - 'A');
+        else if (k == "delete") code = GLFW_KEY_DELETE;
+        else if (k == "home") code = GLFW_KEY_HOME;
+        if (code >= 0) {
+            io.KeysDown[code] = true;
+            s.key_up = code;
+        }
+    } else if (step.op == "param") {
+        // A slider moved and released: the same edit the panel makes.
+        Params p = e.scene.params;
+        const std::string& n = step.args[0];
+        const double v = num(1);
+        if (n == "delta_y") p.delta_y = int(v);
+        else if (n == "noise_window") p.noise_window = int(v);
+        else if (n == "ray_skip") p.ray_skip = int(v);
+        else if (n == "trace_every") p.trace_every = int(v);
+        else if (n == "area_a") p.area_a = int(v);
+        else if (n == "area_b") p.area_b = int(v);
+        else if (n == "ambient_clarity") p.ambient_clarity = v;
+        else if (n == "opacity_threshold") p.opacity_threshold = v;
+        else if (n == "blur_radius") p.blur_radius = int(v);
+        else if (n == "falloff_scale") p.falloff_scale = v;
+        set_params(e, p, app.now);
+    } else if (step.op == "save-preset") export_preset(e, step.args[0]);
+    else if (step.op == "save-scene") save_scene_to(e, step.args[0]);
+    else if (step.op == "load-scene") load_scene_from(e, step.args[0], app.now);
+    else if (step.op == "load-preset") import_preset(e, step.args[0], app.now);
+    else if (step.op == "quit") s.quit = true;
+}
+
+void push_stats(App& app, const FrameReport& rep, double frame_ms) {
+    Stats& s = app.stats;
+    for (int k = 0; k < stage_count; ++k) s.ms[k][s.head] = float(rep.ms[k]);
+    const GpuTimes& g = app.renderer.times;
+    s.ms[stage_count + 0][s.head] = rep.retraced ? float(g.upload) : 0.0f;
+    s.ms[stage_count + 1][s.head] = float(g.sprites);
+    s.ms[stage_count + 2][s.head] = float(g.blur);
+    s.ms[stage_count + 3][s.head] = float(g.composite);
+    s.head = (s.head + 1) % Stats::frames;
+    s.last_ran = rep.ran;
+    s.lights_traced = rep.lights_traced;
+    s.frame_ms = s.frame_ms * 0.9f + float(frame_ms) * 0.1f;
+    s.fps = s.frame_ms > 0 ? 1000.0f / s.frame_ms : 0;
+}
+
+// One frame of the pipeline: core traces (CPU), the renderer does the rest.
+void render(App& app, bool screenshot_mode) {
+    Editor& e = app.editor;
+    renderer_set_world(app.renderer, e.world);
+    const Scene scene = render_scene(e);
+    Camera cam;
+    if (screenshot_mode) {
+        cam = scene.camera;  // width 0: the whole map, as isolux-cli renders it
+        app.view = camera_view(cam, e.world);
+        app.view_x = app.view_y = 0;
+    } else {
+        const double vw = std::ceil(app.window_w / e.zoom) + 1, vh = std::ceil(app.window_h / e.zoom) + 1;
+        cam = {e.cam_x, e.cam_y, int(vw), int(vh)};
+        app.view = camera_view(cam, e.world);
+        app.view_x = (app.view.x - e.cam_x) * e.zoom;
+        app.view_y = (app.view.y - e.cam_y) * e.zoom;
+    }
+    FrameReport rep = render_frame(e.frame, e.world, scene, cam, e.frame_number);
+    if (rep.retraced) renderer_upload_light(app.renderer, e.frame.traced, e.frame.traced.rect);
+    CompositeOptions opts;
+    opts.show_light = e.overlays.raw_light;
+    if (e.overlays.split_view) {
+        Scene flat = scene;
+        flat.params.mode = Mode::flat;
+        app.flat_frame.options = e.frame.options;
+        FrameReport fr = render_frame(app.flat_frame, e.world, flat, cam, e.frame_number);
+        if (fr.retraced) renderer_upload_flat_light(app.renderer, app.flat_frame.traced);
+        opts.split = int(app.view.w * e.overlays.split);
+    }
+    // Overlays: rebuilt only when what they show changed.
+    const Rect region = {app.view.x - 64, app.view.y - 64, app.view.w + 128, app.view.h + 128};
+    const bool overlay_stale = !(app.overlay_key == e.overlays) || !(app.overlay_params == scene.params) ||
+                               app.overlay_lights != scene.lights || rep.ran_stage(Stage::obstacle_map) ||
+                               !(intersect(app.overlay_region, app.view) == app.view) || app.overlay_dirty;
+    if (overlay_stale) {
+        OverlayImage o = build_overlays(e.world, e.frame, scene, e.overlays, region);
+        renderer_upload_overlay(app.renderer, o.image, o.rect);
+        app.overlay_key = e.overlays;
+        app.overlay_params = scene.params;
+        app.overlay_lights = scene.lights;
+        app.overlay_region = region;
+        app.overlay_dirty = false;
+    }
+    renderer_draw(app.renderer, app.view, scene.params, opts);
+    renderer_present(app.renderer, app.window_w, app.window_h, app.view_x, app.view_y, e.zoom, app.view, 1.0f);
+    push_stats(app, rep, 0);
+    ++e.frame_number;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App cli{"isolux: level editor and lighting previewer for seeded isometric maps"};
+    std::string scene_file, seed, screenshot, script_file, size;
+    long frames = 0;
+    int width = 1600, height = 900;
+    cli.add_option("--scene", scene_file, "Scene JSON to open");
+    cli.add_option("--seed", seed, "Map seed (default \"isolux\")");
+    cli.add_option("--size", size, "Map size WxH in tiles");
+    cli.add_option("--frames", frames, "Render N frames, then quit (with --screenshot)")->check(CLI::Range(1L, 1000000L));
+    cli.add_option("--screenshot", screenshot, "Write the final frame (the viewport, no panels) to this PNG");
+    cli.add_option("--script", script_file, "Scripted input, one command a frame (see app/gui/script.hpp)");
+    cli.add_option("--width", width, "Window width")->check(CLI::Range(320, 8192));
+    cli.add_option("--height", height, "Window height")->check(CLI::Range(240, 8192));
+    try {
+        cli.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return cli.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "isolux: " << e.what() << " (see isolux --help)\n";
+        return 2;
+    }
+
+    Scene scene;
+    try {
+        if (!scene_file.empty()) scene = load_scene(scene_file);
+        if (!seed.empty()) scene.seed = seed;
+        if (!size.empty()) {
+            int w = 0, h = 0;
+            if (std::sscanf(size.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > max_map_side ||
+                h > max_map_side)
+                throw Error("--size \"" + size + "\": expected WxH with sides in [1, " +
+                            std::to_string(max_map_side) + "]");
+            scene.width = w, scene.height = h;
+        }
+        if (scene_file.empty() && seed.empty() && size.empty()) {
+            // The default: the default seed and assets, lit as the README shows.
+            fs::path def = default_tileset_manifest();
+            fs::path demo = def.empty() ? fs::path() : def.parent_path().parent_path() / "scenes" / "default.json";
+            if (!demo.empty() && fs::exists(demo)) scene = load_scene(demo);
+        }
+    } catch (const Error& err) {
+        std::cerr << "isolux: " << err.what() << "\n";
+        return 2;
+    }
+
+    const bool screenshot_mode = !screenshot.empty();
+    std::string why;
+    GLFWwindow* window = open_window(width, height, !screenshot_mode, why);
+    if (!window) {
+        try {
+            return render_headless(scene, screenshot.empty() ? "isolux.png" : screenshot, why);
+        } catch (const Error& err) {
+            std::cerr << "isolux: " << err.what() << "\n";
+            return 2;
+        }
+    }
+
+    App app;
+    app.window = window;
+    app.screenshot = screenshot;
+    app.screenshot_frames = frames > 0 ? frames : 1;
+    const fs::path config = config_dir();
+    try {
+        app.editor = make_editor(scene, config);
+        if (!script_file.empty()) app.script = load_script(script_file);
+    } catch (const Error& err) {
+        std::cerr << "isolux: " << err.what() << "\n";
+        close_window(window);
+        return 2;
+    }
+    if (!screenshot_mode && !app.script && has_recovery(app.editor)) app.ui.recovery_offered = true;
+
+    std::string error;
+    if (!renderer_init(app.renderer, error)) {
+        std::cerr << "isolux: " << error << "\n";
+        close_window(window);
+        return 1;
+    }
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    static std::string ini;
+    std::error_code ec;
+    fs::create_directories(config, ec);
+    ini = (config / "imgui.ini").string();
+    io.IniFilename = (screenshot_mode || app.script) ? nullptr : ini.c_str();  // layout kept per user
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+
+    auto start = std::chrono::steady_clock::now();
+    auto last = start;
+    double reload_check = 0;
+    long frames_run = 0;
+    while (!glfwWindowShouldClose(window) && !app.quit) {
+        glfwPollEvents();
+        const auto t = std::chrono::steady_clock::now();
+        const double dt = std::chrono::duration<double>(t - last).count();
+        last = t;
+        app.now = std::chrono::duration<double>(t - start).count();
+        glfwGetFramebufferSize(window, &app.window_w, &app.window_h);
+        if (app.now >= reload_check) {
+            renderer_reload_shaders(app.renderer);  // hot reload; errors show in the status bar
+            reload_check = app.now + 0.5;
+        }
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        run_script_step(app);
+        ImGui::NewFrame();
+        if (!screenshot_mode) handle_viewport_input(app, dt);
+        const auto f0 = std::chrono::steady_clock::now();
+        render(app, screenshot_mode);
+        app.stats.frame_ms = app.stats.frame_ms * 0.9f +
+                             float(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - f0).count()) * 0.1f;
+        if (!screenshot_mode) draw_panels(app);
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        glfwSwapBuffers(window);
+        autosave_tick(app.editor, app.now);
+        ++frames_run;
+        if (screenshot_mode && frames_run >= app.screenshot_frames) {
+            try {
+                save_image(screenshot, renderer_read_final(app.renderer));
+                std::cout << "isolux: wrote " << screenshot << " after " << frames_run << " frames\n";
+            } catch (const Error& err) {
+                std::cerr << "isolux: " << err.what() << "\n";
+                app.exit_code = 2;
+            }
+            break;
+        }
+        if (app.script && app.script->quit) break;
+        if (app.script && app.script->next >= app.script->steps.size() && app.script->wait == 0 &&
+            app.script->release < 0 && app.script->drag_path.empty() && frames > 0 && frames_run >= frames)
+            break;
+    }
+    try {
+        save_settings(config, app.editor.settings);
+    } catch (const Error&) {
+    }
+    // A clean exit: unsaved work stays in the autosave only if it was dirty.
+    if (app.editor.dirty) {
+        app.editor.autosave_due = 0;
+        autosave_tick(app.editor, 1e300);
+    } else {
+        discard_autosave(app.editor);
+    }
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    renderer_shutdown(app.renderer);
+    close_window(window);
+    return app.exit_code;
+}

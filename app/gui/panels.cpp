@@ -1,0 +1,574 @@
+// The app's panels, viewport input and exports. Thin: each reads the state
+// and calls the editor's actions (gui/editor.hpp).
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gui/app.hpp"
+#include "isolux/blur.hpp"
+#include "isolux/error.hpp"
+#include "isolux/files.hpp"
+
+namespace isolux {
+
+namespace {
+
+// The "(?)" marker beside each parameter: the paper's symbol, meaning, range.
+void help(const char* text) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("(?)");
+    if (ImGui::IsItemHovered()) {
+        ImGui::BeginTooltip();
+        ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
+        ImGui::TextUnformatted(text);
+        ImGui::PopTextWrapPos();
+        ImGui::EndTooltip();
+    }
+}
+
+// Wraps a widget that edits the document live: the first change snapshots
+// the document, the end of the drag commits one undo step.
+void track_edit(App& app, const Scene& before_widget) {
+    Ui& ui = app.ui;
+    if (ImGui::IsItemActivated() && !ui.editing) {
+        ui.editing = true;
+        ui.edit_before = before_widget;
+    }
+    if (ImGui::IsItemDeactivated() && ui.editing) {
+        ui.editing = false;
+        if (ImGui::IsItemDeactivatedAfterEdit()) commit_edit(app.editor, ui.edit_before, app.now);
+    }
+}
+
+void slider_int(App& app, const char* label, int* v, int lo, int hi, const char* tip,
+                ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp) {
+    Scene before = app.editor.scene;
+    ImGui::SliderInt(label, v, lo, hi, "%d", flags);
+    track_edit(app, before);
+    help(tip);
+}
+
+void slider_float(App& app, const char* label, double* v, float lo, float hi, const char* tip,
+                  ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp) {
+    Scene before = app.editor.scene;
+    float f = float(*v);
+    if (ImGui::SliderFloat(label, &f, lo, hi, "%.3f", flags)) *v = f;
+    track_edit(app, before);
+    help(tip);
+}
+
+void open_file_popup(App& app, const std::string& action, const std::string& suggestion) {
+    app.ui.file_action = action;
+    app.ui.path = suggestion;
+}
+
+void menu_bar(App& app) {
+    Editor& e = app.editor;
+    if (!ImGui::BeginMainMenuBar()) return;
+    if (ImGui::BeginMenu("File")) {
+        if (ImGui::MenuItem("Open scene...")) open_file_popup(app, "open-scene", e.scene_path.string());
+        if (ImGui::MenuItem("Save scene", "Ctrl+S")) {
+            if (e.scene_path.empty()) open_file_popup(app, "save-scene", "scene.json");
+            else save_scene_to(e, e.scene_path);
+        }
+        if (ImGui::MenuItem("Save scene as...")) open_file_popup(app, "save-scene", e.scene_path.string());
+        ImGui::Separator();
+        if (ImGui::MenuItem("Load preset...")) open_file_popup(app, "load-preset", "preset.json");
+        if (ImGui::MenuItem("Export preset...")) open_file_popup(app, "save-preset", "preset.json");
+        if (ImGui::BeginMenu("Built-in preset")) {
+            for (const std::string& name : builtin_preset_names())
+                if (ImGui::MenuItem(name.c_str())) set_params(e, builtin_preset(name), app.now);
+            ImGui::EndMenu();
+        }
+        ImGui::Separator();
+        if (ImGui::BeginMenu("Export image")) {
+            if (ImGui::MenuItem("Final frame...")) open_file_popup(app, "export-final", "final.png");
+            if (ImGui::MenuItem("Light texture...")) open_file_popup(app, "export-light", "light.png");
+            if (ImGui::MenuItem("Obstacle map...")) open_file_popup(app, "export-obstacles", "obstacles.png");
+            ImGui::EndMenu();
+        }
+        if (ImGui::BeginMenu("Recent", !e.settings.recent.empty())) {
+            for (const std::string& r : e.settings.recent)
+                if (ImGui::MenuItem(r.c_str())) {
+                    if (r.find("preset") != std::string::npos) import_preset(e, r, app.now);
+                    else load_scene_from(e, r, app.now);
+                }
+            ImGui::EndMenu();
+        }
+        ImGui::Separator();
+        if (ImGui::MenuItem("Quit")) app.quit = true;
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Edit")) {
+        if (ImGui::MenuItem("Undo", "Ctrl+Z", false, !e.undo_stack.empty())) undo(e, app.now);
+        if (ImGui::MenuItem("Redo", "Ctrl+Y", false, !e.redo_stack.empty())) redo(e, app.now);
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("View")) {
+        if (ImGui::MenuItem("Reset view", "Home")) e.cam_x = e.cam_y = 0, e.zoom = 1;
+        ImGui::MenuItem("Stats", nullptr, &e.settings.show_stats);
+        ImGui::EndMenu();
+    }
+    ImGui::EndMainMenuBar();
+}
+
+void file_popup(App& app) {
+    Ui& ui = app.ui;
+    if (ui.file_action.empty()) return;
+    ImGui::OpenPopup("File");
+    ImGui::SetNextWindowSize(ImVec2(520, 0), ImGuiCond_Appearing);
+    if (ImGui::BeginPopupModal("File", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::Text("%s", ui.file_action.c_str());
+        ImGui::SetNextItemWidth(480);
+        bool enter = ImGui::InputText("##path", &ui.path, ImGuiInputTextFlags_EnterReturnsTrue);
+        if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere(-1);
+        if (ImGui::Button("OK") || enter) {
+            Editor& e = app.editor;
+            const std::string& a = ui.file_action;
+            if (a == "open-scene") load_scene_from(e, ui.path, app.now);
+            else if (a == "save-scene") save_scene_to(e, ui.path);
+            else if (a == "load-preset") import_preset(e, ui.path, app.now);
+            else if (a == "save-preset") export_preset(e, ui.path);
+            else if (a == "load-tileset") load_tileset_from(e, ui.path, app.now);
+            else if (a == "export-final") export_image(app, "final", ui.path);
+            else if (a == "export-light") export_image(app, "light", ui.path);
+            else if (a == "export-obstacles") export_image(app, "obstacles", ui.path);
+            ui.file_action.clear();
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel")) {
+            ui.file_action.clear();
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::EndPopup();
+    }
+}
+
+void recovery_popup(App& app) {
+    Editor& e = app.editor;
+    if (!app.ui.recovery_offered) return;
+    ImGui::OpenPopup("Recover unsaved work?");
+    if (ImGui::BeginPopupModal("Recover unsaved work?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::TextUnformatted("isolux did not close cleanly last time.");
+        ImGui::Text("An autosaved scene is waiting in %s", autosave_path(e).string().c_str());
+        if (ImGui::Button("Recover")) {
+            recover_autosave(e, app.now);
+            app.ui.recovery_offered = false;
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Discard")) {
+            discard_autosave(e);
+            app.ui.recovery_offered = false;
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::EndPopup();
+    }
+}
+
+void map_panel(App& app) {
+    Editor& e = app.editor;
+    Ui& ui = app.ui;
+    ImGui::SetNextWindowPos(ImVec2(10, 30), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(320, 190), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Map")) return ImGui::End();
+    if (ImGui::IsWindowAppearing() && ui.seed.empty()) {
+        ui.seed = e.scene.seed;
+        ui.size[0] = e.scene.width;
+        ui.size[1] = e.scene.height;
+        ui.layout = int(e.scene.layout);
+    }
+    ImGui::InputText("seed", &ui.seed);
+    help("Any text. The same seed gives the same map, pixel for pixel, on every machine.");
+    ImGui::InputInt2("size", ui.size);
+    help("Map size in tiles, each side 1 to 1024.");
+    ImGui::Combo("layout", &ui.layout, "paper\0diamond\0staggered\0");
+    help("paper: section 3's assembly rule (a parallelogram); diamond and staggered: Tiled's isometric layouts.");
+    if (ImGui::Button("Regenerate")) {
+        if (ui.size[0] < 1 || ui.size[1] < 1 || ui.size[0] > max_map_side || ui.size[1] > max_map_side)
+            set_status(e, "size: each side must be in [1, " + std::to_string(max_map_side) + "] tiles", true);
+        else
+            regenerate(e, ui.seed, ui.size[0], ui.size[1], Layout(ui.layout), app.now);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Random seed")) {
+        static const char* words[] = {"amber", "birch", "cedar", "dune", "ember", "fern", "grove", "heath",
+                                      "isle", "juniper", "kelp", "lichen", "moss", "nettle", "oak", "pine"};
+        const auto t = std::uint64_t(app.now * 1000) ^ std::uint64_t(e.undo_stack.size() * 7919);
+        ui.seed = std::string(words[t % 16]) + "-" + std::to_string((t / 16) % 10000);
+        regenerate(e, ui.seed, ui.size[0], ui.size[1], Layout(ui.layout), app.now);
+    }
+    ImGui::Text("tileset: %s", e.scene.tileset.empty() ? "default" : e.scene.tileset.c_str());
+    if (ImGui::Button("Load tileset...")) open_file_popup(app, "load-tileset", e.scene.tileset);
+    ImGui::SameLine();
+    if (ImGui::Button("Default tileset") && !e.scene.tileset.empty()) {
+        Scene before = e.scene;
+        e.scene.tileset.clear();
+        if (sync_world(e)) commit_edit(e, before, app.now);
+    }
+    ImGui::End();
+}
+
+void params_panel(App& app) {
+    Editor& e = app.editor;
+    Params& p = e.scene.params;
+    ImGui::SetNextWindowPos(ImVec2(10, 230), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(320, 420), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Parameters")) return ImGui::End();
+    ImGui::PushItemWidth(170);
+    ImGui::TextDisabled("obstacle map (paper 3.1)");
+    slider_int(app, "delta y", &p.delta_y, 1, 128,
+               "Δy: how many rows Algorithm 1 reads on each sprite, ending at its lowest opaque row "
+               "(paper 3.1: 25 for 128-px sprites). Range 1 to 4096; rebuilds the obstacle map.");
+    slider_int(app, "noise window", &p.noise_window, 1, 16,
+               "n: the box noise filter's window; a pixel is cleared when its n x n window holds fewer "
+               "than n obstacle pixels (paper 3.1). Range 1 to 255; rebuilds the obstacle map.");
+    slider_float(app, "opacity threshold", &p.opacity_threshold, 0.0f, 1.0f,
+                 "Alpha above this is opaque, for the opacity maps and Algorithm 1. Range 0 to 1; "
+                 "rebuilds the obstacle map.");
+    ImGui::TextDisabled("tracing (paper 3.2)");
+    slider_int(app, "area a", &p.area_a, 0, 512,
+               "a: a light's half-width in pixels; its area is (2a+1) x (2b+1). Range 0 to 4096; retraces.");
+    slider_int(app, "area b", &p.area_b, 0, 512,
+               "b: a light's half-height in pixels. Range 0 to 4096; retraces.");
+    slider_int(app, "ray skip", &p.ray_skip, 1, 32,
+               "k: trace every k-th border ray (paper 3.2: skipped rays' gaps are blurred). >= 1; retraces.",
+               ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
+    slider_int(app, "l frames", &p.trace_every, 1, 30,
+               "l: rays are traced once every l frames; in between the light texture is shifted with the "
+               "camera (paper 3.2). >= 1. Walk the character (WASD) to see it.");
+    slider_float(app, "falloff scale", &p.falloff_scale, 0.25f, 64.0f,
+                 "i = 255 / (1 + max(|dx|,|dy|) / falloff scale). 1 is the paper's function; larger spreads "
+                 "the light. > 0; retraces.",
+                 ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
+    {
+        Scene before = e.scene;
+        int mode = int(p.mode);
+        if (ImGui::Combo("mode", &mode, "light\0shadow\0flat\0")) {
+            p.mode = Mode(mode);
+            commit_edit(e, before, app.now);
+        }
+        help("light: rays stop at obstacles (the paper). shadow: paint what lies beyond the first obstacle "
+             "(paper 4). flat: no obstacles, falloff only (Figure 10b).");
+        before = e.scene;
+        int rays = int(p.rays);
+        if (ImGui::Combo("rays", &rays, "border\0every pixel\0")) {
+            p.rays = Rays(rays);
+            commit_edit(e, before, app.now);
+        }
+        help("border: a ray to each border pixel (Algorithm 2). every pixel: a ray to every pixel of the "
+             "area, the paper's 4ab rays; the accuracy reference, slow.");
+    }
+    ImGui::TextDisabled("shading (paper 3.2, Algorithm 3)");
+    slider_int(app, "blur radius", &p.blur_radius, 0, 16,
+               "Box blur of the light texture, in pixels (paper 3.2). Range 0 to 255; re-blurs only.");
+    slider_float(app, "ambient clarity", &p.ambient_clarity, 0.0f, 1.0f,
+                 "Algorithm 3's ambientClarity: texture x sqrt(c) + luminance x light / (c^2 + 0.1). "
+                 "Range 0 to 1 (paper: 0.4); re-composites only.");
+    {
+        Scene before = e.scene;
+        if (ImGui::Checkbox("dark unlit", &p.dark_unlit)) commit_edit(e, before, app.now);
+        help("Algorithm 3 variant (paper 4): the texture factor is multiplied by the light, so what no ray "
+             "reaches is black.");
+    }
+    ImGui::PopItemWidth();
+    ImGui::End();
+}
+
+void overlays_panel(App& app) {
+    Overlays& o = app.editor.overlays;
+    ImGui::SetNextWindowPos(ImVec2(10, 660), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(320, 230), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Overlays")) return ImGui::End();
+    auto row = [](const char* name, bool* on, float* opacity, const char* tip) {
+        ImGui::Checkbox(name, on);
+        help(tip);
+        if (opacity) {
+            ImGui::SameLine(190);
+            ImGui::SetNextItemWidth(100);
+            ImGui::SliderFloat((std::string("##") + name).c_str(), opacity, 0.0f, 1.0f, "%.2f");
+        }
+    };
+    row("obstacle map", &o.obstacles, &o.obstacles_opacity, "The obstacle map in white, as the paper's Figure 6.");
+    row("opacity maps", &o.opacity_maps, &o.opacity_maps_opacity,
+        "Green: sprites standing above a light's centre, added to its light. Red: those below, subtracted.");
+    row("delta y bands", &o.delta_y_bands, &o.delta_y_opacity,
+        "Blue: the Δy rows Algorithm 1 reads on each sprite; cyan: the run it chose.");
+    row("light areas", &o.light_areas, &o.light_areas_opacity, "Each light's (2a+1) x (2b+1) area.");
+    row("raw light texture", &o.raw_light, nullptr, "Show the light texture instead of the final frame.");
+    row("split view", &o.split_view, nullptr, "Left: the paper's lighting. Right: flat lighting (Figure 10).");
+    if (o.split_view) {
+        ImGui::SetNextItemWidth(200);
+        ImGui::SliderFloat("split", &o.split, 0.0f, 1.0f);
+    }
+    ImGui::End();
+}
+
+void lights_panel(App& app) {
+    Editor& e = app.editor;
+    ImGui::SetNextWindowPos(ImVec2(1270, 30), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(320, 380), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Lights")) return ImGui::End();
+    ImGui::TextWrapped("Click the map to place a light, drag to move, right-click or Delete to remove.");
+    for (int i = 0; i < int(e.scene.lights.size()); ++i) {
+        const Light& l = e.scene.lights[i];
+        char label[96];
+        std::snprintf(label, sizeof label, "light %d  (%.0f, %.0f)", i + 1, l.x, l.y);
+        if (ImGui::Selectable(label, e.selected == i)) e.selected = i;
+    }
+    if (e.selected >= 0 && e.selected < int(e.scene.lights.size())) {
+        ImGui::Separator();
+        Light& l = e.scene.lights[e.selected];
+        Scene before = e.scene;
+        float pos[2] = {float(l.x), float(l.y)};
+        if (ImGui::DragFloat2("position", pos, 1.0f)) l.x = pos[0], l.y = pos[1];
+        track_edit(app, before);
+        before = e.scene;
+        bool own_area = l.area_a.has_value();
+        if (ImGui::Checkbox("own area", &own_area)) {
+            if (own_area) l.area_a = e.scene.params.area_a, l.area_b = e.scene.params.area_b;
+            else l.area_a.reset(), l.area_b.reset();
+            commit_edit(e, before, app.now);
+        }
+        help("Off: the preset's a and b.");
+        if (own_area) {
+            before = e.scene;
+            int ab[2] = {*l.area_a, *l.area_b};
+            if (ImGui::SliderInt2("a, b", ab, 0, 512, "%d", ImGuiSliderFlags_AlwaysClamp))
+                l.area_a = ab[0], l.area_b = ab[1];
+            track_edit(app, before);
+        }
+        before = e.scene;
+        float col[3] = {l.r / 255.0f, l.g / 255.0f, l.b / 255.0f};
+        if (ImGui::ColorEdit3("colour", col)) {
+            l.r = std::uint8_t(col[0] * 255 + 0.5f), l.g = std::uint8_t(col[1] * 255 + 0.5f),
+            l.b = std::uint8_t(col[2] * 255 + 0.5f);
+        }
+        track_edit(app, before);
+        before = e.scene;
+        float intensity = float(l.intensity);
+        if (ImGui::SliderFloat("intensity", &intensity, 0.0f, 4.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp))
+            l.intensity = intensity;
+        track_edit(app, before);
+        if (ImGui::Button("Remove")) remove_light(e, e.selected, app.now);
+    }
+    ImGui::Separator();
+    Character& c = e.character;
+    if (ImGui::Checkbox("character (WASD)", &c.enabled) && c.enabled) {
+        c.x = app.view.x + app.view.w / 2.0;
+        c.y = app.view.y + app.view.h / 2.0;
+    }
+    help("A character carrying a light walks with WASD or the arrow keys: the paper's l-frames shift at work.");
+    if (c.enabled) {
+        ImGui::SameLine();
+        ImGui::Checkbox("follow", &c.follow);
+    }
+    ImGui::End();
+}
+
+void stats_panel(App& app) {
+    if (!app.editor.settings.show_stats) return;
+    ImGui::SetNextWindowPos(ImVec2(1270, 420), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(320, 430), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Stats", &app.editor.settings.show_stats)) return ImGui::End();
+    const Stats& s = app.stats;
+    ImGui::Text("%.1f FPS, %.2f ms a frame, %d lights traced", s.fps, s.frame_ms, s.lights_traced);
+    std::string ran = "ran:";
+    for (int k = 0; k < stage_count; ++k)
+        if (s.last_ran[k]) ran += std::string(" ") + std::string(to_string(Stage(k)));
+    ImGui::TextWrapped("%s", ran.c_str());
+    static const char* names[Stats::series] = {"sprites (cpu)", "obstacle map", "trace", "opacity correction",
+                                               "blur (cpu)", "shift", "composite (cpu)", "upload",
+                                               "sprites (gpu)", "blur (gpu)", "composite (gpu)"};
+    for (int k = 0; k < Stats::series; ++k) {
+        if (k == int(Stage::sprites) || k == int(Stage::blur) || k == int(Stage::composite)) continue;  // on the GPU here
+        const auto& v = s.ms[k];
+        float latest = v[(s.head + Stats::frames - 1) % Stats::frames];
+        float peak = *std::max_element(v.begin(), v.end());
+        char overlay[64];
+        std::snprintf(overlay, sizeof overlay, "%.3f ms (max %.2f)", latest, peak);
+        ImGui::PlotLines(names[k], v.data(), Stats::frames, s.head, overlay, 0.0f, std::max(0.1f, peak), ImVec2(170, 26));
+    }
+    ImGui::End();
+}
+
+void status_bar(App& app) {
+    const Editor& e = app.editor;
+    ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y - 26));
+    ImGui::SetNextWindowSize(ImVec2(vp->Size.x, 26));
+    ImGui::Begin("##status", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                     ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoBringToFrontOnFocus);
+    int col = -1, row = -1;
+    const bool on_tile = app.ui.cursor_in_view &&
+                         tile_at(e.world.map, e.world.placed, app.ui.cursor_x, app.ui.cursor_y, col, row);
+    ImGui::Text("world (%.0f, %.0f)  tile %s  |  %.0f FPS  %.2f ms  |  zoom %.2f  |  %s%s", app.ui.cursor_x,
+                app.ui.cursor_y, on_tile ? (std::to_string(col) + ", " + std::to_string(row)).c_str() : "-",
+                app.stats.fps, app.stats.frame_ms, e.zoom, e.dirty ? "unsaved  |  " : "", "");
+    ImGui::SameLine();
+    if (e.status_error) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", e.status.c_str());
+    else ImGui::TextUnformatted(e.status.c_str());
+    if (!app.renderer.shader_error.empty()) {
+        ImGui::SameLine();
+        ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "shader: %s", app.renderer.shader_error.c_str());
+    }
+    ImGui::End();
+}
+
+void light_area_overlay(App& app) {
+    const Editor& e = app.editor;
+    ImDrawList* dl = ImGui::GetBackgroundDrawList();
+    const Scene s = render_scene(e);
+    auto to_screen = [&](double wx, double wy) {
+        return ImVec2(float(app.view_x + (wx - app.view.x) * e.zoom), float(app.view_y + (wy - app.view.y) * e.zoom));
+    };
+    for (int i = 0; i < int(s.lights.size()); ++i) {
+        const Light& l = s.lights[i];
+        const bool sel = i == e.selected;
+        const ImVec2 c = to_screen(l.x, l.y);
+        if (e.overlays.light_areas) {
+            const Rect a = light_area(l, s.params);
+            const int alpha = int(255 * e.overlays.light_areas_opacity);
+            dl->AddRect(to_screen(a.x, a.y), to_screen(a.x + a.w, a.y + a.h),
+                        sel ? IM_COL32(255, 220, 90, alpha) : IM_COL32(200, 200, 255, alpha));
+        }
+        dl->AddCircle(c, sel ? 7.0f : 5.0f, sel ? IM_COL32(255, 220, 90, 255) : IM_COL32(255, 255, 255, 200), 16, 2.0f);
+    }
+    if (e.overlays.split_view) {
+        const float x = float(app.view_x + app.view.w * e.overlays.split * e.zoom);
+        dl->AddLine(ImVec2(x, 0), ImVec2(x, float(app.window_h)), IM_COL32(255, 255, 255, 160), 1.5f);
+    }
+}
+
+}  // namespace
+
+void draw_panels(App& app) {
+    menu_bar(app);
+    map_panel(app);
+    params_panel(app);
+    overlays_panel(app);
+    lights_panel(app);
+    stats_panel(app);
+    status_bar(app);
+    light_area_overlay(app);
+    file_popup(app);
+    recovery_popup(app);
+}
+
+void handle_viewport_input(App& app, double dt) {
+    ImGuiIO& io = ImGui::GetIO();
+    Editor& e = app.editor;
+    Ui& ui = app.ui;
+    const double mx = io.MousePos.x, my = io.MousePos.y;
+    ui.cursor_x = app.view.x + (mx - app.view_x) / e.zoom;
+    ui.cursor_y = app.view.y + (my - app.view_y) / e.zoom;
+    ui.cursor_in_view = !io.WantCaptureMouse && mx >= 0 && my >= 0;
+
+    if (!io.WantCaptureKeyboard) {
+        const bool ctrl = io.KeyCtrl;
+        if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false)) {
+            if (io.KeyShift) redo(e, app.now);
+            else undo(e, app.now);
+        }
+        if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y, false)) redo(e, app.now);
+        if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S, false)) {
+            if (e.scene_path.empty()) open_file_popup(app, "save-scene", "scene.json");
+            else save_scene_to(e, e.scene_path);
+        }
+        if (ImGui::IsKeyPressed(GLFW_KEY_DELETE, false) && e.selected >= 0) remove_light(e, e.selected, app.now);
+        if (ImGui::IsKeyPressed(GLFW_KEY_HOME, false)) e.cam_x = e.cam_y = 0, e.zoom = 1;
+        Character& c = e.character;
+        if (c.enabled && !ctrl) {
+            double dx = 0, dy = 0;
+            if (ImGui::IsKeyDown(GLFW_KEY_A) || ImGui::IsKeyDown(GLFW_KEY_LEFT)) dx -= 1;
+            if (ImGui::IsKeyDown(GLFW_KEY_D) || ImGui::IsKeyDown(GLFW_KEY_RIGHT)) dx += 1;
+            if (ImGui::IsKeyDown(GLFW_KEY_W) || ImGui::IsKeyDown(GLFW_KEY_UP)) dy -= 1;
+            if (ImGui::IsKeyDown(GLFW_KEY_S) || ImGui::IsKeyDown(GLFW_KEY_DOWN)) dy += 1;
+            c.x += dx * c.speed * dt;
+            c.y += dy * c.speed * dt * 0.5;  // isometric: half speed vertically
+            if (c.follow) {
+                e.cam_x = c.x - app.window_w / 2.0 / e.zoom;
+                e.cam_y = c.y - app.window_h / 2.0 / e.zoom;
+            }
+        }
+    }
+
+    if (io.WantCaptureMouse) return;
+    // Zoom at the cursor.
+    if (io.MouseWheel != 0) {
+        const double old = e.zoom;
+        e.zoom = std::clamp(e.zoom * std::pow(1.15, io.MouseWheel), 0.25, 8.0);
+        e.cam_x = ui.cursor_x - (ui.cursor_x - e.cam_x) * old / e.zoom;
+        e.cam_y = ui.cursor_y - (ui.cursor_y - e.cam_y) * old / e.zoom;
+    }
+    // Pan: middle drag, or Space + left drag.
+    const bool space = ImGui::IsKeyDown(GLFW_KEY_SPACE);
+    if (ImGui::IsMouseDown(2) || (space && ImGui::IsMouseDown(0))) {
+        e.cam_x -= io.MouseDelta.x / e.zoom;
+        e.cam_y -= io.MouseDelta.y / e.zoom;
+        return;
+    }
+    const double pick = 8.0 / e.zoom;
+    if (ImGui::IsMouseClicked(0)) {
+        const int hit = light_at(e, ui.cursor_x, ui.cursor_y, pick);
+        if (hit >= 0) {
+            e.selected = hit;
+            ui.dragging_light = hit;
+            ui.drag_before = e.scene;
+        } else {
+            place_light(e, ui.cursor_x, ui.cursor_y, app.now);
+        }
+    }
+    if (ui.dragging_light >= 0) {
+        if (ImGui::IsMouseDown(0)) {
+            if (io.MouseDelta.x != 0 || io.MouseDelta.y != 0) move_light(e, ui.dragging_light, ui.cursor_x, ui.cursor_y);
+        } else {
+            commit_edit(e, ui.drag_before, app.now);  // one undo step per drag
+            ui.dragging_light = -1;
+        }
+    }
+    if (ImGui::IsMouseClicked(1)) {
+        const int hit = light_at(e, ui.cursor_x, ui.cursor_y, pick);
+        if (hit >= 0) remove_light(e, hit, app.now);
+    }
+}
+
+bool export_image(App& app, const std::string& what, const std::string& path) {
+    Editor& e = app.editor;
+    try {
+        if (what == "final") {
+            save_image(path, renderer_read_final(app.renderer));
+        } else if (what == "light") {
+            LightTexture blurred = box_blur(e.frame.traced, e.scene.params.blur_radius);
+            LightTexture view = shift_light_texture(blurred, app.view);
+            Image im(view.rect.w, view.rect.h);
+            for (std::size_t i = 0; i < std::size_t(im.width) * im.height; ++i) {
+                for (int k = 0; k < 3; ++k) im.rgba[i * 4 + k] = view.rgb[i * 3 + k];
+                im.rgba[i * 4 + 3] = 255;
+            }
+            save_image(path, im);
+        } else {
+            Image im(app.view.w, app.view.h);
+            for (int y = 0; y < im.height; ++y)
+                for (int x = 0; x < im.width; ++x) {
+                    const std::uint8_t v = e.frame.obstacles.get(app.view.x + x, app.view.y + y) ? 255 : 0;
+                    std::uint8_t* p = im.at(x, y);
+                    p[0] = p[1] = p[2] = v;
+                    p[3] = 255;
+                }
+            save_image(path, im);
+        }
+    } catch (const Error& err) {
+        set_status(e, err.what(), true);
+        return false;
+    }
+    set_status(e, "exported " + path);
+    return true;
+}
+
+}  // namespace isolux

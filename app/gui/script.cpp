@@ -1,0 +1,41 @@
+#include "gui/script.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "isolux/error.hpp"
+
+namespace isolux {
+
+Script load_script(const std::filesystem::path& path) {
+    std::ifstream f(path);
+    if (!f) throw Error(path.string() + ": cannot open script");
+    Script s;
+    std::string text;
+    int line = 0;
+    while (std::getline(f, text)) {
+        ++line;
+        if (auto hash = text.find('#'); hash != std::string::npos) text.resize(hash);
+        std::istringstream in(text);
+        ScriptStep step;
+        step.line = line;
+        if (!(in >> step.op)) continue;
+        for (std::string a; in >> a;) step.args.push_back(a);
+        static const std::pair<const char*, std::size_t> arity[] = {
+            {"wait", 1}, {"click", 2}, {"rclick", 2}, {"drag", 4}, {"key", 1}, {"param", 2},
+            {"save-preset", 1}, {"save-scene", 1}, {"load-scene", 1}, {"load-preset", 1}, {"quit", 0}};
+        bool known = false;
+        for (auto [op, n] : arity)
+            if (step.op == op) {
+                known = true;
+                if (step.args.size() != n)
+                    throw Error(path.string() + ":" + std::to_string(line) + ": " + step.op + " takes " +
+                                std::to_string(n) + " arguments");
+            }
+        if (!known) throw Error(path.string() + ":" + std::to_string(line) + ": unknown command \"" + step.op + "\"");
+        s.steps.push_back(step);
+    }
+    return s;
+}
+
+}  // namespace isolux

@@ -1,0 +1,33 @@
+// Scripted input for tests and demos: one command a frame, fed to ImGui's IO
+// as a user's mouse and keys would be, or to the editor's actions.
+//   wait N | click X Y | rclick X Y | drag X0 Y0 X1 Y1 | key [ctrl+]NAME
+//   param NAME VALUE (a slider moved: one undo step) | save-preset PATH |
+//   save-scene PATH | load-scene PATH | load-preset PATH | quit
+// Coordinates are window pixels; '#' starts a comment.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace isolux {
+
+struct ScriptStep {
+    std::string op;
+    std::vector<std::string> args;
+    int line = 0;
+};
+
+struct Script {
+    std::vector<ScriptStep> steps;
+    std::size_t next = 0;
+    int wait = 0;        // frames left to wait
+    int release = -1;    // mouse button to release next frame
+    int key_up = -1;     // key to release next frame
+    std::vector<std::pair<double, double>> drag_path;  // pending drag positions
+    bool quit = false;
+};
+
+// Parses a script file; throws Error naming the file and line.
+Script load_script(const std::filesystem::path& path);
+
+}  // namespace isolux

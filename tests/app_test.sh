@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# The isolux app driven end to end under a display (ctest runs inside
+# xvfb-run): a headless screenshot held to isolux-cli's render, and scripted
+# input (place a light, move a slider, undo, save a preset and a scene).
+# Usage: app_test.sh PATH/TO/isolux PATH/TO/isolux-cli SOURCE_DIR
+set -u
+app=$1
+cli=$2
+src=$3
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+export ISOLUX_CONFIG_DIR="$tmp/config"
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { echo "FAIL $*"; fail=$((fail + 1)); }
+json() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$1" "$2"; }
+
+# 1. Headless screenshot of the default scene, against the CPU renderer.
+if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --frames 3 --screenshot "$tmp/shot.png" >"$tmp/log" 2>&1; then ok; else bad "screenshot run"; cat "$tmp/log"; fi
+"$cli" render --scene "$src/assets/scenes/default.json" --out "$tmp/cli.png" >/dev/null
+# Within 2/255 everywhere but a few semi-transparent sprite edges (the atlas
+# is premultiplied in 8 bits).
+if idiff -fail 0.0079 -failpercent 0.01 -warn 0.0079 -warnpercent 0.01 "$tmp/shot.png" "$tmp/cli.png" >"$tmp/idiff" 2>&1; then ok; else bad "screenshot differs from isolux-cli"; cat "$tmp/idiff"; fi
+
+# 2. Scripted input: place a light, move a slider, undo it, save.
+cat >"$tmp/edit.script" <<SCRIPT
+wait 2
+click 800 450
+wait 2
+param ambient_clarity 0.7
+wait 1
+key ctrl+z
+wait 2
+save-preset $tmp/preset.json
+save-scene $tmp/scene.json
+quit
+SCRIPT
+if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/edit.script" --frames 1 >"$tmp/log" 2>&1; then ok; else bad "scripted run"; cat "$tmp/log"; fi
+[ -f "$tmp/scene.json" ] && ok || bad "no scene saved"
+[ "$(json "$tmp/scene.json" "len(d['lights'])")" = "3" ] && ok || bad "expected 3 lights (2 + the placed one)"
+[ "$(json "$tmp/scene.json" "round(d['lights'][2]['x'])")" = "800" ] && ok || bad "the placed light is not under the click"
+[ "$(json "$tmp/preset.json" "d['ambient_clarity']")" = "0.3" ] && ok || bad "undo did not revert the slider"
+[ "$(json "$tmp/preset.json" "d['schema_version']")" = "1" ] && ok || bad "preset lacks schema_version"
+
+# 3. A drag moves a light (one undo step), right-click removes one, Delete the selected.
+cat >"$tmp/drag.script" <<SCRIPT
+wait 2
+drag 700 420 760 470
+wait 3
+save-scene $tmp/dragged.scene.json
+rclick 760 470
+wait 2
+save-scene $tmp/removed.scene.json
+key ctrl+z
+wait 2
+save-scene $tmp/restored.scene.json
+quit
+SCRIPT
+timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/drag.script" >"$tmp/log" 2>&1 || { bad "drag run"; cat "$tmp/log"; }
+[ "$(json "$tmp/dragged.scene.json" "round(d['lights'][0]['x']), round(d['lights'][0]['y'])")" = "(760, 470)" ] && ok || bad "drag did not move light 1"
+[ "$(json "$tmp/removed.scene.json" "len(d['lights'])")" = "1" ] && ok || bad "right-click did not remove the light"
+[ "$(json "$tmp/restored.scene.json" "len(d['lights'])")" = "2" ] && ok || bad "undo did not restore the removed light"
+
+# 4. Bad input never crashes nor loses the document; unsaved work is autosaved.
+printf '{"seed": "x", "lights": [' >"$tmp/corrupt.json"
+cat >"$tmp/bad.script" <<SCRIPT
+wait 1
+click 820 470
+wait 1
+load-scene $tmp/corrupt.json
+load-preset $tmp/corrupt.json
+wait 1
+save-scene $tmp/after_bad.json
+click 830 480
+wait 3
+quit
+SCRIPT
+rm -rf "$ISOLUX_CONFIG_DIR"
+if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/bad.script" >"$tmp/log" 2>&1; then ok; else bad "bad-input run crashed"; cat "$tmp/log"; fi
+[ "$(json "$tmp/after_bad.json" "len(d['lights'])")" = "3" ] && ok || bad "a corrupt file replaced the document"
+[ -f "$ISOLUX_CONFIG_DIR/autosave.json" ] && ok || bad "unsaved work was not autosaved"
+[ "$(json "$ISOLUX_CONFIG_DIR/autosave.json" "len(d['lights'])")" = "4" ] && ok || bad "the autosave lacks the last light"
+
+# 5. No display: a clear message and the headless renderer.
+if env -u DISPLAY "$app" --scene "$src/assets/scenes/default.json" --screenshot "$tmp/nodisplay.png" >"$tmp/log" 2>&1 &&
+  grep -q "no display" "$tmp/log" && [ -f "$tmp/nodisplay.png" ]; then ok; else bad "no-display fallback"; cat "$tmp/log"; fi
+if cmp -s "$tmp/nodisplay.png" "$tmp/cli.png"; then ok; else bad "the no-display render differs from isolux-cli"; fi
+
+echo "app: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
