@@ -19,9 +19,8 @@ json() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval
 # 1. Headless screenshot of the default scene, against the CPU renderer.
 if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --frames 3 --screenshot "$tmp/shot.png" >"$tmp/log" 2>&1; then ok; else bad "screenshot run"; cat "$tmp/log"; fi
 "$cli" render --scene "$src/assets/scenes/default.json" --out "$tmp/cli.png" >/dev/null
-# Within 2/255 everywhere but a few semi-transparent sprite edges (the atlas
-# is premultiplied in 8 bits).
-if idiff -fail 0.0079 -failpercent 0.01 -warn 0.0079 -warnpercent 0.01 "$tmp/shot.png" "$tmp/cli.png" >"$tmp/idiff" 2>&1; then ok; else bad "screenshot differs from isolux-cli"; cat "$tmp/idiff"; fi
+# Within 2/255 on every pixel and channel.
+if idiff -fail 0.0079 -warn 0.0079 "$tmp/shot.png" "$tmp/cli.png" >"$tmp/idiff" 2>&1; then ok; else bad "screenshot differs from isolux-cli"; cat "$tmp/idiff"; fi
 
 # 2. Scripted input: place a light, move a slider, undo it, save.
 cat >"$tmp/edit.script" <<SCRIPT

@@ -280,7 +280,7 @@ void renderer_shutdown(Renderer& r) {
 void renderer_set_world(Renderer& r, const World& world) {
     if (r.world_revision == world.revision) return;
     r.world_revision = world.revision;
-    // Shelf-pack the sprites into one atlas, premultiplied for "over" blending.
+    // Shelf-pack the sprites into one atlas.
     const auto& sprites = world.tileset.sprites;
     int max_w = 1;
     long area = 0;
@@ -312,8 +312,7 @@ void renderer_set_world(Renderer& r, const World& world) {
             for (int sx = 0; sx < im.width; ++sx) {
                 const std::uint8_t* s = im.at(sx, sy);
                 std::uint8_t* d = &pixels[(std::size_t(pos[i][1] + sy) * width + pos[i][0] + sx) * 4];
-                for (int k = 0; k < 3; ++k) d[k] = std::uint8_t((s[k] * s[3] + 127) / 255);
-                d[3] = s[3];
+                for (int k = 0; k < 4; ++k) d[k] = s[k];  // straight: sprites.frag premultiplies in float
             }
     }
     r.atlas_w = width;
