@@ -20,6 +20,7 @@ struct Stats {
     static constexpr int series = stage_count + 4;
     std::array<std::array<float, frames>, series> ms{};
     std::array<bool, stage_count> last_ran{};
+    std::array<bool, 4> gpu_ran{};  // upload, sprites, blur, composite
     int head = 0;
     float frame_ms = 0, fps = 0;
     int lights_traced = 0;

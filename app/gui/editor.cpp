@@ -95,7 +95,12 @@ void place_light(Editor& e, double x, double y, double now) {
     e.scene.lights.push_back(l);
     e.selected = int(e.scene.lights.size()) - 1;
     commit_edit(e, before, now);
-    set_status(e, "placed light " + std::to_string(e.selected + 1));
+    if (e.frame.has_obstacles && e.frame.obstacles.get(int(std::floor(x)), int(std::floor(y))))
+        set_status(e, "light " + std::to_string(e.selected + 1) +
+                          " sits on an obstacle pixel: it lights nothing (Algorithm 2 tests the centre first)",
+                    true);
+    else
+        set_status(e, "placed light " + std::to_string(e.selected + 1));
 }
 
 void remove_light(Editor& e, int index, double now) {
@@ -182,7 +187,8 @@ bool save_scene_to(Editor& e, const fs::path& path) {
     return true;
 }
 
-bool load_scene_from(Editor& e, const fs::path& path, double now) {
+namespace {
+bool load_scene_impl(Editor& e, const fs::path& path, double now, bool remember) {
     std::vector<std::string> warnings;
     Scene loaded;
     try {
@@ -207,10 +213,13 @@ bool load_scene_from(Editor& e, const fs::path& path, double now) {
     e.scene_path = path;
     e.dirty = false;
     e.autosave_due = -1;
-    remember_file(e, path);
+    if (remember) remember_file(e, path);
     set_status(e, warnings.empty() ? "loaded " + path.string() : warnings.front(), !warnings.empty());
     return true;
 }
+}  // namespace
+
+bool load_scene_from(Editor& e, const fs::path& path, double now) { return load_scene_impl(e, path, now, true); }
 
 bool export_preset(Editor& e, const fs::path& path) {
     try {
@@ -270,7 +279,7 @@ bool has_recovery(const Editor& e) { return fs::exists(autosave_path(e)); }
 
 bool recover_autosave(Editor& e, double now) {
     const fs::path p = autosave_path(e);
-    if (!load_scene_from(e, p, now)) return false;
+    if (!load_scene_impl(e, p, now, false)) return false;
     e.scene_path.clear();  // recovered work is unsaved until the user saves it
     e.dirty = true;
     set_status(e, "recovered the autosaved scene: save it to keep it");

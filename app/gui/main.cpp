@@ -119,10 +119,12 @@ void push_stats(App& app, const FrameReport& rep, double frame_ms) {
     Stats& s = app.stats;
     for (int k = 0; k < stage_count; ++k) s.ms[k][s.head] = float(rep.ms[k]);
     const GpuTimes& g = app.renderer.times;
+    const Renderer::Ran& ran = app.renderer.ran;
     s.ms[stage_count + 0][s.head] = rep.retraced ? float(g.upload) : 0.0f;
-    s.ms[stage_count + 1][s.head] = float(g.sprites);
-    s.ms[stage_count + 2][s.head] = float(g.blur);
-    s.ms[stage_count + 3][s.head] = float(g.composite);
+    s.ms[stage_count + 1][s.head] = ran.sprites ? float(g.sprites) : 0.0f;
+    s.ms[stage_count + 2][s.head] = ran.blur ? float(g.blur) : 0.0f;
+    s.ms[stage_count + 3][s.head] = ran.composite ? float(g.composite) : 0.0f;
+    s.gpu_ran = {rep.retraced, ran.sprites, ran.blur, ran.composite};
     s.head = (s.head + 1) % Stats::frames;
     s.last_ran = rep.ran;
     s.lights_traced = rep.lights_traced;

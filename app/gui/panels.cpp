@@ -380,6 +380,10 @@ void stats_panel(App& app) {
     std::string ran = "ran:";
     for (int k = 0; k < stage_count; ++k)
         if (s.last_ran[k]) ran += std::string(" ") + std::string(to_string(Stage(k)));
+    static const char* gpu[4] = {"upload", "sprites(gpu)", "blur(gpu)", "composite(gpu)"};
+    for (int k = 0; k < 4; ++k)
+        if (s.gpu_ran[k]) ran += std::string(" ") + gpu[k];
+    if (ran == "ran:") ran += " nothing (a still frame)";
     ImGui::TextWrapped("%s", ran.c_str());
     static const char* names[Stats::series] = {"sprites (cpu)", "obstacle map", "trace", "opacity correction",
                                                "blur (cpu)", "shift", "composite (cpu)", "upload",

@@ -56,6 +56,18 @@ struct Renderer {
     int blurred_radius = -1;
     bool light_dirty = true;
 
+    // What the last renderer_draw ran: a pass is skipped when its inputs did
+    // not change (the view, the world, the light texture, the parameters).
+    struct Ran {
+        bool sprites = false, blur = false, composite = false;
+    } ran;
+    Rect sprites_view;
+    std::uint64_t sprites_revision = ~0ull;
+    bool composite_valid = false;
+    Rect composite_view;
+    Params composite_params;
+    int composite_show = -1, composite_split = -2;
+
     GLuint queries[3] = {0, 0, 0};  // sprites, blur, composite
     bool query_pending[3] = {false, false, false};
     GpuTimes times;

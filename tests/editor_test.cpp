@@ -1,0 +1,140 @@
+// The editor's actions (what the panels and scripted input call), with no GL.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "gui/editor.hpp"
+#include "isolux/files.hpp"
+
+using namespace isolux;
+namespace fs = std::filesystem;
+
+namespace {
+struct TempConfig {
+    fs::path dir = fs::temp_directory_path() /
+                   ("isolux_editor_" + std::to_string(::getpid()) + "_" +
+                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    TempConfig() { fs::remove_all(dir); }
+    ~TempConfig() { fs::remove_all(dir); }
+};
+Scene small_scene() {
+    Scene s;
+    s.width = s.height = 6;
+    return s;
+}
+}  // namespace
+
+TEST(Editor, placingALightIsOneUndoStepAndRedoRestoresIt) {
+    TempConfig c;
+    Editor e = make_editor(small_scene(), c.dir);
+    place_light(e, 100.2, 50.7, 0);
+    ASSERT_EQ(e.scene.lights.size(), 1u);
+    EXPECT_EQ(e.scene.lights[0].x, 100.5);  // the pixel's centre
+    EXPECT_TRUE(e.dirty);
+    EXPECT_TRUE(undo(e, 1));
+    EXPECT_TRUE(e.scene.lights.empty());
+    EXPECT_TRUE(redo(e, 2));
+    EXPECT_EQ(e.scene.lights.size(), 1u);
+    EXPECT_FALSE(redo(e, 3));
+}
+
+TEST(Editor, aSliderDragIsOneUndoStep) {
+    TempConfig c;
+    Editor e = make_editor(small_scene(), c.dir);
+    const Scene before = e.scene;
+    for (double v : {0.41, 0.5, 0.62, 0.7}) e.scene.params.ambient_clarity = v;  // live while dragging
+    commit_edit(e, before, 0);                                                   // released
+    EXPECT_EQ(e.undo_stack.size(), 1u);
+    undo(e, 1);
+    EXPECT_EQ(e.scene.params.ambient_clarity, 0.4);
+}
+
+TEST(Editor, outOfRangeParametersAreRefusedWithAMessage) {
+    TempConfig c;
+    Editor e = make_editor(small_scene(), c.dir);
+    Params p = e.scene.params;
+    p.noise_window = 0;
+    set_params(e, p, 0);
+    EXPECT_EQ(e.scene.params.noise_window, 3);
+    EXPECT_TRUE(e.status_error);
+    EXPECT_NE(e.status.find("noise_window"), std::string::npos);
+    EXPECT_TRUE(e.undo_stack.empty());
+}
+
+TEST(Editor, aCorruptSceneOrTilesetNeverReplacesTheDocument) {
+    TempConfig c;
+    fs::create_directories(c.dir);
+    Editor e = make_editor(small_scene(), c.dir);
+    place_light(e, 10, 10, 0);
+    std::ofstream(c.dir / "bad.json") << "{\"lights\": [";
+    EXPECT_FALSE(load_scene_from(e, c.dir / "bad.json", 1));
+    EXPECT_TRUE(e.status_error);
+    EXPECT_NE(e.status.find("bad.json"), std::string::npos);
+    EXPECT_EQ(e.scene.lights.size(), 1u);
+    const auto revision = e.world.revision;
+    EXPECT_FALSE(load_tileset_from(e, c.dir / "missing.json", 2));
+    EXPECT_TRUE(e.scene.tileset.empty());
+    EXPECT_EQ(e.world.revision, revision);
+    EXPECT_FALSE(import_preset(e, c.dir / "bad.json", 3));
+    EXPECT_EQ(e.scene.lights.size(), 1u);
+}
+
+TEST(Editor, regenerateBuildsTheSeedsMapAndUndoRestoresTheOldOne) {
+    TempConfig c;
+    Editor e = make_editor(small_scene(), c.dir);
+    const auto tiles = e.world.map.tiles.size();
+    regenerate(e, "other", 9, 4, Layout::staggered, 0);
+    EXPECT_EQ(e.world.map.width, 9);
+    EXPECT_EQ(e.world.map.layout, Layout::staggered);
+    undo(e, 1);
+    EXPECT_EQ(e.world.map.tiles.size(), tiles);
+    EXPECT_EQ(e.scene.seed, "isolux");
+}
+
+TEST(Editor, unsavedWorkIsAutosavedAndRecovered) {
+    TempConfig c;
+    {
+        Editor e = make_editor(small_scene(), c.dir);
+        place_light(e, 30, 40, 10.0);
+        EXPECT_FALSE(autosave_tick(e, 10.5));  // not yet due
+        EXPECT_TRUE(autosave_tick(e, 10.0 + autosave_delay));
+        EXPECT_TRUE(fs::exists(autosave_path(e)));
+        // ... and the app crashes here.
+    }
+    Editor e = make_editor(small_scene(), c.dir);
+    ASSERT_TRUE(has_recovery(e));
+    EXPECT_TRUE(recover_autosave(e, 0));
+    ASSERT_EQ(e.scene.lights.size(), 1u);
+    EXPECT_EQ(e.scene.lights[0].y, 40.5);
+    EXPECT_TRUE(e.dirty);  // recovered work is unsaved until saved
+    EXPECT_TRUE(save_scene_to(e, c.dir / "saved.json"));
+    EXPECT_FALSE(e.dirty);
+    EXPECT_FALSE(has_recovery(e));  // saving clears the autosave
+    EXPECT_EQ(e.settings.recent.size(), 1u);
+}
+
+TEST(Editor, settingsSurviveACorruptFile) {
+    TempConfig c;
+    fs::create_directories(c.dir);
+    std::ofstream(c.dir / "settings.json") << "not json";
+    std::string warning;
+    Settings s = load_settings(c.dir, &warning);
+    EXPECT_TRUE(s.recent.empty());
+    EXPECT_NE(warning.find("settings.json"), std::string::npos);
+    for (int i = 0; i < 12; ++i) add_recent(s, "f" + std::to_string(i));
+    add_recent(s, "f5");
+    EXPECT_EQ(s.recent.size(), 8u);
+    EXPECT_EQ(s.recent.front(), "f5");
+    save_settings(c.dir, s);
+    EXPECT_EQ(load_settings(c.dir).recent, s.recent);
+}
+
+TEST(Editor, theCharactersLightIsRenderedButNeverSaved) {
+    TempConfig c;
+    Editor e = make_editor(small_scene(), c.dir);
+    e.character.enabled = true;
+    e.character.x = 300;
+    e.character.y = 200;
+    EXPECT_EQ(render_scene(e).lights.size(), 1u);
+    EXPECT_TRUE(e.scene.lights.empty());
+}
