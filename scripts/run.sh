@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs isolux on the default seed and assets. The README's
-# main command. Extra arguments go to the renderer.
+# Sets up, builds and starts isolux on the default seed and assets: the
+# README's main command. With no display the app says so and renders the
+# scene with the headless renderer to out/isolux.png instead.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/deps.sh
 bash scripts/build.sh
 mkdir -p out
-./build/release/app/isolux-cli render --scene assets/scenes/default.json --out out/isolux.png "$@"
-echo "open out/isolux.png to see the map"
+exec ./build/release/app/isolux --headless-out out/isolux.png "$@"

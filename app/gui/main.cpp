@@ -185,7 +185,7 @@ void render(App& app, bool screenshot_mode) {
 
 int main(int argc, char** argv) {
     CLI::App cli{"isolux: level editor and lighting previewer for seeded isometric maps"};
-    std::string scene_file, seed, screenshot, script_file, size;
+    std::string scene_file, seed, screenshot, script_file, size, headless_out = "isolux.png";
     long frames = 0;
     int width = 1600, height = 900;
     cli.add_option("--scene", scene_file, "Scene JSON to open");
@@ -194,6 +194,7 @@ int main(int argc, char** argv) {
     cli.add_option("--frames", frames, "Render N frames, then quit (with --screenshot)")->check(CLI::Range(1L, 1000000L));
     cli.add_option("--screenshot", screenshot, "Write the final frame (the viewport, no panels) to this PNG");
     cli.add_option("--script", script_file, "Scripted input, one command a frame (see app/gui/script.hpp)");
+    cli.add_option("--headless-out", headless_out, "With no display: where the headless render goes (default isolux.png)");
     cli.add_option("--width", width, "Window width")->check(CLI::Range(320, 8192));
     cli.add_option("--height", height, "Window height")->check(CLI::Range(240, 8192));
     try {
@@ -233,7 +234,7 @@ int main(int argc, char** argv) {
     GLFWwindow* window = open_window(width, height, !screenshot_mode, why);
     if (!window) {
         try {
-            return render_headless(scene, screenshot.empty() ? "isolux.png" : screenshot, why);
+            return render_headless(scene, screenshot.empty() ? headless_out : screenshot, why);
         } catch (const Error& err) {
             std::cerr << "isolux: " << err.what() << "\n";
             return 2;
