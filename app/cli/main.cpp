@@ -2,6 +2,7 @@
 // no GL context; it only parses arguments and calls isolux::core.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "common/world.hpp"
+#include "isolux/accuracy.hpp"
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
 #include "isolux/frame.hpp"
@@ -246,6 +248,72 @@ int run_render(const RenderArgs& a) {
     return 0;
 }
 
+struct SweepArgs {
+    std::string scene, out, chart;
+    std::vector<std::string> params;
+    int frames = 8, repeats = 3;
+    std::string step = "24,12";
+    bool no_carry = false;
+};
+
+int run_sweep_command(const SweepArgs& a) {
+    std::vector<std::string> warnings;
+    Scene s = load_scene(a.scene, &warnings);
+    for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
+    std::vector<SweepAxis> axes;
+    for (const std::string& text : a.params) {
+        const auto eq = text.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+            throw Error("--param \"" + text + "\": expected NAME=V1,V2,...");
+        SweepAxis axis{text.substr(0, eq), {}};
+        std::string rest = text.substr(eq + 1);
+        for (std::size_t pos = 0;;) {
+            std::size_t end = rest.find(',', pos);
+            axis.values.push_back(rest.substr(pos, end == std::string::npos ? std::string::npos : end - pos));
+            if (end == std::string::npos) break;
+            pos = end + 1;
+        }
+        Params probe = s.params;
+        for (const std::string& v : axis.values) set_param(probe, axis.name, v, "--param");  // fail fast
+        axes.push_back(axis);
+    }
+    std::vector<double> step;
+    if (!parse_reals(a.step, step) || step.size() != 2) throw Error("--step \"" + a.step + "\": expected DX,DY");
+    SweepOptions opt;
+    opt.frames = a.frames;
+    opt.repeats = a.repeats;
+    opt.step_x = step[0];
+    opt.step_y = step[1];
+    opt.carry_light = !a.no_carry;
+    World w = build_world(s);
+    long combos = 1;
+    for (const SweepAxis& ax : axes) combos *= long(ax.values.size());
+    std::cerr << "isolux-cli: sweeping " << combos << " combinations x " << opt.repeats << " runs x " << opt.frames
+              << " frames\n";
+    auto points = run_sweep(w, s, axes, opt, [&](int done, int total) {
+        std::cerr << "\r  [" << done << "/" << total << "] " << int(100.0 * done / total) << "%" << std::flush;
+    });
+    std::cerr << "\n";
+    write_file_atomic(a.out, sweep_csv(axes, points));
+    std::cout << "wrote " << a.out << "\n";
+    if (!a.chart.empty()) {
+        write_file_atomic(a.chart, sweep_svg(axes, points, "Error against time: " + s.seed));
+        std::cout << "wrote " << a.chart << "\n";
+    }
+    std::cout << "Pareto front (least final-frame RMSE for the time):\n";
+    std::vector<const SweepPoint*> front;
+    for (const SweepPoint& p : points)
+        if (p.pareto) front.push_back(&p);
+    std::sort(front.begin(), front.end(), [](auto x, auto y) { return x->lighting_ms < y->lighting_ms; });
+    for (const SweepPoint* p : front) {
+        std::cout << "  ";
+        for (std::size_t i = 0; i < axes.size(); ++i) std::cout << axes[i].name << "=" << p->values[i] << " ";
+        std::cout << " " << p->lighting_ms << " ms/frame lighting (" << p->total_ms << " in all), final RMSE " << p->final.rmse << ", lit mismatch "
+                  << p->light.lit_mismatch * 100 << "%\n";
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -290,6 +358,18 @@ int main(int argc, char** argv) {
     tileset->add_option("--scale", tileset_scale, "Sprite scale: 1 gives 128x128 sprites")
         ->check(CLI::Range(0.25, 4.0));
 
+    SweepArgs sa;
+    CLI::App* sweep = app.add_subcommand("sweep", "Accuracy against time: time and error of every parameter combination");
+    sweep->add_option("--scene", sa.scene, "Scene JSON (its camera starts the path; size 0 = whole map)")->required();
+    sweep->add_option("--param", sa.params, "NAME=V1,V2,... (repeatable): a preset parameter and its values");
+    sweep->add_option("--out", sa.out, "CSV to write")->required();
+    sweep->add_option("--chart", sa.chart, "SVG chart of error against time");
+    sweep->add_option("--frames", sa.frames, "Frames per run (default 8)")->check(CLI::Range(1, 1000));
+    sweep->add_option("--repeats", sa.repeats, "Runs per combination; times are medians (default 3)")
+        ->check(CLI::Range(1, 100));
+    sweep->add_option("--step", sa.step, "Camera movement per frame DX,DY (default 24,12)");
+    sweep->add_flag("--no-carried-light", sa.no_carry, "No light moving with the camera");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -302,6 +382,7 @@ int main(int argc, char** argv) {
     }
     try {
         if (*render) return run_render(ra);
+        if (*sweep) return run_sweep_command(sa);
         if (*tileset) {
             save_generated_tileset(tileset_out, generate_default_tileset(tileset_scale));
             std::cout << "wrote " << tileset_out << "/tileset.json\n";

@@ -63,6 +63,83 @@ Rays parse_rays(std::string_view s, std::string_view source) {
                 "\" is not one of border, every_pixel");
 }
 
+std::vector<std::string> param_names() {
+    return {"delta_y", "noise_window", "ray_skip", "trace_every", "area_a", "area_b", "ambient_clarity",
+            "opacity_threshold", "blur_radius", "falloff_scale", "mode", "dark_unlit", "rays"};
+}
+
+void set_param(Params& p, std::string_view name, std::string_view value, std::string_view source) {
+    const std::string where = std::string(source) + ": " + std::string(name);
+    const std::string v(value);
+    auto as_int = [&]() {
+        std::size_t used = 0;
+        long long x = 0;
+        try {
+            x = std::stoll(v, &used);
+        } catch (...) {
+            used = 0;
+        }
+        if (used != v.size() || v.empty() || x < -1000000000LL || x > 1000000000LL)
+            throw Error(where + ": \"" + v + "\" is not an integer");
+        return int(x);
+    };
+    auto as_real = [&]() {
+        std::size_t used = 0;
+        double x = 0;
+        try {
+            x = std::stod(v, &used);
+        } catch (...) {
+            used = 0;
+        }
+        if (used != v.size() || v.empty() || !std::isfinite(x)) throw Error(where + ": \"" + v + "\" is not a number");
+        return x;
+    };
+    Params q = p;
+    if (name == "delta_y") q.delta_y = as_int();
+    else if (name == "noise_window") q.noise_window = as_int();
+    else if (name == "ray_skip") q.ray_skip = as_int();
+    else if (name == "trace_every") q.trace_every = as_int();
+    else if (name == "area_a") q.area_a = as_int();
+    else if (name == "area_b") q.area_b = as_int();
+    else if (name == "ambient_clarity") q.ambient_clarity = as_real();
+    else if (name == "opacity_threshold") q.opacity_threshold = as_real();
+    else if (name == "blur_radius") q.blur_radius = as_int();
+    else if (name == "falloff_scale") q.falloff_scale = as_real();
+    else if (name == "mode") q.mode = parse_mode(v, where);
+    else if (name == "rays") q.rays = parse_rays(v, where);
+    else if (name == "dark_unlit") {
+        if (v != "true" && v != "false" && v != "1" && v != "0") throw Error(where + ": \"" + v + "\" is not true or false");
+        q.dark_unlit = v == "true" || v == "1";
+    } else {
+        throw Error(std::string(source) + ": unknown parameter \"" + std::string(name) + "\"");
+    }
+    validate(q, source);
+    p = q;
+}
+
+std::string get_param(const Params& p, std::string_view name) {
+    auto real = [](double x) {
+        std::string s = std::to_string(x);
+        while (!s.empty() && s.back() == '0') s.pop_back();
+        if (!s.empty() && s.back() == '.') s.pop_back();
+        return s;
+    };
+    if (name == "delta_y") return std::to_string(p.delta_y);
+    if (name == "noise_window") return std::to_string(p.noise_window);
+    if (name == "ray_skip") return std::to_string(p.ray_skip);
+    if (name == "trace_every") return std::to_string(p.trace_every);
+    if (name == "area_a") return std::to_string(p.area_a);
+    if (name == "area_b") return std::to_string(p.area_b);
+    if (name == "ambient_clarity") return real(p.ambient_clarity);
+    if (name == "opacity_threshold") return real(p.opacity_threshold);
+    if (name == "blur_radius") return std::to_string(p.blur_radius);
+    if (name == "falloff_scale") return real(p.falloff_scale);
+    if (name == "mode") return std::string(to_string(p.mode));
+    if (name == "rays") return std::string(to_string(p.rays));
+    if (name == "dark_unlit") return p.dark_unlit ? "true" : "false";
+    return "";
+}
+
 std::vector<std::string> builtin_preset_names() { return {"paper", "fast", "quality"}; }
 
 Params builtin_preset(std::string_view name) {

@@ -59,6 +59,14 @@ std::string_view to_string(Rays r);
 Mode parse_mode(std::string_view s, std::string_view source);
 Rays parse_rays(std::string_view s, std::string_view source);
 
+// Sets the parameter called `name` (a preset field name, e.g. "ray_skip") from
+// text; throws Error naming `source` and the field when the name is unknown
+// or the value malformed or out of range.
+void set_param(Params& p, std::string_view name, std::string_view value, std::string_view source);
+std::vector<std::string> param_names();
+// The parameter's value as text (for CSV columns and labels).
+std::string get_param(const Params& p, std::string_view name);
+
 // Built-in presets: "paper" (the defaults), "fast", "quality".
 std::vector<std::string> builtin_preset_names();
 Params builtin_preset(std::string_view name);  // throws Error when unknown

@@ -1,0 +1,73 @@
+// Accuracy against time: error metrics against the reference, and parameter
+// sweeps that time every stage. The reference is the every-pixel tracing
+// mode (the paper's 4ab rays), no ray skip, no blur, a fresh trace every frame.
+#pragma once
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "isolux/frame.hpp"
+
+namespace isolux {
+
+struct ErrorMetrics {
+    double lit_mismatch = 0;  // share of pixels lit (> 0) in one and not in the other
+    double differing = 0;     // share of pixels that differ in any channel
+    int max_abs = 0;          // largest channel difference, 0..255
+    double rmse = 0;          // root mean square error, in 0..255 units
+    double psnr = 0;          // peak 255; +inf when identical
+};
+
+// Compares a light texture (or an image) with the reference over the same
+// rectangle. RMSE, PSNR and the maximum come from OpenImageIO's
+// ImageBufAlgo::compare; the shares are counted here. PSNR alone hides wrong
+// shadows (most texels of 255/(1+d) are tiny), so all five are reported.
+ErrorMetrics compare_light(const LightTexture& test, const LightTexture& ref);
+ErrorMetrics compare_images(const Image& test, const Image& ref);
+
+// The reference's parameters for `p`: everything as `p` but rays every_pixel,
+// ray_skip 1, blur_radius 0, trace_every 1.
+Params reference_params(Params p);
+
+struct SweepAxis {
+    std::string name;                 // a preset parameter name
+    std::vector<std::string> values;  // as text, e.g. {"1", "2", "4"}
+};
+
+struct SweepOptions {
+    int frames = 8;       // frames per run; the camera moves along its path
+    int repeats = 3;      // runs per combination; times are medians over runs
+    double step_x = 24, step_y = 12;  // camera movement per frame, world pixels
+    bool carry_light = true;  // a light at the view's centre moves with the camera
+};
+
+struct SweepPoint {
+    Params params;
+    std::vector<std::string> values;    // one per axis, as given
+    std::array<double, stage_count> ms{};  // median time per frame of each stage
+    double total_ms = 0;                 // every stage
+    double lighting_ms = 0;              // the lighting's own stages: all but sprites and composite
+                                         // (the same for every setting; on the GPU in the app)
+    ErrorMetrics light, final;           // means over frames (max_abs: the max)
+    bool pareto = false;                 // least final RMSE for its lighting time
+};
+
+// Runs every combination of the axes' values over `scene` (its camera as the
+// path's start; width 0 means the whole map). Throws Error on an unknown
+// parameter or a bad value. `progress(done, total)` is called after each
+// combination; `cancel` (optional) stops early.
+std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const std::vector<SweepAxis>& axes,
+                                  const SweepOptions& options,
+                                  const std::function<void(int, int)>& progress = {},
+                                  const std::atomic<bool>* cancel = nullptr);
+
+// Marks the points on the Pareto front of (lighting_ms, final RMSE).
+void mark_pareto(std::vector<SweepPoint>& points);
+
+// CSV (one row per combination) and an SVG chart of error against time.
+std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points);
+std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points,
+                      const std::string& title);
+
+}  // namespace isolux

@@ -1,0 +1,104 @@
+// Accuracy against time: the metrics and the sweep.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "isolux/accuracy.hpp"
+#include "isolux/error.hpp"
+#include "test_util.hpp"
+
+using namespace isolux;
+
+namespace {
+const World& small_world() {
+    static World w = [] {
+        Scene s;
+        s.width = s.height = 6;
+        return make_world(test::default_tileset(), s);
+    }();
+    return w;
+}
+Scene lit() {
+    Scene s;
+    s.width = s.height = 6;
+    s.params.area_a = s.params.area_b = 60;
+    s.params.falloff_scale = 6;
+    s.lights = {Light{380, 200}, Light{300, 260}};
+    s.camera = {100, 50, 400, 260};
+    return s;
+}
+SweepOptions quick() {
+    SweepOptions o;
+    o.frames = 4;
+    o.repeats = 1;
+    return o;
+}
+}  // namespace
+
+TEST(Accuracy, metricsCountWhatDiffers) {
+    LightTexture a(Rect{0, 0, 4, 1}), b(Rect{0, 0, 4, 1});
+    a.rgb = {0, 0, 0, 10, 10, 10, 200, 200, 200, 5, 5, 5};
+    b.rgb = {0, 0, 0, 0, 0, 0, 190, 200, 200, 5, 5, 5};
+    ErrorMetrics m = compare_light(a, b);
+    EXPECT_DOUBLE_EQ(m.lit_mismatch, 0.25);  // texel 1 is lit in a only
+    EXPECT_DOUBLE_EQ(m.differing, 0.5);      // texels 1 and 2
+    EXPECT_EQ(m.max_abs, 10);
+    EXPECT_NEAR(m.rmse, std::sqrt((3 * 100.0 + 100.0) / 12.0), 1e-3);
+    EXPECT_NEAR(m.psnr, 20 * std::log10(255.0 / m.rmse), 1e-6);
+    ErrorMetrics same = compare_light(a, a);
+    EXPECT_EQ(same.rmse, 0);
+    EXPECT_TRUE(std::isinf(same.psnr));
+    EXPECT_THROW(compare_light(a, LightTexture(Rect{0, 0, 3, 1})), Error);
+}
+
+TEST(Accuracy, theReferenceSettingHasZeroError) {
+    Scene s = lit();
+    s.params = reference_params(s.params);
+    auto points = run_sweep(small_world(), s, {{"rays", {"every_pixel"}}}, quick());
+    ASSERT_EQ(points.size(), 1u);
+    for (const ErrorMetrics* m : {&points[0].light, &points[0].final}) {
+        EXPECT_EQ(m->lit_mismatch, 0);
+        EXPECT_EQ(m->differing, 0);
+        EXPECT_EQ(m->max_abs, 0);
+        EXPECT_EQ(m->rmse, 0);
+    }
+}
+
+TEST(Accuracy, skippingRaysAndStaleTexturesShowAsError) {
+    auto points = run_sweep(small_world(), lit(),
+                            {{"ray_skip", {"1", "16"}}, {"trace_every", {"1", "4"}}, {"blur_radius", {"0"}}}, quick());
+    ASSERT_EQ(points.size(), 4u);  // first axis slowest: (1,1) (1,4) (16,1) (16,4)
+    EXPECT_EQ(points[0].values, (std::vector<std::string>{"1", "1", "0"}));
+    EXPECT_GT(points[2].light.lit_mismatch, points[0].light.lit_mismatch);  // skipped rays leave gaps
+    EXPECT_GT(points[1].final.rmse, points[0].final.rmse);                  // the carried light goes stale
+    bool any_pareto = false;
+    for (const SweepPoint& p : points) {
+        EXPECT_GE(p.lighting_ms, 0);
+        EXPECT_GE(p.total_ms, p.lighting_ms);
+        any_pareto = any_pareto || p.pareto;
+    }
+    EXPECT_TRUE(any_pareto);
+    const std::string csv = sweep_csv({{"ray_skip", {}}, {"trace_every", {}}, {"blur_radius", {}}}, points);
+    EXPECT_NE(csv.find("ray_skip,trace_every,blur_radius,ms_sprites"), std::string::npos);
+    EXPECT_NE(csv.find("final_psnr,pareto"), std::string::npos);
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
+}
+
+TEST(Accuracy, paretoKeepsOnlyPointsNoFasterPointBeats) {
+    std::vector<SweepPoint> p(4);
+    p[0].lighting_ms = 1, p[0].final.rmse = 5;
+    p[1].lighting_ms = 2, p[1].final.rmse = 6;  // slower and worse: dominated
+    p[2].lighting_ms = 3, p[2].final.rmse = 1;
+    p[3].lighting_ms = 4, p[3].final.rmse = 1;  // slower, no better: dominated
+    mark_pareto(p);
+    EXPECT_TRUE(p[0].pareto);
+    EXPECT_FALSE(p[1].pareto);
+    EXPECT_TRUE(p[2].pareto);
+    EXPECT_FALSE(p[3].pareto);
+}
+
+TEST(Accuracy, unknownParametersAndBadValuesAreErrors) {
+    EXPECT_THROW(run_sweep(small_world(), lit(), {{"sparkle", {"1"}}}, quick()), Error);
+    EXPECT_THROW(run_sweep(small_world(), lit(), {{"ray_skip", {"0"}}}, quick()), Error);
+    EXPECT_THROW(run_sweep(small_world(), lit(), {{"ray_skip", {"x"}}}, quick()), Error);
+}
