@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "gui/accuracy_panel.hpp"
 #include "gui/editor.hpp"
 #include "gui/renderer.hpp"
 #include "gui/script.hpp"
@@ -50,6 +51,7 @@ struct App {
     Ui ui;
     Stats stats;
     FrameState flat_frame;  // flat lighting for the split view
+    AccuracyPanel accuracy;
     std::optional<Script> script;
     double now = 0;        // seconds since start
     Rect view;             // world pixels shown this frame

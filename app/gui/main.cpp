@@ -166,7 +166,20 @@ void render(App& app, bool screenshot_mode) {
     const bool overlay_stale = !(app.overlay_key == e.overlays) || !(app.overlay_params == scene.params) ||
                                app.overlay_lights != scene.lights || rep.ran_stage(Stage::obstacle_map) ||
                                !(intersect(app.overlay_region, app.view) == app.view) || app.overlay_dirty;
-    if (overlay_stale) {
+    AccuracyPanel& acc = app.accuracy;
+    const bool settings_changed = !(app.overlay_params == scene.params) || app.overlay_lights != scene.lights;
+    if (acc.heatmap) {
+        // The heat map replaces the other overlays while it is on; it is
+        // recomputed (two CPU frames) only when the settings or view change.
+        if (acc.heatmap_stale || settings_changed || !(acc.heat.rect == app.view)) {
+            acc.heat = error_heatmap(e.world, scene, app.view, &acc.heat_metrics);
+            acc.heatmap_stale = false;
+            renderer_upload_overlay(app.renderer, acc.heat.image, acc.heat.rect);
+        }
+        app.overlay_params = scene.params;
+        app.overlay_lights = scene.lights;
+        app.overlay_dirty = true;  // rebuild the others when it is turned off
+    } else if (overlay_stale) {
         OverlayImage o = build_overlays(e.world, e.frame, scene, e.overlays, region);
         renderer_upload_overlay(app.renderer, o.image, o.rect);
         app.overlay_key = e.overlays;

@@ -110,6 +110,7 @@ void menu_bar(App& app) {
     if (ImGui::BeginMenu("View")) {
         if (ImGui::MenuItem("Reset view", "Home")) e.cam_x = e.cam_y = 0, e.zoom = 1;
         ImGui::MenuItem("Stats", nullptr, &e.settings.show_stats);
+        ImGui::MenuItem("Accuracy", nullptr, &app.accuracy.open);
         ImGui::EndMenu();
     }
     ImGui::EndMainMenuBar();
@@ -458,6 +459,7 @@ void draw_panels(App& app) {
     overlays_panel(app);
     lights_panel(app);
     stats_panel(app);
+    accuracy_panel(app, app.accuracy);
     status_bar(app);
     light_area_overlay(app);
     file_popup(app);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "isolux/blur.hpp"
 #include "isolux/composite.hpp"
@@ -94,9 +95,11 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
     }
     needed = intersect(needed, world.placed.bounds);
 
-    bool obstacles_rebuilt = false;
-    if (world_changed || !st.has_obstacles || !same_obstacle_params(st.obstacle_params, p) ||
-        !covers(st.obstacle_region, needed)) {
+    // The obstacle map's content changes only with the world, Δy, n or the
+    // threshold; a larger region is the same map over more pixels (the build
+    // is exact per region), so it alone does not force a retrace.
+    const bool obstacles_changed = world_changed || !st.has_obstacles || !same_obstacle_params(st.obstacle_params, p);
+    if (obstacles_changed || !covers(st.obstacle_region, needed)) {
         Timer t{rep, Stage::obstacle_map};
         // Some room around what is needed, so a panning camera does not
         // rebuild every frame; never more than the map.
@@ -108,33 +111,50 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
         st.obstacle_params = p;
         st.world_revision = world.revision;
         st.has_obstacles = true;
-        obstacles_rebuilt = true;
     }
 
-    const bool must = !st.has_trace || obstacles_rebuilt || !same_trace_params(st.trace_params, p);
+    const bool must = !st.has_trace || obstacles_changed || !same_trace_params(st.trace_params, p);
     const bool due = frame % p.trace_every == 0 &&
                      (st.trace_lights != scene.lights || !covers(st.traced.rect, view));
     const bool retrace = must || due;
     if (retrace) {
         st.traced = LightTexture(tex_rect);
-        std::vector<LightMask> masks;
+        // The lights whose area meets the texture; the others have nothing to trace.
+        std::vector<const Light*> lights;
+        for (const Light& l : scene.lights)
+            if (!intersect(light_area(l, p), tex_rect).empty()) lights.push_back(&l);
+        std::vector<LightMask> masks(lights.size());
+        const int threads = std::max(1, std::min<int>(int(lights.size()), st.options.threads > 0
+                                                                             ? st.options.threads
+                                                                             : int(std::thread::hardware_concurrency())));
+        auto parallel = [&](auto&& work) {
+            if (threads <= 1) {
+                for (std::size_t i = 0; i < lights.size(); ++i) work(i);
+                return;
+            }
+            std::vector<std::thread> pool;
+            for (int t = 0; t < threads; ++t)
+                pool.emplace_back([&, t] {
+                    for (std::size_t i = std::size_t(t); i < lights.size(); i += std::size_t(threads)) work(i);
+                });
+            for (std::thread& th : pool) th.join();
+        };
         {
             Timer t{rep, Stage::trace};
-            for (const Light& l : scene.lights) {
-                const Rect clip = intersect(light_area(l, p), tex_rect);
-                if (clip.empty()) continue;  // its area misses the texture: nothing to trace
-                masks.push_back(trace_light(st.obstacles, std::int64_t(std::floor(l.x)), std::int64_t(std::floor(l.y)),
-                                            light_a(l, p), light_b(l, p), p, clip));
-                ++rep.lights_traced;
-            }
+            parallel([&](std::size_t i) {
+                const Light& l = *lights[i];
+                masks[i] = trace_light(st.obstacles, std::int64_t(std::floor(l.x)), std::int64_t(std::floor(l.y)),
+                                       light_a(l, p), light_b(l, p), p, intersect(light_area(l, p), tex_rect));
+            });
+            rep.lights_traced = int(lights.size());
         }
         if (st.options.opacity_correction && p.mode != Mode::flat && !masks.empty()) {
             Timer t{rep, Stage::opacity_correction};
-            for (LightMask& m : masks) rep.sprites_corrected += correct_with_opacity_maps(m, world.placed, st.opacity);
+            std::vector<int> touched(masks.size(), 0);
+            parallel([&](std::size_t i) { touched[i] = correct_with_opacity_maps(masks[i], world.placed, st.opacity); });
+            for (int n : touched) rep.sprites_corrected += n;
         }
-        std::size_t k = 0;
-        for (const Light& l : scene.lights)
-            if (!intersect(light_area(l, p), tex_rect).empty()) accumulate_light(st.traced, masks[k++], l, p);
+        for (std::size_t i = 0; i < lights.size(); ++i) accumulate_light(st.traced, masks[i], *lights[i], p);
         st.has_trace = true;
         st.trace_frame = frame;
         st.trace_params = p;

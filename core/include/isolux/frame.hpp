@@ -35,6 +35,10 @@ struct FrameOptions {
     // off and reads FrameState::traced instead.
     bool cpu_sprites = true;
     bool cpu_blur_and_composite = true;
+    // Threads that trace lights (and correct them) in parallel; 0: one per
+    // core. The output is the same bytes for any count: each light is traced
+    // on its own and the saturating sum does not depend on order.
+    int threads = 1;
 };
 
 // What a frame keeps for the next one. Default-constructed: nothing cached.

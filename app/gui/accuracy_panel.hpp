@@ -1,0 +1,47 @@
+// The Accuracy panel: a parameter sweep in a background thread, error plotted
+// against time, a click applies a point's parameters, and a heat map of the
+// current frame's error against the reference.
+#pragma once
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "gui/overlays.hpp"
+#include "isolux/accuracy.hpp"
+
+namespace isolux {
+
+struct App;
+
+struct AccuracyPanel {
+    bool open = false;
+    std::string axes[4] = {"ray_skip=1,2,4,8", "blur_radius=0,1,2", "trace_every=1,2,4", ""};
+    int frames = 6, repeats = 2;
+
+    // The running sweep: its thread writes these, the UI reads them.
+    std::thread worker;
+    std::atomic<bool> running{false}, cancel{false};
+    std::atomic<int> done{0}, total{0};
+    std::mutex mutex;
+    std::vector<SweepAxis> result_axes;
+    std::vector<SweepPoint> results;
+    std::string error;
+
+    // The heat map of |final - reference| for the current view.
+    bool heatmap = false;
+    bool heatmap_stale = true;
+    OverlayImage heat;
+    ErrorMetrics heat_metrics;
+
+    ~AccuracyPanel();
+};
+
+void accuracy_panel(App& app, AccuracyPanel& panel);
+
+// The heat map for the app's current view and settings (CPU, both frames fresh).
+OverlayImage error_heatmap(const World& world, const Scene& scene, Rect view, ErrorMetrics* metrics);
+
+}  // namespace isolux

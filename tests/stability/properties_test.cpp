@@ -1,0 +1,90 @@
+// Hard cases: properties over many random seeds.
+#include "isolux/hash.hpp"
+#include "stability.hpp"
+
+using namespace isolux;
+
+namespace {
+Mask random_obstacles(Rect r, std::uint64_t seed, int percent) {
+    Mask m(r);
+    Pcg32 rng(seed);
+    for (auto& b : m.bits) b = int(rng.below(100)) < percent;
+    return m;
+}
+}  // namespace
+
+TEST(StabilityProperties, nothingBehindAnObstacleAlongATracedRayIsLit) {
+    // A pixel is lit exactly when some traced ray reaches it before that
+    // ray's first obstacle: walked here ray by ray, independently of the tracer.
+    for (std::uint64_t seed = 0; seed < 60; ++seed) {
+        Pcg32 rng(seed * 7 + 1);
+        const int a = 4 + int(rng.below(20)), b = 4 + int(rng.below(20));
+        const Rect area{-a, -b, 2 * a + 1, 2 * b + 1};
+        Mask obs = random_obstacles(area, seed, 3 + int(rng.below(12)));
+        obs.set(0, 0, false);
+        Params p;
+        p.rays = seed % 2 ? Rays::every_pixel : Rays::border;
+        p.ray_skip = 1 + int(seed % 3);
+        LightMask m = trace_light(obs, 0, 0, a, b, p, area);
+        std::vector<std::pair<int, int>> targets;
+        if (p.rays == Rays::every_pixel) {
+            for (int y = -b; y <= b; ++y)
+                for (int x = -a; x <= a; ++x) targets.push_back({x, y});
+        } else {
+            auto border = border_offsets(a, b);
+            for (std::size_t i = 0; i < border.size(); i += std::size_t(p.ray_skip)) targets.push_back(border[i]);
+        }
+        std::vector<std::uint8_t> expect(m.lit.size(), 0);
+        for (auto [tx, ty] : targets)
+            for (BresenhamRay r(0, 0, tx, ty); !r.done(); r.step()) {
+                if (obs.get(int(r.x), int(r.y))) break;  // behind it: not lit by this ray
+                expect[std::size_t(r.y + b) * area.w + std::size_t(r.x + a)] = 1;
+            }
+        ASSERT_EQ(m.lit, expect) << "seed " << seed;
+        for (std::size_t i = 0; i < m.lit.size(); ++i)
+            if (obs.bits[i]) ASSERT_EQ(m.lit[i], 0) << "an obstacle pixel is lit, seed " << seed;
+    }
+}
+
+TEST(StabilityProperties, intensityNeverIncreasesAlongARay) {
+    for (std::uint64_t seed = 0; seed < 40; ++seed) {
+        const int a = 30, b = 20;
+        const Rect area{-a, -b, 2 * a + 1, 2 * b + 1};
+        Mask obs = random_obstacles(area, seed + 100, 4);
+        obs.set(0, 0, false);
+        Params p;
+        p.falloff_scale = 1 + double(seed % 5);
+        LightMask m = trace_light(obs, 0, 0, a, b, p, area);
+        LightTexture t(area);
+        accumulate_light(t, m, Light{}, p);
+        for (auto [bx, by] : border_offsets(a, b)) {
+            int last = 256;
+            for (BresenhamRay r(0, 0, bx, by); !r.done(); r.step()) {
+                const int v = t.at(int(r.x), int(r.y))[0];
+                if (v == 0) break;
+                ASSERT_LE(v, last) << "seed " << seed;
+                last = v;
+            }
+        }
+    }
+}
+
+TEST(StabilityProperties, translatingAWholeSceneTranslatesItsLight) {
+    for (std::uint64_t seed = 0; seed < 30; ++seed) {
+        Pcg32 rng(seed + 500);
+        const int a = 15, b = 11;
+        const int dx = int(rng.below(2000)) - 1000, dy = int(rng.below(2000)) - 1000;
+        const Rect area{-a, -b, 2 * a + 1, 2 * b + 1};
+        const Rect moved{area.x + dx, area.y + dy, area.w, area.h};
+        Mask obs = random_obstacles(area, seed, 10);
+        obs.set(0, 0, false);
+        Mask obs2 = obs;
+        obs2.x0 += dx;
+        obs2.y0 += dy;
+        Params p;
+        p.ray_skip = 1 + int(rng.below(3));
+        LightMask m1 = trace_light(obs, 0, 0, a, b, p, area);
+        LightMask m2 = trace_light(obs2, dx, dy, a, b, p, moved);
+        ASSERT_EQ(m1.lit, m2.lit) << "seed " << seed;
+    }
+}
