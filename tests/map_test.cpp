@@ -191,3 +191,22 @@ TEST(Map, tileAtFindsTheTileUnderAPixel) {
         EXPECT_FALSE(tile_at(m, p, -5000, -5000, col, row));
     }
 }
+
+TEST(Map, aTilesetWhoseFloorsCarryUnknownTagsStillBuildsMaps) {
+    // Found by tests/fuzz/fuzz_tileset: no floor tagged grass, water, ... and
+    // none untagged used to index an empty list.
+    Tileset t;
+    for (const char* tag : {"nrass", "lava"}) {
+        Sprite s;
+        s.name = tag;
+        s.kind = SpriteKind::floor;
+        s.tags = {tag};
+        s.image = Image(8, 8);
+        t.sprites.push_back(s);
+    }
+    Map m = generate_map("any", 6, 6, Layout::diamond, t);
+    for (const Tile& tile : m.tiles) {
+        ASSERT_GE(tile.floor, 0);
+        EXPECT_EQ(t.sprites[tile.floor].kind, SpriteKind::floor);
+    }
+}

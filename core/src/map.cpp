@@ -141,8 +141,13 @@ Map generate_map(std::string_view seed, int width, int height, Layout layout, co
                     else if (chance(6)) add_overlay(t, pick(ts, O, "wall", rng), m, rng);
                     break;
             }
-            if (t.floor < 0) t.floor = pick(ts, F, "grass", rng);  // tileset lacks that floor: any floor
-            if (t.floor < 0) t.floor = ts.find(F, "")[0];
+            if (t.floor < 0) t.floor = pick(ts, F, "grass", rng);  // tileset lacks that floor: grass,
+            if (t.floor < 0) {                                      // else any floor at all
+                std::vector<int> floors;
+                for (int i = 0; i < int(ts.sprites.size()); ++i)
+                    if (ts.sprites[i].kind == F) floors.push_back(i);
+                t.floor = floors[rng.below(std::uint32_t(floors.size()))];  // validate() ensured one
+            }
         }
     }
     return m;

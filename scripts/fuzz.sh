@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (clang, with ASan and UBSan), replays the kept
+# corpus, then fuzzes each parser briefly. A crash leaves its input in
+# build/fuzz/crashes/: add it to tests/fuzz/corpus/<target>/ once fixed, so it
+# stays a regression test. Usage: scripts/fuzz.sh [SECONDS per target, default 20]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-20}
+bash scripts/deps.sh
+cmake --preset fuzz >/dev/null
+cmake --build --preset fuzz
+(cd build/fuzz && ctest --output-on-failure -L fuzz)
+mkdir -p build/fuzz/crashes
+# Full stacks on allocation (the system libraries have no frame pointers), so
+# the suppressions in tests/lsan.supp can match.
+export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
+export ASAN_OPTIONS="fast_unwind_on_malloc=0"
+for t in preset scene tileset sprite; do
+  work=build/fuzz/corpus_$t
+  mkdir -p "$work"
+  echo "fuzz: $t for ${seconds}s"
+  ./build/fuzz/tests/fuzz/fuzz_$t -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
+    -artifact_prefix=build/fuzz/crashes/"$t"- -print_final_stats=1 "$work" tests/fuzz/corpus/$t 2>&1 |
+    grep -E "number_of_executed_units|new_units_added|ERROR|SUMMARY|runtime error" || true
+done
+echo "fuzz: no crash"
