@@ -10,6 +10,7 @@ bash scripts/deps.sh
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz
 (cd build/fuzz && ctest --output-on-failure -L fuzz)
+rm -rf build/fuzz/crashes
 mkdir -p build/fuzz/crashes
 # Full stacks on allocation (the system libraries have no frame pointers), so
 # the suppressions in tests/lsan.supp can match.
@@ -23,4 +24,9 @@ for t in preset scene tileset sprite; do
     -artifact_prefix=build/fuzz/crashes/"$t"- -print_final_stats=1 "$work" tests/fuzz/corpus/$t 2>&1 |
     grep -E "number_of_executed_units|new_units_added|ERROR|SUMMARY|runtime error" || true
 done
+# The pipes above keep going on a crash; the artifacts say whether one happened.
+if compgen -G "build/fuzz/crashes/*" >/dev/null; then
+  echo "fuzz: crash inputs in build/fuzz/crashes:"; ls build/fuzz/crashes
+  exit 1
+fi
 echo "fuzz: no crash"
