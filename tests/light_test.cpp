@@ -230,8 +230,8 @@ TEST(OpacityCorrection, addsSpritesAboveTheCentreAndSubtractsThoseBelow) {
     ts.sprites.push_back(s);
     PlacedMap placed;
     placed.first_overlay = 0;
-    placed.instances.push_back({0, -6, -6, -5, -4, 0});  // ground y -4 < 0: above
-    placed.instances.push_back({0, 2, 1, 3, 3, 1});      // ground y 3 >= 0: below
+    placed.instances.push_back({0, -6, -6, -5, -4, 0, 3, 3});  // ground y -4 < 0: above
+    placed.instances.push_back({0, 2, 1, 3, 3, 1, 3, 3});      // ground y 3 >= 0: below
     std::vector<Mask> opacity = {opacity_map(ts.sprites[0].image, 0.5)};
     Rect area = area_rect(0, 0, 8, 8);
     Mask wall(area);

@@ -33,7 +33,9 @@ OverlayImage build_overlays(const World& world, const FrameState& frame, const S
     if (o.delta_y_bands) {
         std::vector<SpriteObstacleTrace> traces(world.tileset.sprites.size());
         std::vector<char> done(traces.size(), 0);
-        for (std::size_t k = world.placed.first_overlay; k < inst.size(); ++k) {
+        std::vector<std::uint32_t> near;
+        instances_in(world.placed, region, true, near);
+        for (std::uint32_t k : near) {
             const SpriteInstance& in = inst[k];
             if (in.sprite >= int(frame.opacity.size())) continue;
             const Mask& op = frame.opacity[in.sprite];
@@ -57,7 +59,9 @@ OverlayImage build_overlays(const World& world, const FrameState& frame, const S
             const Rect area = intersect(light_area(l, p), region);
             if (area.empty()) continue;
             const double cy = std::floor(l.y);
-            for (std::size_t k = world.placed.first_overlay; k < inst.size(); ++k) {
+            std::vector<std::uint32_t> near;
+            instances_in(world.placed, area, true, near);
+            for (std::uint32_t k : near) {
                 const SpriteInstance& in = inst[k];
                 if (in.sprite >= int(frame.opacity.size())) continue;
                 const Mask& op = frame.opacity[in.sprite];

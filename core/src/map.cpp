@@ -179,6 +179,8 @@ PlacedMap place_sprites(const Map& map, const Tileset& ts) {
                 in.x = gx - s.anchor_x;
                 in.y = gy - s.anchor_y;
                 in.tile = idx;
+                in.w = s.image.width;
+                in.h = s.image.height;
                 return in;
             };
             floors.push_back({{cy, cx, idx, 0}, make(t.floor, cx, cy)});
@@ -215,7 +217,38 @@ PlacedMap place_sprites(const Map& map, const Tileset& ts) {
     out.bounds = {0, 0, x1 - x0, y1 - y0};
     out.shift_x = -x0;
     out.shift_y = -y0;
+    out.grid_w = (out.bounds.w + out.cell - 1) / out.cell;
+    out.grid_h = (out.bounds.h + out.cell - 1) / out.cell;
+    out.grid.assign(std::size_t(out.grid_w) * out.grid_h, {});
+    for (std::size_t i = 0; i < out.instances.size(); ++i) {
+        const SpriteInstance& in = out.instances[i];
+        const int cx0 = std::max(0, in.x / out.cell), cy0 = std::max(0, in.y / out.cell);
+        const int cx1 = std::min(out.grid_w - 1, (in.x + in.w - 1) / out.cell);
+        const int cy1 = std::min(out.grid_h - 1, (in.y + in.h - 1) / out.cell);
+        for (int cy = cy0; cy <= cy1; ++cy)
+            for (int cx = cx0; cx <= cx1; ++cx) out.grid[std::size_t(cy) * out.grid_w + cx].push_back(std::uint32_t(i));
+    }
     return out;
+}
+
+void instances_in(const PlacedMap& placed, Rect r, bool overlays_only, std::vector<std::uint32_t>& out, int margin) {
+    out.clear();
+    const std::size_t first = overlays_only ? placed.first_overlay : 0;
+    const Rect q{r.x - margin, r.y - margin, r.w + 2 * margin, r.h + 2 * margin};
+    auto meets = [&](const SpriteInstance& in) { return !intersect({in.x, in.y, in.w, in.h}, q).empty(); };
+    if (placed.grid.empty()) {
+        for (std::size_t i = first; i < placed.instances.size(); ++i)
+            if (meets(placed.instances[i])) out.push_back(std::uint32_t(i));
+        return;
+    }
+    const Rect c = intersect(q, placed.bounds);
+    if (c.empty()) return;
+    for (int cy = c.y / placed.cell; cy <= (c.y + c.h - 1) / placed.cell; ++cy)
+        for (int cx = c.x / placed.cell; cx <= (c.x + c.w - 1) / placed.cell; ++cx)
+            for (std::uint32_t i : placed.grid[std::size_t(cy) * placed.grid_w + cx])
+                if (i >= first && meets(placed.instances[i])) out.push_back(i);
+    std::sort(out.begin(), out.end());  // draw order; a sprite over several cells counts once
+    out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
 bool tile_at(const Map& map, const PlacedMap& placed, double wx, double wy, int& col, int& row) {
@@ -248,7 +281,10 @@ bool tile_at(const Map& map, const PlacedMap& placed, double wx, double wy, int&
 
 Image render_sprites(const Tileset& ts, const PlacedMap& placed, Rect view) {
     Image out(view.w, view.h);
-    for (const SpriteInstance& in : placed.instances) {
+    std::vector<std::uint32_t> near;
+    instances_in(placed, view, false, near);
+    for (std::uint32_t k : near) {
+        const SpriteInstance& in = placed.instances[k];
         const Image& s = ts.sprites[in.sprite].image;
         Rect r = intersect({in.x, in.y, s.width, s.height}, view);
         if (r.empty()) continue;

@@ -99,7 +99,13 @@ Mask build_obstacle_map(const Tileset& ts, const PlacedMap& placed, const Params
     std::vector<char> done(ts.sprites.size(), 0);
     const Rect grown{region.x, region.y, region.w + p.noise_window - 1, region.h + p.noise_window - 1};
     Mask raw(grown);
-    for (std::size_t i = placed.first_overlay; i < placed.instances.size(); ++i) {
+    // Algorithm 1's arms may reach past a sprite's rectangle by a quarter of
+    // its width: look that far around the region.
+    int reach = 0;
+    for (const Sprite& s : ts.sprites) reach = std::max(reach, s.image.width / 4 + 1);
+    std::vector<std::uint32_t> near;
+    instances_in(placed, grown, true, near, reach);
+    for (std::uint32_t i : near) {
         const SpriteInstance& in = placed.instances[i];
         const Sprite& s = ts.sprites[in.sprite];
         if (!done[in.sprite]) {

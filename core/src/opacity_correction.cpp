@@ -9,7 +9,9 @@ namespace isolux {
 int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const std::vector<Mask>& opacity) {
     int touched = 0;
     const Rect clip = mask.clip;
-    for (std::size_t k = placed.first_overlay; k < placed.instances.size(); ++k) {
+    std::vector<std::uint32_t> near;
+    instances_in(placed, clip, true, near);
+    for (std::uint32_t k : near) {
         const SpriteInstance& in = placed.instances[k];
         const Mask& op = opacity[in.sprite];
         const Rect r = intersect({in.x, in.y, op.width, op.height}, clip);

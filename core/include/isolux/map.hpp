@@ -56,6 +56,7 @@ struct SpriteInstance {
     int x = 0, y = 0;            // the sprite image's top-left
     int ground_x = 0, ground_y = 0;  // where it stands: its anchor in world pixels
     int tile = -1;               // index into Map::tiles
+    int w = 0, h = 0;            // the sprite image's size
 };
 
 // Every sprite of the map in draw order (back to front): all floor blocks by
@@ -66,7 +67,19 @@ struct PlacedMap {
     std::vector<SpriteInstance> instances;
     std::size_t first_overlay = 0;  // instances[first_overlay..] are overlays
     int shift_x = 0, shift_y = 0;   // world = layout pixels + shift (tile_center's frame to the world's)
+
+    // A grid of `cell`-pixel squares over `bounds`: each lists the instances
+    // whose rectangle meets it, so a frame touches only the sprites near its
+    // view and lights, whatever the map's size.
+    int cell = 256, grid_w = 0, grid_h = 0;
+    std::vector<std::vector<std::uint32_t>> grid;
 };
+
+// The instances whose rectangle (grown by `margin` pixels) meets `r`, in draw
+// order; overlays only when `overlays_only`. Without a grid (a hand-built
+// PlacedMap), every instance is tested.
+void instances_in(const PlacedMap& placed, Rect r, bool overlays_only, std::vector<std::uint32_t>& out,
+                  int margin = 0);
 
 PlacedMap place_sprites(const Map& map, const Tileset& tileset);
 
