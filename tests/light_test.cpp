@@ -421,3 +421,24 @@ TEST(Frame, lightsOutsideTheMapLightWhatTheyReach) {
     r = render_frame(st2, test_world(), s, Camera{}, 0);
     EXPECT_EQ(r.lights_traced, 0);
 }
+
+TEST(Frame, anUnchangedLightIsNotTracedAgain) {
+    Scene s;
+    s.params.area_a = s.params.area_b = 50;
+    s.params.falloff_scale = 6;
+    s.lights = {Light{420, 260}, Light{600, 330}, Light{500, 300}};
+    FrameState st;
+    FrameReport r = render_frame(st, test_world(), s, Camera{}, 0);
+    EXPECT_EQ(r.lights_traced, 3);
+    s.lights[1].x += 9;          // one light moves
+    s.lights[2].r = 10;          // one changes colour only: no new rays needed
+    r = render_frame(st, test_world(), s, Camera{}, 1);
+    EXPECT_EQ(r.lights_traced, 1);
+    EXPECT_EQ(r.lights_reused, 2);
+    FrameState fresh;
+    render_frame(fresh, test_world(), s, Camera{}, 0);
+    EXPECT_EQ(st.final.rgba, fresh.final.rgba);
+    s.params.ray_skip = 2;       // a tracing parameter: everything again
+    r = render_frame(st, test_world(), s, Camera{}, 2);
+    EXPECT_EQ(r.lights_traced, 3);
+}

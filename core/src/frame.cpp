@@ -59,6 +59,16 @@ Rect bounding(Rect a, Rect b) {
     return {x0, y0, x1 - x0, y1 - y0};
 }
 
+// No obstacle pixel in `area` (the parts outside the obstacle map hold none).
+bool area_is_clear(const Mask& obstacles, Rect area) {
+    const Rect r = intersect(area, obstacles.rect());
+    for (int y = r.y; y < r.y + r.h; ++y) {
+        const std::uint8_t* row = &obstacles.bits[std::size_t(y - obstacles.y0) * obstacles.width + (r.x - obstacles.x0)];
+        if (std::find(row, row + r.w, std::uint8_t(1)) != row + r.w) return false;
+    }
+    return true;
+}
+
 bool same_obstacle_params(const Params& a, const Params& b) {
     return a.delta_y == b.delta_y && a.noise_window == b.noise_window && a.opacity_threshold == b.opacity_threshold;
 }
@@ -113,48 +123,78 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
         st.has_obstacles = true;
     }
 
-    const bool must = !st.has_trace || obstacles_changed || !same_trace_params(st.trace_params, p);
+    const bool must = !st.has_trace || obstacles_changed || !same_trace_params(st.trace_params, p) ||
+                      st.cache_corrected != st.options.opacity_correction;
     const bool due = frame % p.trace_every == 0 &&
                      (st.trace_lights != scene.lights || !covers(st.traced.rect, view));
     const bool retrace = must || due;
     if (retrace) {
         st.traced = LightTexture(tex_rect);
+        if (must) st.light_cache.clear();  // obstacles or tracing parameters changed: nothing is reusable
         // The lights whose area meets the texture; the others have nothing to trace.
         std::vector<const Light*> lights;
         for (const Light& l : scene.lights)
             if (!intersect(light_area(l, p), tex_rect).empty()) lights.push_back(&l);
-        std::vector<LightMask> masks(lights.size());
-        const int threads = std::max(1, std::min<int>(int(lights.size()), st.options.threads > 0
-                                                                             ? st.options.threads
-                                                                             : int(std::thread::hardware_concurrency())));
+        std::vector<FrameState::TracedLight> traced(lights.size());
+        std::vector<std::size_t> todo;
+        for (std::size_t i = 0; i < lights.size(); ++i) {
+            const Light& l = *lights[i];
+            FrameState::TracedLight& t = traced[i];
+            t.cx = std::int64_t(std::floor(l.x));
+            t.cy = std::int64_t(std::floor(l.y));
+            t.a = light_a(l, p);
+            t.b = light_b(l, p);
+            const Rect clip = intersect(light_area(l, p), tex_rect);
+            auto same = [&](const FrameState::TracedLight& c) {
+                return c.cx == t.cx && c.cy == t.cy && c.a == t.a && c.b == t.b && c.mask.clip == clip;
+            };
+            // Lights mostly keep their place in the list: look there first.
+            const FrameState::TracedLight* hit = nullptr;
+            if (i < st.light_cache.size() && same(st.light_cache[i])) hit = &st.light_cache[i];
+            for (std::size_t j = 0; !hit && j < st.light_cache.size(); ++j)
+                if (same(st.light_cache[j])) hit = &st.light_cache[j];
+            if (hit) {
+                t.mask = hit->mask;
+                ++rep.lights_reused;
+            } else {
+                t.mask.clip = clip;
+                todo.push_back(i);
+            }
+        }
+        const int threads = std::max(1, std::min<int>(int(todo.size()), st.options.threads > 0
+                                                                           ? st.options.threads
+                                                                           : int(std::thread::hardware_concurrency())));
         auto parallel = [&](auto&& work) {
             if (threads <= 1) {
-                for (std::size_t i = 0; i < lights.size(); ++i) work(i);
+                for (std::size_t i : todo) work(i);
                 return;
             }
             std::vector<std::thread> pool;
             for (int t = 0; t < threads; ++t)
                 pool.emplace_back([&, t] {
-                    for (std::size_t i = std::size_t(t); i < lights.size(); i += std::size_t(threads)) work(i);
+                    for (std::size_t k = std::size_t(t); k < todo.size(); k += std::size_t(threads)) work(todo[k]);
                 });
             for (std::thread& th : pool) th.join();
         };
-        {
+        if (!todo.empty()) {
             Timer t{rep, Stage::trace};
             parallel([&](std::size_t i) {
-                const Light& l = *lights[i];
-                masks[i] = trace_light(st.obstacles, std::int64_t(std::floor(l.x)), std::int64_t(std::floor(l.y)),
-                                       light_a(l, p), light_b(l, p), p, intersect(light_area(l, p), tex_rect));
+                FrameState::TracedLight& tl = traced[i];
+                const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
+                tl.mask = trace_light(st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
+                                      area_is_clear(st.obstacles, area));
             });
-            rep.lights_traced = int(lights.size());
+            rep.lights_traced = int(todo.size());
         }
-        if (st.options.opacity_correction && p.mode != Mode::flat && !masks.empty()) {
+        if (st.options.opacity_correction && p.mode != Mode::flat && !todo.empty()) {
             Timer t{rep, Stage::opacity_correction};
-            std::vector<int> touched(masks.size(), 0);
-            parallel([&](std::size_t i) { touched[i] = correct_with_opacity_maps(masks[i], world.placed, st.opacity); });
+            std::vector<int> touched(traced.size(), 0);
+            parallel([&](std::size_t i) { touched[i] = correct_with_opacity_maps(traced[i].mask, world.placed, st.opacity); });
             for (int n : touched) rep.sprites_corrected += n;
         }
-        for (std::size_t i = 0; i < lights.size(); ++i) accumulate_light(st.traced, masks[i], *lights[i], p);
+        for (std::size_t i = 0; i < lights.size(); ++i) accumulate_light(st.traced, traced[i].mask, *lights[i], p);
+        st.light_cache = std::move(traced);
+        st.cache_corrected = st.options.opacity_correction;
         st.has_trace = true;
         st.trace_frame = frame;
         st.trace_params = p;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <utility>
 
 namespace isolux {
 
@@ -53,8 +54,58 @@ std::vector<std::pair<int, int>> border_offsets(int a, int b) {
     return out;
 }
 
+std::uint64_t& bresenham_steps() {
+    thread_local std::uint64_t steps = 0;
+    return steps;
+}
+
+namespace {
+
+// One ray from the centre, stepping two pointers (obstacle map, mask) with
+// the paper's Bresenham decisions. Returns the steps taken.
+template <Mode M>
+std::int64_t trace_fast(const std::uint8_t* ob, std::ptrdiff_t ob_stride, std::uint8_t* lit, std::uint8_t* reached,
+                        std::ptrdiff_t lit_stride, std::int64_t w, std::int64_t h) {
+    const int sx = sign(w), sy = sign(h);
+    std::int64_t longest = std::llabs(w), shortest = std::llabs(h);
+    int dx2 = sx, dy2 = 0;
+    if (!(longest > shortest)) {
+        std::swap(longest, shortest);
+        dx2 = 0;
+        dy2 = sy;
+    }
+    const std::ptrdiff_t ob_diag = sy * ob_stride + sx, ob_straight = dy2 * ob_stride + dx2;
+    const std::ptrdiff_t lit_diag = sy * lit_stride + sx, lit_straight = dy2 * lit_stride + dx2;
+    std::int64_t numerator = longest >> 1;
+    std::ptrdiff_t at_ob = 0, at_lit = 0;
+    std::int64_t i = 0;
+    for (; i <= longest; ++i) {
+        if (M != Mode::flat && ob[at_ob]) break;
+        lit[at_lit] = 1;
+        if (M == Mode::shadow) reached[at_lit] = 1;
+        numerator += shortest;
+        const bool diag = !(numerator < longest);
+        numerator -= diag ? longest : 0;
+        at_ob += diag ? ob_diag : ob_straight;
+        at_lit += diag ? lit_diag : lit_straight;
+    }
+    if (M == Mode::shadow) {
+        // Beyond the first obstacle: reached, not lit.
+        for (; i <= longest; ++i) {
+            reached[at_lit] = 1;
+            numerator += shortest;
+            const bool diag = !(numerator < longest);
+            numerator -= diag ? longest : 0;
+            at_lit += diag ? lit_diag : lit_straight;
+        }
+    }
+    return i;
+}
+
+}  // namespace
+
 LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
-                      Rect clip) {
+                      Rect clip, bool area_is_clear) {
     LightMask m;
     m.clip = clip;
     m.cx = cx;
@@ -64,9 +115,49 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
     if (p.mode == Mode::shadow) m.reached.assign(n, 0);
     if (clip.empty()) return m;
 
+    const bool representable = std::llabs(cx) < 1000000000 && std::llabs(cy) < 1000000000;
+    const Rect area = representable ? Rect{int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1} : Rect{};
+    const bool fast = representable && clip == area && (p.mode == Mode::flat || intersect(obstacles.rect(), area) == area);
+    if (fast) {
+        const bool every_pixel_lit = p.mode == Mode::flat || area_is_clear;
+        if (every_pixel_lit && (p.rays == Rays::every_pixel || p.ray_skip == 1)) {
+            // Closed form: with nothing in the way, the rays cover the whole area.
+            std::fill(m.lit.begin(), m.lit.end(), 1);
+            if (p.mode == Mode::shadow) std::fill(m.reached.begin(), m.reached.end(), 1);
+            return m;
+        }
+        static const std::uint8_t none = 0;
+        const std::uint8_t* ob = p.mode == Mode::flat
+                                     ? &none
+                                     : &obstacles.bits[std::size_t(cy - obstacles.y0) * obstacles.width +
+                                                       std::size_t(cx - obstacles.x0)];
+        const std::ptrdiff_t ob_stride = p.mode == Mode::flat ? 0 : obstacles.width;
+        std::uint8_t* lit = &m.lit[std::size_t(b) * clip.w + a];
+        std::uint8_t* reached = p.mode == Mode::shadow ? &m.reached[std::size_t(b) * clip.w + a] : nullptr;
+        std::uint64_t steps = 0;
+        auto ray = [&](std::int64_t w, std::int64_t h) {
+            switch (p.mode) {
+                case Mode::light: steps += trace_fast<Mode::light>(ob, ob_stride, lit, reached, clip.w, w, h); break;
+                case Mode::shadow: steps += trace_fast<Mode::shadow>(ob, ob_stride, lit, reached, clip.w, w, h); break;
+                case Mode::flat: steps += trace_fast<Mode::flat>(ob, 0, lit, reached, clip.w, w, h); break;
+            }
+        };
+        if (p.rays == Rays::every_pixel) {
+            for (int y = -b; y <= b; ++y)
+                for (int x = -a; x <= a; ++x) ray(x, y);
+        } else {
+            const auto border = border_offsets(a, b);
+            for (std::size_t i = 0; i < border.size(); i += std::size_t(p.ray_skip)) ray(border[i].first, border[i].second);
+        }
+        bresenham_steps() += steps;
+        return m;
+    }
+
+    // General path: any clip, any centre (also far outside int range).
     auto trace = [&](std::int64_t tx, std::int64_t ty) {
         bool blocked = false;
         for (BresenhamRay r(cx, cy, tx, ty); !r.done(); r.step()) {
+            ++bresenham_steps();
             if (p.mode != Mode::flat && !blocked && blocked_at(obstacles, r.x, r.y)) {
                 if (p.mode == Mode::light) return;
                 blocked = true;  // shadow mode: what lies beyond, this pixel included

@@ -88,3 +88,28 @@ TEST(StabilityProperties, translatingAWholeSceneTranslatesItsLight) {
         ASSERT_EQ(m1.lit, m2.lit) << "seed " << seed;
     }
 }
+
+TEST(StabilityProperties, theFastPathTheGeneralPathAndTheClosedFormAgree) {
+    for (std::uint64_t seed = 0; seed < 48; ++seed) {
+        Pcg32 rng(seed + 900);
+        const int a = 1 + int(rng.below(25)), b = 1 + int(rng.below(25));
+        const Rect area{100 - a, 50 - b, 2 * a + 1, 2 * b + 1};
+        const bool clear = seed % 4 == 0;
+        Mask big = random_obstacles(Rect{area.x - 3, area.y - 3, area.w + 6, area.h + 6}, seed, clear ? 0 : 9);
+        big.set(100, 50, false);
+        // The same obstacles in a mask that does not cover the area: the general path.
+        Mask part(Rect{area.x + 1, area.y + 1, area.w - 2, area.h - 2});
+        for (int y = part.y0; y < part.y0 + part.height; ++y)
+            for (int x = part.x0; x < part.x0 + part.width; ++x) part.set(x, y, big.get(x, y));
+        for (int x = area.x; x < area.x + area.w; ++x) big.set(x, area.y, false), big.set(x, area.y + area.h - 1, false);
+        for (int y = area.y; y < area.y + area.h; ++y) big.set(area.x, y, false), big.set(area.x + area.w - 1, y, false);
+        Params p;
+        p.mode = Mode(seed % 3);
+        p.rays = seed % 5 == 0 ? Rays::every_pixel : Rays::border;
+        p.ray_skip = 1 + int(seed % 2);
+        LightMask fast = trace_light(big, 100, 50, a, b, p, area, clear);
+        LightMask general = trace_light(part, 100, 50, a, b, p, area);
+        ASSERT_EQ(fast.lit, general.lit) << "seed " << seed;
+        ASSERT_EQ(fast.reached, general.reached) << "seed " << seed;
+    }
+}

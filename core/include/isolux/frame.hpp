@@ -23,6 +23,7 @@ struct FrameReport {
     std::array<bool, stage_count> ran{};
     std::array<double, stage_count> ms{};  // wall time per stage, milliseconds
     int lights_traced = 0;       // lights whose rays were traced this frame
+    int lights_reused = 0;       // lights whose traced pixels were still valid (not traced again)
     int sprites_corrected = 0;   // sprite instances the opacity correction touched
     bool retraced = false;       // FrameState::traced changed this frame
     bool ran_stage(Stage s) const { return ran[int(s)]; }
@@ -52,6 +53,17 @@ struct FrameState {
     Mask obstacles;
     std::vector<Mask> opacity;
     bool has_obstacles = false;
+
+    // Each light's traced and corrected pixels, kept while the obstacle map,
+    // the tracing parameters and the light's centre, area and clip are the
+    // same: an unchanged light is never traced twice.
+    struct TracedLight {
+        std::int64_t cx = 0, cy = 0;
+        int a = 0, b = 0;
+        LightMask mask;
+    };
+    std::vector<TracedLight> light_cache;
+    bool cache_corrected = true;  // whether the cached masks had the opacity correction
 
     // The last trace, world-anchored: corrected light texture and its blur.
     bool has_trace = false;

@@ -58,8 +58,19 @@ std::vector<std::pair<int, int>> border_offsets(int a, int b);
 // rest as reached; Mode::flat ignores obstacles. Only pixels inside `clip` are
 // recorded; obstacles are read along the whole ray (outside `obstacles` there
 // are none).
+//
+// Fast path (the common case: the clip is the whole area and the obstacle map
+// covers it): rays step through the obstacle map and the mask by pointer,
+// branch-free, with no bounds tests. `area_is_clear` (the caller knows no
+// obstacle lies in the area) lets k = 1 and every-pixel tracing fill the area
+// from its closed form: every pixel is lit (see docs/method.md). The result is
+// the same bytes as the general path's.
 LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
-                      Rect clip);
+                      Rect clip, bool area_is_clear = false);
+
+// Bresenham steps the last trace_light calls on this thread took (for the
+// benchmark's steps-per-pixel figure).
+std::uint64_t& bresenham_steps();
 
 // The plain transcription of Algorithm 2 for one ray, kept as the reference
 // the fast tracer is measured against: enlightens lit[] (clip-relative) with
