@@ -59,16 +59,6 @@ Rect bounding(Rect a, Rect b) {
     return {x0, y0, x1 - x0, y1 - y0};
 }
 
-// No obstacle pixel in `area` (the parts outside the obstacle map hold none).
-bool area_is_clear(const Mask& obstacles, Rect area) {
-    const Rect r = intersect(area, obstacles.rect());
-    for (int y = r.y; y < r.y + r.h; ++y) {
-        const std::uint8_t* row = &obstacles.bits[std::size_t(y - obstacles.y0) * obstacles.width + (r.x - obstacles.x0)];
-        if (std::find(row, row + r.w, std::uint8_t(1)) != row + r.w) return false;
-    }
-    return true;
-}
-
 bool same_obstacle_params(const Params& a, const Params& b) {
     return a.delta_y == b.delta_y && a.noise_window == b.noise_window && a.opacity_threshold == b.opacity_threshold;
 }

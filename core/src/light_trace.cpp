@@ -5,6 +5,11 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <tuple>
 #include <utility>
 
 namespace isolux {
@@ -52,6 +57,15 @@ std::vector<std::pair<int, int>> border_offsets(int a, int b) {
     if (a > 0)
         for (int y = b - 1; y >= -b + 1; --y) out.push_back({-a, y});    // left, upward
     return out;
+}
+
+bool area_is_clear(const Mask& obstacles, Rect area) {
+    const Rect r = intersect(area, obstacles.rect());
+    for (int y = r.y; y < r.y + r.h; ++y) {
+        const std::uint8_t* row = &obstacles.bits[std::size_t(y - obstacles.y0) * obstacles.width + (r.x - obstacles.x0)];
+        if (std::find(row, row + r.w, std::uint8_t(1)) != row + r.w) return false;
+    }
+    return true;
 }
 
 std::uint64_t& bresenham_steps() {
@@ -104,6 +118,107 @@ std::int64_t trace_fast(const std::uint8_t* ob, std::ptrdiff_t ob_stride, std::u
 
 }  // namespace
 
+namespace {
+
+// The border rays of one area shape, merged into a prefix tree: rays that
+// share their first pixels share nodes, so tracing visits each shared prefix
+// once and an obstacle prunes every ray through it at one stroke. Stored in
+// depth-first order: node i's subtree is [i, end[i]). Node 0 is the centre.
+// Same pixels as tracing ray by ray: a pixel is lit exactly when all nodes on
+// some root path to it are clear.
+struct RayTree {
+    std::vector<std::int16_t> dx, dy;  // offset from the centre
+    std::vector<std::int32_t> end;
+    std::vector<std::int32_t> offset;  // dy * (2a+1) + dx: the node's index offset in an area-sized buffer
+};
+
+std::shared_ptr<const RayTree> build_ray_tree(int a, int b, int k) {
+    struct Node {
+        std::int16_t dx, dy;
+        std::int32_t child[8];
+    };
+    std::vector<Node> nodes;
+    nodes.push_back({0, 0, {-1, -1, -1, -1, -1, -1, -1, -1}});
+    const auto border = border_offsets(a, b);
+    for (std::size_t i = 0; i < border.size(); i += std::size_t(k)) {
+        std::int32_t at = 0;
+        BresenhamRay r(0, 0, border[i].first, border[i].second);
+        for (r.step(); !r.done(); r.step()) {
+            const int ddx = int(r.x) - nodes[at].dx, ddy = int(r.y) - nodes[at].dy;  // one of 8 neighbours
+            const int dir = (ddy + 1) * 3 + (ddx + 1) - ((ddy + 1) * 3 + (ddx + 1) > 4);
+            if (nodes[at].child[dir] < 0) {
+                nodes[at].child[dir] = std::int32_t(nodes.size());
+                nodes.push_back({std::int16_t(r.x), std::int16_t(r.y), {-1, -1, -1, -1, -1, -1, -1, -1}});
+            }
+            at = nodes[at].child[dir];
+        }
+    }
+    auto tree = std::make_shared<RayTree>();
+    tree->dx.reserve(nodes.size());
+    tree->dy.reserve(nodes.size());
+    tree->end.resize(nodes.size());
+    // Iterative depth-first flattening (children in a fixed order).
+    std::vector<std::pair<std::int32_t, int>> stack = {{0, 0}};  // node, next child
+    std::vector<std::int32_t> index_of(nodes.size());
+    while (!stack.empty()) {
+        auto& [n, c] = stack.back();
+        if (c == 0) {
+            index_of[n] = std::int32_t(tree->dx.size());
+            tree->dx.push_back(nodes[n].dx);
+            tree->dy.push_back(nodes[n].dy);
+        }
+        while (c < 8 && nodes[n].child[c] < 0) ++c;
+        if (c < 8) {
+            const std::int32_t child = nodes[n].child[c++];
+            stack.push_back({child, 0});
+        } else {
+            tree->end[index_of[n]] = std::int32_t(tree->dx.size());
+            stack.pop_back();
+        }
+    }
+    tree->offset.resize(tree->dx.size());
+    for (std::size_t i = 0; i < tree->dx.size(); ++i) tree->offset[i] = tree->dy[i] * (2 * a + 1) + tree->dx[i];
+    return tree;
+}
+
+// Trees are kept per (a, b, k): a scene's lights mostly share a few shapes.
+std::shared_ptr<const RayTree> ray_tree(int a, int b, int k) {
+    static std::mutex mutex;
+    static std::map<std::tuple<int, int, int>, std::shared_ptr<const RayTree>> cache;
+    std::lock_guard<std::mutex> lock(mutex);
+    auto& slot = cache[{a, b, k}];
+    if (!slot) slot = build_ray_tree(a, b, k);
+    return slot;
+}
+
+constexpr int max_tree_extent = 512;  // larger areas trace ray by ray (the tree would be too big to keep)
+
+// Walks the tree over an area-local copy of the obstacles (`ob`, the same
+// layout as the mask), so one offset serves both. Returns the nodes visited
+// (pruned subtrees are skipped).
+template <Mode M>
+std::int64_t trace_tree(const RayTree& t, const std::uint8_t* ob, std::uint8_t* lit, std::uint8_t* reached) {
+    std::int64_t visited = 0;
+    const std::int32_t n = std::int32_t(t.offset.size());
+    const std::int32_t* off = t.offset.data();
+    const std::int32_t* end = t.end.data();
+    for (std::int32_t i = 0; i < n; ++visited) {
+        const std::int32_t o = off[i];
+        if (ob[o]) {
+            if (M == Mode::shadow)  // this pixel and every one behind it on these rays
+                for (std::int32_t j = i; j < end[i]; ++j) reached[off[j]] = 1;
+            i = end[i];
+            continue;
+        }
+        lit[o] = 1;
+        if (M == Mode::shadow) reached[o] = 1;
+        ++i;
+    }
+    return visited;
+}
+
+}  // namespace
+
 LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
                       Rect clip, bool area_is_clear) {
     LightMask m;
@@ -145,6 +260,18 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
         if (p.rays == Rays::every_pixel) {
             for (int y = -b; y <= b; ++y)
                 for (int x = -a; x <= a; ++x) ray(x, y);
+        } else if (p.mode != Mode::flat && a <= max_tree_extent && b <= max_tree_extent) {
+            const auto tree = ray_tree(a, b, p.ray_skip);
+            // The area's obstacles, copied row by row into the mask's layout.
+            thread_local std::vector<std::uint8_t> local;
+            local.resize(n);
+            for (int y = 0; y < clip.h; ++y)
+                std::memcpy(&local[std::size_t(y) * clip.w],
+                            &obstacles.bits[std::size_t(clip.y + y - obstacles.y0) * obstacles.width + (clip.x - obstacles.x0)],
+                            std::size_t(clip.w));
+            const std::uint8_t* centre = &local[std::size_t(b) * clip.w + a];
+            steps += p.mode == Mode::light ? trace_tree<Mode::light>(*tree, centre, lit, reached)
+                                           : trace_tree<Mode::shadow>(*tree, centre, lit, reached);
         } else {
             const auto border = border_offsets(a, b);
             for (std::size_t i = 0; i < border.size(); i += std::size_t(p.ray_skip)) ray(border[i].first, border[i].second);
@@ -181,8 +308,9 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
 }
 
 void trace_light_ray_paper(const Mask& obstacles, std::int64_t orgX, std::int64_t orgY, std::int64_t dstX,
-                           std::int64_t dstY, Rect clip, std::vector<std::uint8_t>& lit) {
+                           std::int64_t dstY, Rect clip, std::vector<std::uint8_t>& texture) {
     // Algorithm 2, line for line.
+    const std::int64_t cX = orgX, cY = orgY;
     std::int64_t w = dstX - orgX, h = dstY - orgY;
     int dx1 = 0, dy1 = 0, dx2 = 0, dy2 = 0;
     if (w < 0) dx1 = -1, dx2 = -1;
@@ -202,8 +330,10 @@ void trace_light_ray_paper(const Mask& obstacles, std::int64_t orgX, std::int64_
     for (std::int64_t i = 0; i <= longest && !finished; i++) {
         if (!blocked_at(obstacles, orgX, orgY)) {
             if (orgX >= clip.x && orgY >= clip.y && orgX < std::int64_t(clip.x) + clip.w &&
-                orgY < std::int64_t(clip.y) + clip.h)
-                lit[std::size_t(orgY - clip.y) * clip.w + std::size_t(orgX - clip.x)] = 1;
+                orgY < std::int64_t(clip.y) + clip.h) {
+                const std::int64_t d = std::max(std::llabs(orgX - cX), std::llabs(orgY - cY));
+                texture[std::size_t(orgY - clip.y) * clip.w + std::size_t(orgX - clip.x)] = std::uint8_t(255 / (1 + d));
+            }
         } else {
             finished = true;
         }

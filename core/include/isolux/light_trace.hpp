@@ -68,14 +68,19 @@ std::vector<std::pair<int, int>> border_offsets(int a, int b);
 LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
                       Rect clip, bool area_is_clear = false);
 
+// Whether `area` holds no obstacle pixel (outside `obstacles` there are none):
+// the condition for trace_light's closed form.
+bool area_is_clear(const Mask& obstacles, Rect area);
+
 // Bresenham steps the last trace_light calls on this thread took (for the
 // benchmark's steps-per-pixel figure).
 std::uint64_t& bresenham_steps();
 
 // The plain transcription of Algorithm 2 for one ray, kept as the reference
-// the fast tracer is measured against: enlightens lit[] (clip-relative) with
-// value 1 until the first blocked pixel.
+// implementation the fast tracer is measured against (bench/): "enlighten
+// pixel" writes the paper's intensity 255 / (1 + max(|Δx|, |Δy|)), computed
+// per pixel, into texture[] (clip-relative) until the first blocked pixel.
 void trace_light_ray_paper(const Mask& obstacles, std::int64_t orgX, std::int64_t orgY, std::int64_t dstX,
-                           std::int64_t dstY, Rect clip, std::vector<std::uint8_t>& lit);
+                           std::int64_t dstY, Rect clip, std::vector<std::uint8_t>& texture);
 
 }  // namespace isolux

@@ -1,0 +1,335 @@
+// isolux-bench: the tracer against the paper's transcription, libtcod's field
+// of view and the floor (writing intensities with no visibility test), and
+// frames that do only what their scene calls for. `--ratios` prints the
+// figures of docs/performance.md, measured side by side in this one run.
+#include <benchmark/benchmark.h>
+#include <libtcod/fov.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string>
+#include <thread>
+
+#include "isolux/hash.hpp"
+#include "isolux/light_trace.hpp"
+#include "scenes.hpp"
+
+using namespace isolux;
+using isolux::bench::trace_scene;
+using isolux::bench::TraceScene;
+
+namespace {
+
+Rect area_of(const TraceScene& s, int a) { return {s.cx - a, s.cy - a, 2 * a + 1, 2 * a + 1}; }
+
+// isolux's tracer: rays, then the paper's intensities into the light texture.
+void trace_isolux(const TraceScene& s, int a, int k, LightTexture& tex) {
+    Params p;
+    p.ray_skip = k;
+    const Rect area = area_of(s, a);
+    LightMask m = trace_light(s.obstacles, s.cx, s.cy, a, a, p, area, area_is_clear(s.obstacles, area));
+    std::fill(tex.rgb.begin(), tex.rgb.end(), 0);
+    accumulate_light(tex, m, Light{}, p);
+}
+
+// The paper's Algorithm 2, transcribed (core's reference implementation).
+void trace_paper(const TraceScene& s, int a, int k, std::vector<std::uint8_t>& tex) {
+    std::fill(tex.begin(), tex.end(), 0);
+    const auto border = border_offsets(a, a);
+    for (std::size_t i = 0; i < border.size(); i += std::size_t(k))
+        trace_light_ray_paper(s.obstacles, s.cx, s.cy, s.cx + border[i].first, s.cy + border[i].second, area_of(s, a), tex);
+}
+
+// libtcod's map of the same area and obstacles, built once.
+struct TcodArea {
+    TCOD_Map* map = nullptr;
+    std::vector<std::uint8_t> table;  // intensity by distance
+    int a = 0;
+};
+TcodArea& tcod_area(const TraceScene& s, int a) {
+    static std::map<std::pair<std::string, int>, TcodArea> cache;
+    auto key = std::make_pair(s.name, a);
+    auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
+    TcodArea t;
+    t.a = a;
+    t.map = TCOD_map_new(2 * a + 1, 2 * a + 1);
+    for (int y = -a; y <= a; ++y)
+        for (int x = -a; x <= a; ++x) {
+            const bool clear = !s.obstacles.get(s.cx + x, s.cy + y);
+            TCOD_map_set_properties(t.map, x + a, y + a, clear, clear);
+        }
+    for (int d = 0; d <= a; ++d) t.table.push_back(falloff(d, 1.0));
+    return cache.emplace(key, t).first->second;
+}
+
+void trace_tcod(TcodArea& t, TCOD_fov_algorithm_t algo, std::vector<std::uint8_t>& tex) {
+    const int a = t.a, w = 2 * a + 1;
+    TCOD_map_compute_fov(t.map, a, a, 0, false, algo);
+    for (int y = 0; y < w; ++y)
+        for (int x = 0; x < w; ++x)
+            tex[std::size_t(y) * w + x] =
+                TCOD_map_is_in_fov(t.map, x, y) ? t.table[std::max(std::abs(x - a), std::abs(y - a))] : 0;
+}
+
+// The floor: every pixel of the area gets its intensity, no visibility test.
+void fill_floor(int a, const std::vector<std::uint8_t>& table, std::vector<std::uint8_t>& tex) {
+    const int w = 2 * a + 1;
+    for (int y = 0; y < w; ++y) {
+        std::uint8_t* row = &tex[std::size_t(y) * w];
+        const int dy = std::abs(y - a);
+        for (int x = 0; x < w; ++x) row[x] = table[std::max(std::abs(x - a), dy)];
+    }
+}
+
+const char* scenes[] = {"empty", "default", "forest", "corridors"};
+const int areas[] = {64, 128, 256};  // half-extents: 129^2, 257^2, 513^2
+
+void register_tracers() {
+    for (const char* sc : scenes)
+        for (int a : areas) {
+            const std::string suffix = std::string("/") + sc + "/" + std::to_string(2 * a + 1);
+            benchmark::RegisterBenchmark(("trace/isolux" + suffix).c_str(), [sc, a](benchmark::State& st) {
+                const TraceScene& s = trace_scene(sc);
+                LightTexture tex(area_of(s, a));
+                for (auto _ : st) {
+                    trace_isolux(s, a, 1, tex);
+                    benchmark::DoNotOptimize(tex.rgb.data());
+                }
+                st.counters["ns_per_pixel"] = benchmark::Counter(double((2 * a + 1) * (2 * a + 1)),
+                                                                 benchmark::Counter::kIsIterationInvariantRate |
+                                                                     benchmark::Counter::kInvert);
+            });
+            benchmark::RegisterBenchmark(("trace/paper" + suffix).c_str(), [sc, a](benchmark::State& st) {
+                const TraceScene& s = trace_scene(sc);
+                std::vector<std::uint8_t> tex(std::size_t(2 * a + 1) * (2 * a + 1));
+                for (auto _ : st) {
+                    trace_paper(s, a, 1, tex);
+                    benchmark::DoNotOptimize(tex.data());
+                }
+            });
+            for (auto [name, algo] : {std::pair{"tcod_basic", FOV_BASIC}, {"tcod_shadowcast", FOV_SYMMETRIC_SHADOWCAST}})
+                benchmark::RegisterBenchmark(("trace/" + std::string(name) + suffix).c_str(),
+                                             [sc, a, algo = algo](benchmark::State& st) {
+                                                 TcodArea& t = tcod_area(trace_scene(sc), a);
+                                                 std::vector<std::uint8_t> tex(std::size_t(2 * a + 1) * (2 * a + 1));
+                                                 for (auto _ : st) {
+                                                     trace_tcod(t, algo, tex);
+                                                     benchmark::DoNotOptimize(tex.data());
+                                                 }
+                                             });
+            benchmark::RegisterBenchmark(("trace/floor" + suffix).c_str(), [a](benchmark::State& st) {
+                std::vector<std::uint8_t> table, tex(std::size_t(2 * a + 1) * (2 * a + 1));
+                for (int d = 0; d <= a; ++d) table.push_back(falloff(d, 1.0));
+                for (auto _ : st) {
+                    fill_floor(a, table, tex);
+                    benchmark::DoNotOptimize(tex.data());
+                }
+            });
+        }
+}
+
+// ------------------------------------------------------------------ frames
+
+Scene lights_scene(const World& w, int n, std::uint64_t seed, int a = 128) {
+    Scene s;
+    s.params.area_a = s.params.area_b = a;
+    s.params.blur_radius = 0;
+    Pcg32 rng(seed);
+    for (int i = 0; i < n; ++i)
+        s.lights.push_back(Light{double(rng.below(std::uint32_t(w.placed.bounds.w))) + 0.5,
+                                 double(rng.below(std::uint32_t(w.placed.bounds.h))) + 0.5});
+    return s;
+}
+
+FrameState lighting_state(int threads) {
+    FrameState st;
+    st.options.cpu_sprites = false;  // the app's split: sprites, blur, composite on the GPU
+    st.options.cpu_blur_and_composite = false;
+    st.options.threads = threads;
+    return st;
+}
+
+// Every iteration moves every light by one pixel, so each frame retraces all.
+void frame_lights(benchmark::State& st, int n, int threads) {
+    const World& w = bench::world("default", 24);
+    Scene s = lights_scene(w, n, 7);
+    FrameState fs = lighting_state(threads);
+    long f = 0;
+    render_frame(fs, w, s, Camera{}, f++);
+    for (auto _ : st) {
+        for (Light& l : s.lights) l.x += (f % 2) ? 1 : -1;
+        benchmark::DoNotOptimize(render_frame(fs, w, s, Camera{}, f++));
+    }
+}
+
+// A walk: the camera moves 6 px a frame with a light carried at its centre,
+// 16 frames an iteration; tracing every l frames.
+void frame_walk(benchmark::State& st, int l) {
+    const World& w = bench::world("default", 24);
+    Scene s = lights_scene(w, 8, 11);
+    s.params.trace_every = l;
+    FrameState fs = lighting_state(1);
+    long f = 0;
+    for (auto _ : st) {
+        for (int i = 0; i < 16; ++i, ++f) {
+            const Camera cam{300.0 + 6.0 * (f % 64), 200.0 + 3.0 * (f % 64), 960, 540};
+            Scene sf = s;
+            sf.lights.push_back(Light{cam.x + 480.5, cam.y + 270.5});
+            benchmark::DoNotOptimize(render_frame(fs, w, sf, cam, f));
+        }
+    }
+}
+
+// 8 lights in a 960x540 view, and 992 more elsewhere on a 64x64-tile map.
+void frame_offscreen(benchmark::State& st, bool with_offscreen) {
+    const World& w = bench::world("default", 64);
+    const Camera cam{3000, 1500, 960, 540};
+    Scene s;
+    s.params.blur_radius = 0;
+    Pcg32 rng(5);
+    for (int i = 0; i < 8; ++i) s.lights.push_back(Light{cam.x + 100 + 100.0 * i, cam.y + 100 + 40.0 * i});
+    if (with_offscreen)
+        while (s.lights.size() < 1000) {
+            const double x = rng.below(std::uint32_t(w.placed.bounds.w)), y = rng.below(std::uint32_t(w.placed.bounds.h));
+            if (x > cam.x - 400 && x < cam.x + 1400 && y > cam.y - 400 && y < cam.y + 1000) continue;
+            s.lights.push_back(Light{x, y});
+        }
+    FrameState fs = lighting_state(1);
+    long f = 0;
+    render_frame(fs, w, s, cam, f++);
+    for (auto _ : st) {
+        for (std::size_t i = 0; i < 8; ++i) s.lights[i].x += (f % 2) ? 1 : -1;  // the visible ones move
+        benchmark::DoNotOptimize(render_frame(fs, w, s, cam, f++));
+    }
+}
+
+// A full retrace frame (every light traced again) against a frame where
+// nothing changed; the CPU's whole frame, sprites and composite included.
+void frame_static(benchmark::State& st, bool still) {
+    const World& w = bench::world("default", 24);
+    Scene s = lights_scene(w, 16, 3);
+    s.params.blur_radius = 2;
+    FrameState fs;
+    long f = 0;
+    render_frame(fs, w, s, Camera{}, f++);
+    for (auto _ : st) {
+        if (!still) fs.light_cache.clear(), fs.trace_lights.clear();  // forget the traces: all again
+        benchmark::DoNotOptimize(render_frame(fs, w, s, Camera{}, f++));
+    }
+}
+
+// The same view and lights on maps of growing size.
+void frame_map_size(benchmark::State& st, int side) {
+    const World& w = bench::world("default", side);
+    const Camera cam{600, 300, 960, 540};
+    Scene s;
+    s.params.blur_radius = 2;
+    for (int i = 0; i < 4; ++i) s.lights.push_back(Light{cam.x + 200 + 180.0 * i, cam.y + 150 + 60.0 * i});
+    FrameState fs;
+    long f = 0;
+    for (auto _ : st) {
+        fs = FrameState{};  // a first frame: obstacle map, sprites, traces, composite
+        benchmark::DoNotOptimize(render_frame(fs, w, s, cam, f++));
+    }
+}
+
+void register_frames() {
+    for (int n : {1, 16, 256})
+        for (int t : {1, 2})
+            benchmark::RegisterBenchmark(("frame/lights:" + std::to_string(n) + "/threads:" + std::to_string(t)).c_str(),
+                                         [n, t](benchmark::State& st) { frame_lights(st, n, t); })
+                ->UseRealTime();
+    for (int l : {1, 4})
+        benchmark::RegisterBenchmark(("frame/walk/trace_every:" + std::to_string(l)).c_str(),
+                                     [l](benchmark::State& st) { frame_walk(st, l); });
+    benchmark::RegisterBenchmark("frame/offscreen/lights:8", [](benchmark::State& st) { frame_offscreen(st, false); });
+    benchmark::RegisterBenchmark("frame/offscreen/lights:1000", [](benchmark::State& st) { frame_offscreen(st, true); });
+    benchmark::RegisterBenchmark("frame/static", [](benchmark::State& st) { frame_static(st, true); });
+    benchmark::RegisterBenchmark("frame/full_retrace", [](benchmark::State& st) { frame_static(st, false); });
+    for (int side : {16, 64, 256})
+        benchmark::RegisterBenchmark(("frame/map_size:" + std::to_string(side)).c_str(),
+                                     [side](benchmark::State& st) { frame_map_size(st, side); });
+}
+
+// ------------------------------------------------------------------ --ratios
+
+struct Collector : benchmark::BenchmarkReporter {
+    std::map<std::string, double> median_ns;
+    bool ReportContext(const Context&) override { return true; }
+    void ReportRuns(const std::vector<Run>& runs) override {
+        for (const Run& r : runs)
+            if (r.run_type == Run::RT_Aggregate && r.aggregate_name == "median")
+                median_ns[r.run_name.function_name] = r.GetAdjustedRealTime();  // in the run's unit (ns)
+    }
+};
+
+int ratios(int argc, char** argv) {
+    const char* ratio_scene = "default";
+    const int a = 128;
+    // Byte-identical at k = 1: isolux's texture against the transcription's.
+    const TraceScene& s = trace_scene(ratio_scene);
+    LightTexture ours(area_of(s, a));
+    std::vector<std::uint8_t> paper(std::size_t(2 * a + 1) * (2 * a + 1));
+    bresenham_steps() = 0;
+    trace_isolux(s, a, 1, ours);
+    const double steps = double(bresenham_steps());
+    trace_paper(s, a, 1, paper);
+    bool identical = true;
+    for (std::size_t i = 0; i < paper.size(); ++i) identical = identical && ours.rgb[i * 3] == paper[i];
+
+    const std::string sfx = std::string("/") + ratio_scene + "/257";
+    const std::vector<std::string> wanted = {
+        "trace/isolux" + sfx, "trace/paper" + sfx, "trace/tcod_basic" + sfx, "trace/tcod_shadowcast" + sfx,
+        "trace/floor" + sfx, "frame/lights:16/threads:1", "frame/lights:16/threads:2", "frame/walk/trace_every:1",
+        "frame/walk/trace_every:4", "frame/offscreen/lights:8", "frame/offscreen/lights:1000", "frame/static",
+        "frame/full_retrace"};
+    std::string filter = "^(";
+    for (std::size_t i = 0; i < wanted.size(); ++i) filter += (i ? "|" : "") + wanted[i];
+    filter += ")$";
+    std::vector<std::string> args = {argv[0], "--benchmark_filter=" + filter, "--benchmark_repetitions=5",
+                                     "--benchmark_min_time=0.15", "--benchmark_report_aggregates_only=true"};
+    for (int i = 1; i < argc; ++i)
+        if (std::strcmp(argv[i], "--ratios") != 0) args.push_back(argv[i]);
+    std::vector<char*> cargs;
+    for (std::string& x : args) cargs.push_back(x.data());
+    int n = int(cargs.size());
+    benchmark::Initialize(&n, cargs.data());
+    Collector c;
+    benchmark::RunSpecifiedBenchmarks(&c);
+    auto t = [&](const std::string& name) {
+        auto it = c.median_ns.find(name);
+        return it == c.median_ns.end() ? 0.0 : it->second;
+    };
+    const double ours_ns = t("trace/isolux" + sfx);
+    const double pixels = double(2 * a + 1) * (2 * a + 1);
+    std::printf("speedup_vs_paper %.2f\n", t("trace/paper" + sfx) / ours_ns);
+    std::printf("speedup_vs_tcod_basic %.2f\n", t("trace/tcod_basic" + sfx) / ours_ns);
+    std::printf("speedup_vs_tcod_shadowcast %.2f\n", t("trace/tcod_shadowcast" + sfx) / ours_ns);
+    std::printf("times_floor %.2f\n", ours_ns / t("trace/floor" + sfx));
+    std::printf("threads2_speedup %.2f\n", t("frame/lights:16/threads:1") / t("frame/lights:16/threads:2"));
+    std::printf("trace_every4_cost %.3f\n", t("frame/walk/trace_every:4") / t("frame/walk/trace_every:1"));
+    std::printf("offscreen_lights_cost %.3f\n", t("frame/offscreen/lights:1000") / t("frame/offscreen/lights:8"));
+    std::printf("static_frame_cost %.4f\n", t("frame/static") / t("frame/full_retrace"));
+    std::printf("ns_per_area_pixel %.3f\n", ours_ns / pixels);
+    std::printf("bresenham_steps_per_pixel %.3f\n", steps / pixels);
+    std::printf("identical_to_paper_at_k1 %d\n", identical ? 1 : 0);
+    std::printf("# scene %s, area %dx%d, one light, k = 1, %u hardware threads\n", ratio_scene, 2 * a + 1, 2 * a + 1,
+                std::thread::hardware_concurrency());
+    return identical ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    register_tracers();
+    register_frames();
+    for (int i = 1; i < argc; ++i)
+        if (std::strcmp(argv[i], "--ratios") == 0) return ratios(argc, argv);
+    benchmark::Initialize(&argc, argv);
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}
