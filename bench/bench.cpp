@@ -24,14 +24,13 @@ namespace {
 
 Rect area_of(const TraceScene& s, int a) { return {s.cx - a, s.cy - a, 2 * a + 1, 2 * a + 1}; }
 
-// isolux's tracer: rays, then the paper's intensities into the light texture.
-void trace_isolux(const TraceScene& s, int a, int k, LightTexture& tex) {
+// isolux's tracer: what Algorithm 2 draws for one light (its intensities
+// over the area), the same bytes as the transcription's.
+void trace_isolux(const TraceScene& s, int a, int k, LightMask& out) {
     Params p;
     p.ray_skip = k;
     const Rect area = area_of(s, a);
-    LightMask m = trace_light(s.obstacles, s.cx, s.cy, a, a, p, area, area_is_clear(s.obstacles, area));
-    std::fill(tex.rgb.begin(), tex.rgb.end(), 0);
-    accumulate_light(tex, m, Light{}, p);
+    out = trace_light(s.obstacles, s.cx, s.cy, a, a, p, area, area_is_clear(s.obstacles, area));
 }
 
 // The paper's Algorithm 2, transcribed (core's reference implementation).
@@ -93,10 +92,10 @@ void register_tracers() {
             const std::string suffix = std::string("/") + sc + "/" + std::to_string(2 * a + 1);
             benchmark::RegisterBenchmark(("trace/isolux" + suffix).c_str(), [sc, a](benchmark::State& st) {
                 const TraceScene& s = trace_scene(sc);
-                LightTexture tex(area_of(s, a));
+                LightMask m;
                 for (auto _ : st) {
-                    trace_isolux(s, a, 1, tex);
-                    benchmark::DoNotOptimize(tex.rgb.data());
+                    trace_isolux(s, a, 1, m);
+                    benchmark::DoNotOptimize(m.value.data());
                 }
                 st.counters["ns_per_pixel"] = benchmark::Counter(double((2 * a + 1) * (2 * a + 1)),
                                                                  benchmark::Counter::kIsIterationInvariantRate |
@@ -173,14 +172,20 @@ void frame_walk(benchmark::State& st, int l) {
     s.params.trace_every = l;
     FrameState fs = lighting_state(1);
     long f = 0;
+    double tracing_ms = 0, frames = 0;
     for (auto _ : st) {
         for (int i = 0; i < 16; ++i, ++f) {
             const Camera cam{300.0 + 6.0 * (f % 64), 200.0 + 3.0 * (f % 64), 960, 540};
             Scene sf = s;
             sf.lights.push_back(Light{cam.x + 480.5, cam.y + 270.5});
-            benchmark::DoNotOptimize(render_frame(fs, w, sf, cam, f));
+            const FrameReport r = render_frame(fs, w, sf, cam, f);
+            tracing_ms += r.ms[int(Stage::trace)] + r.ms[int(Stage::opacity_correction)];
+            ++frames;
         }
     }
+    // The tracing stages' own time per frame (trace, drawing into the light
+    // texture, opacity correction), as the frame reports it.
+    st.counters["tracing_ms_per_frame"] = tracing_ms / frames;
 }
 
 // 8 lights in a 960x540 view, and 992 more elsewhere on a 64x64-tile map.
@@ -258,11 +263,14 @@ void register_frames() {
 
 struct Collector : benchmark::BenchmarkReporter {
     std::map<std::string, double> median_ns;
+    std::map<std::string, std::map<std::string, double>> counters;
     bool ReportContext(const Context&) override { return true; }
     void ReportRuns(const std::vector<Run>& runs) override {
         for (const Run& r : runs)
-            if (r.run_type == Run::RT_Aggregate && r.aggregate_name == "median")
+            if (r.run_type == Run::RT_Aggregate && r.aggregate_name == "median") {
                 median_ns[r.run_name.function_name] = r.GetAdjustedRealTime();  // in the run's unit (ns)
+                for (const auto& [name, c] : r.counters) counters[r.run_name.function_name][name] = c.value;
+            }
     }
 };
 
@@ -271,19 +279,25 @@ int ratios(int argc, char** argv) {
     const int a = 128;
     // Byte-identical at k = 1: isolux's texture against the transcription's.
     const TraceScene& s = trace_scene(ratio_scene);
-    LightTexture ours(area_of(s, a));
+    LightMask ours;
     std::vector<std::uint8_t> paper(std::size_t(2 * a + 1) * (2 * a + 1));
     bresenham_steps() = 0;
     trace_isolux(s, a, 1, ours);
     const double steps = double(bresenham_steps());
     trace_paper(s, a, 1, paper);
-    bool identical = true;
-    for (std::size_t i = 0; i < paper.size(); ++i) identical = identical && ours.rgb[i * 3] == paper[i];
+    // The transcription's own steps: each ray up to and including its first obstacle.
+    double paper_steps = 0;
+    for (auto [bx, by] : border_offsets(a, a))
+        for (BresenhamRay r(s.cx, s.cy, s.cx + bx, s.cy + by); !r.done(); r.step()) {
+            ++paper_steps;
+            if (s.obstacles.get(int(r.x), int(r.y))) break;
+        }
+    const bool identical = ours.value == paper;
 
     const std::string sfx = std::string("/") + ratio_scene + "/257";
     const std::vector<std::string> wanted = {
         "trace/isolux" + sfx, "trace/paper" + sfx, "trace/tcod_basic" + sfx, "trace/tcod_shadowcast" + sfx,
-        "trace/floor" + sfx, "frame/lights:16/threads:1", "frame/lights:16/threads:2", "frame/walk/trace_every:1",
+        "trace/floor" + sfx, "frame/lights:16/threads:1/real_time", "frame/lights:16/threads:2/real_time", "frame/walk/trace_every:1",
         "frame/walk/trace_every:4", "frame/offscreen/lights:8", "frame/offscreen/lights:1000", "frame/static",
         "frame/full_retrace"};
     std::string filter = "^(";
@@ -303,18 +317,27 @@ int ratios(int argc, char** argv) {
         auto it = c.median_ns.find(name);
         return it == c.median_ns.end() ? 0.0 : it->second;
     };
+    auto c_of = [&](const std::string& name) { return c.counters[name]; };
+    auto c_at = [](const std::map<std::string, double>& m, const char* k) {
+        auto it = m.find(k);
+        return it == m.end() ? 0.0 : it->second;
+    };
     const double ours_ns = t("trace/isolux" + sfx);
     const double pixels = double(2 * a + 1) * (2 * a + 1);
     std::printf("speedup_vs_paper %.2f\n", t("trace/paper" + sfx) / ours_ns);
     std::printf("speedup_vs_tcod_basic %.2f\n", t("trace/tcod_basic" + sfx) / ours_ns);
     std::printf("speedup_vs_tcod_shadowcast %.2f\n", t("trace/tcod_shadowcast" + sfx) / ours_ns);
     std::printf("times_floor %.2f\n", ours_ns / t("trace/floor" + sfx));
-    std::printf("threads2_speedup %.2f\n", t("frame/lights:16/threads:1") / t("frame/lights:16/threads:2"));
-    std::printf("trace_every4_cost %.3f\n", t("frame/walk/trace_every:4") / t("frame/walk/trace_every:1"));
+    std::printf("threads2_speedup %.2f\n",
+                t("frame/lights:16/threads:1") / t("frame/lights:16/threads:2"));
+    auto counter = [&](const std::string& name, const char* c) { return c_at(c_of(name), c); };
+    std::printf("trace_every4_cost %.3f\n", counter("frame/walk/trace_every:4", "tracing_ms_per_frame") /
+                                                 counter("frame/walk/trace_every:1", "tracing_ms_per_frame"));
     std::printf("offscreen_lights_cost %.3f\n", t("frame/offscreen/lights:1000") / t("frame/offscreen/lights:8"));
     std::printf("static_frame_cost %.4f\n", t("frame/static") / t("frame/full_retrace"));
     std::printf("ns_per_area_pixel %.3f\n", ours_ns / pixels);
     std::printf("bresenham_steps_per_pixel %.3f\n", steps / pixels);
+    std::printf("paper_bresenham_steps_per_pixel %.3f\n", paper_steps / pixels);
     std::printf("identical_to_paper_at_k1 %d\n", identical ? 1 : 0);
     std::printf("# scene %s, area %dx%d, one light, k = 1, %u hardware threads\n", ratio_scene, 2 * a + 1, 2 * a + 1,
                 std::thread::hardware_concurrency());

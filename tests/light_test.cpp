@@ -104,7 +104,7 @@ TEST(Trace, aWallStopsTheLight) {
         LightMask m = trace_light(wall, 0, 0, 10, 10, with(Mode::light, rays), area);
         for (int y = -10; y <= 10; ++y)
             for (int x = -10; x <= 10; ++x)
-                EXPECT_EQ(m.lit[(y + 10) * 21 + (x + 10)], x < 5 ? 1 : 0) << x << "," << y;
+                EXPECT_EQ(m.value[(y + 10) * 21 + (x + 10)] > 0, x < 5) << x << "," << y;
     }
 }
 
@@ -118,7 +118,7 @@ TEST(Trace, equalsTheUnionOfThePapersRays) {
         obstacles.set(40, -7, false);
         Params p = with(Mode::light, Rays::border, k);
         LightMask m = trace_light(obstacles, 40, -7, a, b, p, area);
-        std::vector<std::uint8_t> ref(m.lit.size(), 0);
+        std::vector<std::uint8_t> ref(m.value.size(), 0);
         auto border = border_offsets(a, b);
         for (std::size_t i = 0; i < border.size(); i += k)
             trace_light_ray_paper(obstacles, 40, -7, 40 + border[i].first, -7 + border[i].second, area, ref);
@@ -126,11 +126,11 @@ TEST(Trace, equalsTheUnionOfThePapersRays) {
         LightTexture tex(area);
         accumulate_light(tex, m, Light{}, p);
         for (std::size_t i = 0; i < ref.size(); ++i) {
-            EXPECT_EQ(m.lit[i], ref[i] > 0 ? 1 : 0) << "trial " << trial;
+            EXPECT_EQ(m.value[i], ref[i]) << "trial " << trial;  // the same intensities
             EXPECT_EQ(tex.rgb[i * 3], ref[i]) << "trial " << trial;
         }
-        for (std::size_t i = 0; i < m.lit.size(); ++i)
-            if (obstacles.bits[i]) EXPECT_EQ(m.lit[i], 0) << "an obstacle pixel is lit";
+        for (std::size_t i = 0; i < m.value.size(); ++i)
+            if (obstacles.bits[i]) EXPECT_EQ(m.value[i], 0) << "an obstacle pixel is lit";
     }
 }
 
@@ -148,9 +148,9 @@ TEST(Trace, lightAndShadowAreComplementaryInsideTheArea) {
             accumulate_light(ts, shadow, white, with(Mode::shadow));
             LightMask flat = trace_light(obstacles, 0, 0, a, b, with(Mode::flat, rays), area);
             accumulate_light(tf, flat, white, with(Mode::flat));
-            for (std::size_t i = 0; i < lit.lit.size(); ++i) {
-                const bool in_shadow = shadow.reached[i] && !shadow.lit[i];
-                ASSERT_NE(bool(lit.lit[i]), in_shadow) << "pixel " << i << " is in both or neither";
+            for (std::size_t i = 0; i < lit.value.size(); ++i) {
+                const bool in_shadow = shadow.reached[i] && !shadow.lit(i);
+                ASSERT_NE(lit.lit(i), in_shadow) << "pixel " << i << " is in both or neither";
                 ASSERT_EQ(tl.rgb[i * 3] + ts.rgb[i * 3], tf.rgb[i * 3]);
             }
         }
@@ -162,7 +162,7 @@ TEST(Trace, flatModeIgnoresObstacles) {
     Mask obstacles = random_obstacles(area, 30, 9);
     LightMask flat = trace_light(obstacles, 3, 3, 15, 9, with(Mode::flat), area);
     LightMask open = trace_light(Mask(area), 3, 3, 15, 9, with(Mode::light), area);
-    EXPECT_EQ(flat.lit, open.lit);
+    EXPECT_EQ(flat.value, open.value);
 }
 
 TEST(Trace, borderRaysEqualTheEveryPixelReferenceOnAnEmptyMap) {
@@ -171,8 +171,9 @@ TEST(Trace, borderRaysEqualTheEveryPixelReferenceOnAnEmptyMap) {
         Mask empty(area);
         LightMask border = trace_light(empty, 0, 0, a, b, with(Mode::light, Rays::border, 1), area);
         LightMask every = trace_light(empty, 0, 0, a, b, with(Mode::light, Rays::every_pixel), area);
-        EXPECT_EQ(border.lit, every.lit) << a << "x" << b;
-        EXPECT_EQ(std::count(every.lit.begin(), every.lit.end(), 1), long(area.w) * area.h);
+        EXPECT_EQ(border.value, every.value) << a << "x" << b;
+        const auto lit = test::lit_of(every);
+        EXPECT_EQ(std::count(lit.begin(), lit.end(), 1), long(area.w) * area.h);
     }
 }
 
@@ -182,10 +183,11 @@ TEST(Trace, skippingRaysLightsASubset) {
     LightMask all = trace_light(empty, 0, 0, 30, 30, with(Mode::light, Rays::border, 1), area);
     LightMask some = trace_light(empty, 0, 0, 30, 30, with(Mode::light, Rays::border, 4), area);
     long n_all = 0, n_some = 0;
-    for (std::size_t i = 0; i < all.lit.size(); ++i) {
-        EXPECT_LE(some.lit[i], all.lit[i]);
-        n_all += all.lit[i];
-        n_some += some.lit[i];
+    const auto all_lit = test::lit_of(all), some_lit = test::lit_of(some);
+    for (std::size_t i = 0; i < all_lit.size(); ++i) {
+        EXPECT_LE(some_lit[i], all_lit[i]);
+        n_all += all_lit[i];
+        n_some += some_lit[i];
     }
     EXPECT_LT(n_some, n_all);
     EXPECT_GT(n_some, n_all / 4);
@@ -196,7 +198,7 @@ TEST(Trace, aLightInsideAnObstacleLightsNothing) {
     Mask m(area);
     m.set(0, 0);
     LightMask t = trace_light(m, 0, 0, 5, 5, with(Mode::light), area);
-    EXPECT_EQ(std::count(t.lit.begin(), t.lit.end(), 1), 0);
+    EXPECT_EQ(std::count(t.value.begin(), t.value.end(), 0), long(t.value.size()));
 }
 
 TEST(LightTexture, whiteLightGivesThePapersValuesAndLightsSaturate) {
@@ -243,7 +245,7 @@ TEST(OpacityCorrection, addsSpritesAboveTheCentreAndSubtractsThoseBelow) {
     Mask wall(area);
     for (int x = -8; x <= 8; ++x) wall.set(x, -2);  // shadows everything above row -2
     LightMask m = trace_light(wall, 0, 0, 8, 8, with(Mode::light), area);
-    auto lit = [&](int x, int y) { return m.lit[(y + 8) * 17 + (x + 8)]; };
+    auto lit = [&](int x, int y) { return m.value[(y + 8) * 17 + (x + 8)] > 0 ? 1 : 0; };
     ASSERT_EQ(lit(-5, -5), 0);
     ASSERT_EQ(lit(3, 2), 1);
     EXPECT_EQ(correct_with_opacity_maps(m, placed, opacity), 2);

@@ -5,6 +5,7 @@
 
 #include "isolux/files.hpp"
 #include "isolux/image.hpp"
+#include "isolux/light_trace.hpp"
 
 namespace isolux::test {
 
@@ -36,6 +37,13 @@ inline std::vector<std::string> set_pixels(const Mask& m) {
         for (int x = 0; x < m.width; ++x)
             if (m.bits[std::size_t(y) * m.width + x])
                 out.push_back(std::to_string(x + m.x0) + "," + std::to_string(y + m.y0));
+    return out;
+}
+
+// A traced light's pixels as 0/1: lit or not.
+inline std::vector<std::uint8_t> lit_of(const LightMask& m) {
+    std::vector<std::uint8_t> out(m.value.size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = m.value[i] ? 1 : 0;
     return out;
 }
 

@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <atomic>
+#include <barrier>
+#include <cstring>
 #include <thread>
 
 #include "isolux/blur.hpp"
@@ -119,7 +122,14 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
                      (st.trace_lights != scene.lights || !covers(st.traced.rect, view));
     const bool retrace = must || due;
     if (retrace) {
-        st.traced = LightTexture(tex_rect);
+        // Reuse the texture: only the rectangles lights drew into last time
+        // hold anything to clear (in the bands below, in parallel).
+        std::vector<Rect> to_clear;
+        if (!(st.traced.rect == tex_rect) || st.traced.rgb.size() != std::size_t(tex_rect.w) * tex_rect.h * 3) {
+            st.traced = LightTexture(tex_rect);
+        } else {
+            for (const FrameState::TracedLight& c : st.light_cache) to_clear.push_back(c.mask.clip);
+        }
         if (must) st.light_cache.clear();  // obstacles or tracing parameters changed: nothing is reusable
         // The lights whose area meets the texture; the others have nothing to trace.
         std::vector<const Light*> lights;
@@ -151,38 +161,77 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
                 todo.push_back(i);
             }
         }
-        const int threads = std::max(1, std::min<int>(int(todo.size()), st.options.threads > 0
-                                                                           ? st.options.threads
-                                                                           : int(std::thread::hardware_concurrency())));
-        auto parallel = [&](auto&& work) {
-            if (threads <= 1) {
-                for (std::size_t i : todo) work(i);
-                return;
-            }
-            std::vector<std::thread> pool;
-            for (int t = 0; t < threads; ++t)
-                pool.emplace_back([&, t] {
-                    for (std::size_t k = std::size_t(t); k < todo.size(); k += std::size_t(threads)) work(todo[k]);
-                });
-            for (std::thread& th : pool) th.join();
-        };
-        if (!todo.empty()) {
-            Timer t{rep, Stage::trace};
-            parallel([&](std::size_t i) {
-                FrameState::TracedLight& tl = traced[i];
+        const int threads_wanted = st.options.threads > 0 ? st.options.threads
+                                                          : std::max(1, int(std::thread::hardware_concurrency()));
+        // One pass per light: trace, then the opacity correction. Workers take
+        // the next light as they finish one (lights differ in cost).
+        const bool correct = st.options.opacity_correction && p.mode != Mode::flat;
+        std::vector<double> trace_ms(todo.size(), 0), correct_ms(todo.size(), 0);
+        std::vector<int> touched(todo.size(), 0);
+        std::atomic<std::size_t> next{0};
+        auto worker = [&] {
+            for (std::size_t k; (k = next++) < todo.size();) {
+                FrameState::TracedLight& tl = traced[todo[k]];
+                const auto t0 = Clock::now();
                 const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
                 tl.mask = trace_light(st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
                                       area_is_clear(st.obstacles, area));
-            });
+                const auto t1 = Clock::now();
+                if (correct) touched[k] = correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
+                trace_ms[k] = std::chrono::duration<double, std::milli>(t1 - t0).count();
+                correct_ms[k] = std::chrono::duration<double, std::milli>(Clock::now() - t1).count();
+            }
+        };
+        // Then the lights are drawn into the light texture (part of
+        // tracing): workers take bands of rows. The saturating sum is the
+        // same in any order, so the bytes do not depend on the split. One set
+        // of threads does both, meeting at a barrier in between.
+        // More bands than threads, taken as threads come free: lights are not
+        // spread evenly over the rows.
+        const int bands = std::max(1, std::min(threads_wanted * 8, tex_rect.h / 32));
+        std::atomic<int> next_band{0};
+        auto band = [&](int k) {
+            const int y0 = tex_rect.y + int(std::int64_t(tex_rect.h) * k / bands);
+            const int y1 = tex_rect.y + int(std::int64_t(tex_rect.h) * (k + 1) / bands);
+            for (const Rect& c : to_clear) {
+                const Rect z = intersect(intersect(c, tex_rect), Rect{tex_rect.x, y0, tex_rect.w, y1 - y0});
+                for (int y = z.y; y < z.y + z.h; ++y)
+                    std::memset(&st.traced.rgb[(std::size_t(y - tex_rect.y) * tex_rect.w + (z.x - tex_rect.x)) * 3], 0,
+                                std::size_t(z.w) * 3);
+            }
+            for (std::size_t i = 0; i < lights.size(); ++i)
+                accumulate_light(st.traced, traced[i].mask, *lights[i], p, y0, y1);
+        };
+        const int pool_size = std::max(1, std::min(threads_wanted, std::max(int(todo.size()), bands)));
+        const auto t0 = Clock::now();
+        Clock::time_point t_traced;
+        std::barrier sync(pool_size, [&]() noexcept { t_traced = Clock::now(); });
+        auto run = [&] {
+            worker();
+            sync.arrive_and_wait();
+            for (int k; (k = next_band++) < bands;) band(k);
+        };
+        std::vector<std::thread> pool;
+        for (int id = 1; id < pool_size; ++id) pool.emplace_back(run);
+        run();
+        for (std::thread& th : pool) th.join();
+        const auto t_done = Clock::now();
+        if (!todo.empty()) {
+            // Wall time, split between the two stages in proportion to their work.
+            const double wall = std::chrono::duration<double, std::milli>(t_traced - t0).count();
+            double tr = 0, co = 0;
+            for (std::size_t k = 0; k < todo.size(); ++k) tr += trace_ms[k], co += correct_ms[k];
+            const double share = tr + co > 0 ? tr / (tr + co) : 1.0;
+            rep.ms[int(Stage::trace)] += wall * share;
+            if (correct) {
+                rep.ran[int(Stage::opacity_correction)] = true;
+                rep.ms[int(Stage::opacity_correction)] += wall * (1 - share);
+            }
             rep.lights_traced = int(todo.size());
-        }
-        if (st.options.opacity_correction && p.mode != Mode::flat && !todo.empty()) {
-            Timer t{rep, Stage::opacity_correction};
-            std::vector<int> touched(traced.size(), 0);
-            parallel([&](std::size_t i) { touched[i] = correct_with_opacity_maps(traced[i].mask, world.placed, st.opacity); });
             for (int n : touched) rep.sprites_corrected += n;
         }
-        for (std::size_t i = 0; i < lights.size(); ++i) accumulate_light(st.traced, traced[i].mask, *lights[i], p);
+        rep.ran[int(Stage::trace)] = true;
+        rep.ms[int(Stage::trace)] += std::chrono::duration<double, std::milli>(t_done - t_traced).count();
         st.light_cache = std::move(traced);
         st.cache_corrected = st.options.opacity_correction;
         st.has_trace = true;

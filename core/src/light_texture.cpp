@@ -18,44 +18,54 @@ Rect light_area(const Light& l, const Params& p) {
     return {int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1};
 }
 
-void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& light, const Params& p) {
-    const Rect r = intersect(mask.clip, tex.rect);
+void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& light, const Params& p, int row_begin,
+                      int row_end) {
+    Rect r = intersect(mask.clip, tex.rect);
+    const int y0 = std::max(r.y, row_begin), y1 = std::min(r.y + r.h, row_end);
+    r.y = y0;
+    r.h = y1 - y0;
     if (r.empty()) return;
-    // The value at distance d per channel, tabulated once. falloff is
-    // non-increasing in d, so the value at max(|dx|, |dy|) is the smaller of
-    // the values at |dx| and at |dy|: a row is min(by_x[x], by_y) per texel.
-    const std::int64_t dmax = std::max<std::int64_t>(
-        {std::llabs(r.x - mask.cx), std::llabs(r.x + r.w - 1 - mask.cx), std::llabs(r.y - mask.cy),
-         std::llabs(r.y + r.h - 1 - mask.cy)});
     const bool white = light.r == 255 && light.g == 255 && light.b == 255 && light.intensity == 1.0;
+    // A white light's value v becomes round(v * intensity * colour / 255) per channel.
+    std::uint8_t lut[3][256];
     const std::uint8_t colour[3] = {light.r, light.g, light.b};
-    std::vector<std::uint8_t> table(std::size_t(dmax + 1) * 3);
-    for (std::int64_t d = 0; d <= dmax; ++d) {
-        const std::uint8_t v = falloff(d, p.falloff_scale);
+    for (int v = 0; v < 256; ++v)
         for (int k = 0; k < 3; ++k)
-            table[std::size_t(d) * 3 + k] =
-                white ? v : std::uint8_t(std::min(255.0, std::floor(v * light.intensity * colour[k] / 255.0 + 0.5)));
-    }
-    std::vector<std::uint8_t> by_x(std::size_t(r.w) * 3), row(std::size_t(r.w) * 3);
-    for (int x = 0; x < r.w; ++x)
-        for (int k = 0; k < 3; ++k) by_x[std::size_t(x) * 3 + k] = table[std::size_t(std::llabs(r.x + x - mask.cx)) * 3 + k];
+            lut[k][v] = white ? std::uint8_t(v)
+                              : std::uint8_t(std::min(255.0, std::floor(v * light.intensity * colour[k] / 255.0 + 0.5)));
     const bool shadow = p.mode == Mode::shadow;
+    std::vector<std::uint8_t> by_x;
+    if (shadow) {
+        // Shadow pixels are not lit: their falloff comes from their distance,
+        // min(falloff(|dx|), falloff(|dy|)) as falloff never increases.
+        by_x.resize(std::size_t(r.w));
+        for (int x = 0; x < r.w; ++x) by_x[std::size_t(x)] = falloff(std::llabs(r.x + x - mask.cx), mask.falloff_scale);
+    }
+    std::vector<std::uint8_t> row(std::size_t(r.w)), rgb(std::size_t(r.w) * 3);
     for (int y = r.y; y < r.y + r.h; ++y) {
         const std::size_t mrow = std::size_t(y - mask.clip.y) * mask.clip.w + std::size_t(r.x - mask.clip.x);
-        const std::uint8_t* lit = &mask.lit[mrow];
-        const std::uint8_t* reached = shadow ? &mask.reached[mrow] : nullptr;
-        const std::uint8_t* by_y = &table[std::size_t(std::llabs(y - mask.cy)) * 3];
+        const std::uint8_t* v = &mask.value[mrow];
+        if (shadow) {
+            const std::uint8_t* reached = &mask.reached[mrow];
+            const std::uint8_t vy = falloff(std::llabs(y - mask.cy), mask.falloff_scale);
+            for (int x = 0; x < r.w; ++x)
+                row[std::size_t(x)] = (reached[x] && v[x] == 0) ? std::min(by_x[std::size_t(x)], vy) : 0;
+            v = row.data();
+        }
+        // The row's RGB contributions, then one contiguous saturating add
+        // (the compiler vectorises it).
         for (int x = 0; x < r.w; ++x) {
-            // 0xFF where this light adds, 0 elsewhere: no branch.
-            const std::uint8_t on = shadow ? std::uint8_t(-(reached[x] & (lit[x] ^ 1))) : std::uint8_t(-lit[x]);
-            for (int k = 0; k < 3; ++k)
-                row[std::size_t(x) * 3 + k] = std::uint8_t(std::min(by_x[std::size_t(x) * 3 + k], by_y[k]) & on);
+            const std::uint8_t val = v[x];
+            rgb[std::size_t(x) * 3 + 0] = lut[0][val];
+            rgb[std::size_t(x) * 3 + 1] = lut[1][val];
+            rgb[std::size_t(x) * 3 + 2] = lut[2][val];
         }
         std::uint8_t* out = &tex.rgb[(std::size_t(y - tex.rect.y) * tex.rect.w + (r.x - tex.rect.x)) * 3];
+        const std::uint8_t* add = rgb.data();
         const std::size_t n = std::size_t(r.w) * 3;
         for (std::size_t i = 0; i < n; ++i) {  // saturating: never wraps
-            const unsigned s = unsigned(out[i]) + row[i];
-            out[i] = std::uint8_t(s > 255 ? 255 : s);
+            const std::uint8_t s = std::uint8_t(out[i] + add[i]);
+            out[i] = s < out[i] ? std::uint8_t(255) : s;
         }
     }
 }

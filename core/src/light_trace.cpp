@@ -77,9 +77,10 @@ namespace {
 
 // One ray from the centre, stepping two pointers (obstacle map, mask) with
 // the paper's Bresenham decisions. Returns the steps taken.
+// Step i of a ray is at distance d = i (the major axis gains one a step).
 template <Mode M>
-std::int64_t trace_fast(const std::uint8_t* ob, std::ptrdiff_t ob_stride, std::uint8_t* lit, std::uint8_t* reached,
-                        std::ptrdiff_t lit_stride, std::int64_t w, std::int64_t h) {
+std::int64_t trace_fast(const std::uint8_t* ob, std::ptrdiff_t ob_stride, const std::uint8_t* table, std::uint8_t* lit,
+                        std::uint8_t* reached, std::ptrdiff_t lit_stride, std::int64_t w, std::int64_t h) {
     const int sx = sign(w), sy = sign(h);
     std::int64_t longest = std::llabs(w), shortest = std::llabs(h);
     int dx2 = sx, dy2 = 0;
@@ -95,7 +96,7 @@ std::int64_t trace_fast(const std::uint8_t* ob, std::ptrdiff_t ob_stride, std::u
     std::int64_t i = 0;
     for (; i <= longest; ++i) {
         if (M != Mode::flat && ob[at_ob]) break;
-        lit[at_lit] = 1;
+        lit[at_lit] = table[i];
         if (M == Mode::shadow) reached[at_lit] = 1;
         numerator += shortest;
         const bool diag = !(numerator < longest);
@@ -130,6 +131,7 @@ struct RayTree {
     std::vector<std::int16_t> dx, dy;  // offset from the centre
     std::vector<std::int32_t> end;
     std::vector<std::int32_t> offset;  // dy * (2a+1) + dx: the node's index offset in an area-sized buffer
+    std::vector<std::uint16_t> depth;  // max(|dx|, |dy|): the falloff's d
 };
 
 std::shared_ptr<const RayTree> build_ray_tree(int a, int b, int k) {
@@ -177,7 +179,11 @@ std::shared_ptr<const RayTree> build_ray_tree(int a, int b, int k) {
         }
     }
     tree->offset.resize(tree->dx.size());
-    for (std::size_t i = 0; i < tree->dx.size(); ++i) tree->offset[i] = tree->dy[i] * (2 * a + 1) + tree->dx[i];
+    tree->depth.resize(tree->dx.size());
+    for (std::size_t i = 0; i < tree->dx.size(); ++i) {
+        tree->offset[i] = tree->dy[i] * (2 * a + 1) + tree->dx[i];
+        tree->depth[i] = std::uint16_t(std::max(std::abs(tree->dx[i]), std::abs(tree->dy[i])));
+    }
     return tree;
 }
 
@@ -197,11 +203,13 @@ constexpr int max_tree_extent = 512;  // larger areas trace ray by ray (the tree
 // layout as the mask), so one offset serves both. Returns the nodes visited
 // (pruned subtrees are skipped).
 template <Mode M>
-std::int64_t trace_tree(const RayTree& t, const std::uint8_t* ob, std::uint8_t* lit, std::uint8_t* reached) {
+std::int64_t trace_tree(const RayTree& t, const std::uint8_t* ob, const std::uint8_t* table, std::uint8_t* value,
+                        std::uint8_t* reached) {
     std::int64_t visited = 0;
     const std::int32_t n = std::int32_t(t.offset.size());
     const std::int32_t* off = t.offset.data();
     const std::int32_t* end = t.end.data();
+    const std::uint16_t* depth = t.depth.data();
     for (std::int32_t i = 0; i < n; ++visited) {
         const std::int32_t o = off[i];
         if (ob[o]) {
@@ -210,7 +218,7 @@ std::int64_t trace_tree(const RayTree& t, const std::uint8_t* ob, std::uint8_t* 
             i = end[i];
             continue;
         }
-        lit[o] = 1;
+        value[o] = table[depth[i]];
         if (M == Mode::shadow) reached[o] = 1;
         ++i;
     }
@@ -225,10 +233,15 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
     m.clip = clip;
     m.cx = cx;
     m.cy = cy;
+    m.falloff_scale = p.falloff_scale;
     const std::size_t n = std::size_t(std::max(0, clip.w)) * std::max(0, clip.h);
-    m.lit.assign(n, 0);
+    m.value.assign(n, 0);
     if (p.mode == Mode::shadow) m.reached.assign(n, 0);
     if (clip.empty()) return m;
+    // The falloff by distance: no division per pixel.
+    const int dmax = std::max(a, b);
+    std::vector<std::uint8_t> table(std::size_t(dmax) + 1);
+    for (int d = 0; d <= dmax; ++d) table[std::size_t(d)] = falloff(d, p.falloff_scale);
 
     const bool representable = std::llabs(cx) < 1000000000 && std::llabs(cy) < 1000000000;
     const Rect area = representable ? Rect{int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1} : Rect{};
@@ -236,8 +249,14 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
     if (fast) {
         const bool every_pixel_lit = p.mode == Mode::flat || area_is_clear;
         if (every_pixel_lit && (p.rays == Rays::every_pixel || p.ray_skip == 1)) {
-            // Closed form: with nothing in the way, the rays cover the whole area.
-            std::fill(m.lit.begin(), m.lit.end(), 1);
+            // Closed form: with nothing in the way, the rays cover the whole
+            // area, each pixel at falloff(max(|dx|, |dy|)) = min of the two
+            // (falloff never increases).
+            for (int y = -b; y <= b; ++y) {
+                std::uint8_t* row = &m.value[std::size_t(y + b) * clip.w];
+                const std::uint8_t vy = table[std::size_t(std::abs(y))];
+                for (int x = -a; x <= a; ++x) row[x + a] = std::min(table[std::size_t(std::abs(x))], vy);
+            }
             if (p.mode == Mode::shadow) std::fill(m.reached.begin(), m.reached.end(), 1);
             return m;
         }
@@ -247,14 +266,14 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
                                      : &obstacles.bits[std::size_t(cy - obstacles.y0) * obstacles.width +
                                                        std::size_t(cx - obstacles.x0)];
         const std::ptrdiff_t ob_stride = p.mode == Mode::flat ? 0 : obstacles.width;
-        std::uint8_t* lit = &m.lit[std::size_t(b) * clip.w + a];
+        std::uint8_t* lit = &m.value[std::size_t(b) * clip.w + a];
         std::uint8_t* reached = p.mode == Mode::shadow ? &m.reached[std::size_t(b) * clip.w + a] : nullptr;
         std::uint64_t steps = 0;
         auto ray = [&](std::int64_t w, std::int64_t h) {
             switch (p.mode) {
-                case Mode::light: steps += trace_fast<Mode::light>(ob, ob_stride, lit, reached, clip.w, w, h); break;
-                case Mode::shadow: steps += trace_fast<Mode::shadow>(ob, ob_stride, lit, reached, clip.w, w, h); break;
-                case Mode::flat: steps += trace_fast<Mode::flat>(ob, 0, lit, reached, clip.w, w, h); break;
+                case Mode::light: steps += trace_fast<Mode::light>(ob, ob_stride, table.data(), lit, reached, clip.w, w, h); break;
+                case Mode::shadow: steps += trace_fast<Mode::shadow>(ob, ob_stride, table.data(), lit, reached, clip.w, w, h); break;
+                case Mode::flat: steps += trace_fast<Mode::flat>(ob, 0, table.data(), lit, reached, clip.w, w, h); break;
             }
         };
         if (p.rays == Rays::every_pixel) {
@@ -270,8 +289,8 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
                             &obstacles.bits[std::size_t(clip.y + y - obstacles.y0) * obstacles.width + (clip.x - obstacles.x0)],
                             std::size_t(clip.w));
             const std::uint8_t* centre = &local[std::size_t(b) * clip.w + a];
-            steps += p.mode == Mode::light ? trace_tree<Mode::light>(*tree, centre, lit, reached)
-                                           : trace_tree<Mode::shadow>(*tree, centre, lit, reached);
+            steps += p.mode == Mode::light ? trace_tree<Mode::light>(*tree, centre, table.data(), lit, reached)
+                                           : trace_tree<Mode::shadow>(*tree, centre, table.data(), lit, reached);
         } else {
             const auto border = border_offsets(a, b);
             for (std::size_t i = 0; i < border.size(); i += std::size_t(p.ray_skip)) ray(border[i].first, border[i].second);
@@ -292,7 +311,7 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
             const std::int64_t lx = r.x - clip.x, ly = r.y - clip.y;
             if (lx < 0 || ly < 0 || lx >= clip.w || ly >= clip.h) continue;
             const std::size_t i = std::size_t(ly) * clip.w + std::size_t(lx);
-            if (!blocked) m.lit[i] = 1;
+            if (!blocked) m.value[i] = table[std::size_t(std::max(std::llabs(r.x - cx), std::llabs(r.y - cy)))];
             if (p.mode == Mode::shadow) m.reached[i] = 1;
         }
     };

@@ -4,11 +4,20 @@
 // opacity map of the same is added ... Otherwise ... subtracted."
 #include "isolux/opacity_correction.hpp"
 
+#include <algorithm>
+#include <cstdlib>
+#include <vector>
+
 namespace isolux {
 
 int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const std::vector<Mask>& opacity) {
     int touched = 0;
     const Rect clip = mask.clip;
+    // The falloff by distance, tabulated for the clip's extent.
+    const std::int64_t dmax = std::max<std::int64_t>({std::llabs(clip.x - mask.cx), std::llabs(clip.x + clip.w - 1 - mask.cx),
+                                                      std::llabs(clip.y - mask.cy), std::llabs(clip.y + clip.h - 1 - mask.cy)});
+    std::vector<std::uint8_t> table(std::size_t(std::max<std::int64_t>(0, dmax)) + 1);
+    for (std::size_t d = 0; d < table.size(); ++d) table[d] = falloff(std::int64_t(d), mask.falloff_scale);
     std::vector<std::uint32_t> near;
     instances_in(placed, clip, true, near);
     for (std::uint32_t k : near) {
@@ -20,12 +29,14 @@ int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const st
         // "Stands": where the sprite meets the ground (its anchor), not its
         // top or centre: a tall tree behind a light stands above it even when
         // its canopy reaches below the light's centre on screen.
-        const std::uint8_t value = in.ground_y < mask.cy ? 1 : 0;
+        const bool added = in.ground_y < mask.cy;
         for (int y = r.y; y < r.y + r.h; ++y) {
             const std::uint8_t* src = &op.bits[std::size_t(y - in.y) * op.width + (r.x - in.x)];
-            std::uint8_t* dst = &mask.lit[std::size_t(y - clip.y) * clip.w + (r.x - clip.x)];
+            std::uint8_t* dst = &mask.value[std::size_t(y - clip.y) * clip.w + (r.x - clip.x)];
+            const std::int64_t dy = std::llabs(y - mask.cy);
             for (int x = 0; x < r.w; ++x)
-                if (src[x]) dst[x] = value;
+                if (src[x])
+                    dst[x] = added ? table[std::size_t(std::max<std::int64_t>(std::llabs(r.x + x - mask.cx), dy))] : 0;
         }
         // In shadow mode the corrected pixels count as reached, so an
         // unlit (subtracted) sprite pixel joins the shadow.

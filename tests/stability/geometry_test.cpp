@@ -45,7 +45,7 @@ TEST(StabilityGeometry, aLightInsideAnObstacleLightsNothingButTheCorrection) {
             }
     ASSERT_GE(ox, 0);
     LightMask t = trace_light(m, ox, oy, 30, 30, Params{}, Rect{ox - 30, oy - 30, 61, 61});
-    EXPECT_EQ(std::count(t.lit.begin(), t.lit.end(), 1), 0);
+    EXPECT_EQ(std::count(t.value.begin(), t.value.end(), 0), long(t.value.size()));
     stable_frame(with_light(ox + 0.5, oy + 0.5, 30, 30));
 }
 

@@ -34,15 +34,15 @@ TEST(StabilityProperties, nothingBehindAnObstacleAlongATracedRayIsLit) {
             auto border = border_offsets(a, b);
             for (std::size_t i = 0; i < border.size(); i += std::size_t(p.ray_skip)) targets.push_back(border[i]);
         }
-        std::vector<std::uint8_t> expect(m.lit.size(), 0);
+        std::vector<std::uint8_t> expect(m.value.size(), 0);
         for (auto [tx, ty] : targets)
             for (BresenhamRay r(0, 0, tx, ty); !r.done(); r.step()) {
                 if (obs.get(int(r.x), int(r.y))) break;  // behind it: not lit by this ray
                 expect[std::size_t(r.y + b) * area.w + std::size_t(r.x + a)] = 1;
             }
-        ASSERT_EQ(m.lit, expect) << "seed " << seed;
-        for (std::size_t i = 0; i < m.lit.size(); ++i)
-            if (obs.bits[i]) ASSERT_EQ(m.lit[i], 0) << "an obstacle pixel is lit, seed " << seed;
+        ASSERT_EQ(test::lit_of(m), expect) << "seed " << seed;
+        for (std::size_t i = 0; i < m.value.size(); ++i)
+            if (obs.bits[i]) ASSERT_EQ(m.value[i], 0) << "an obstacle pixel is lit, seed " << seed;
     }
 }
 
@@ -85,7 +85,7 @@ TEST(StabilityProperties, translatingAWholeSceneTranslatesItsLight) {
         p.ray_skip = 1 + int(rng.below(3));
         LightMask m1 = trace_light(obs, 0, 0, a, b, p, area);
         LightMask m2 = trace_light(obs2, dx, dy, a, b, p, moved);
-        ASSERT_EQ(m1.lit, m2.lit) << "seed " << seed;
+        ASSERT_EQ(m1.value, m2.value) << "seed " << seed;
     }
 }
 
@@ -109,7 +109,7 @@ TEST(StabilityProperties, theFastPathTheGeneralPathAndTheClosedFormAgree) {
         p.ray_skip = 1 + int(seed % 2);
         LightMask fast = trace_light(big, 100, 50, a, b, p, area, clear);
         LightMask general = trace_light(part, 100, 50, a, b, p, area);
-        ASSERT_EQ(fast.lit, general.lit) << "seed " << seed;
+        ASSERT_EQ(fast.value, general.value) << "seed " << seed;
         ASSERT_EQ(fast.reached, general.reached) << "seed " << seed;
     }
 }

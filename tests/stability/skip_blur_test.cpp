@@ -12,7 +12,8 @@ TEST(StabilitySkipBlur, aSkipLargerThanTheBorderTracesOneRay) {
     p.ray_skip = 1 << 20;
     LightMask m = trace_light(empty, 0, 0, 10, 10, p, empty.rect());
     // Only the first border ray (to the top-left corner): the diagonal.
-    EXPECT_EQ(std::count(m.lit.begin(), m.lit.end(), 1), 11);
+    const auto lit = test::lit_of(m);
+    EXPECT_EQ(std::count(lit.begin(), lit.end(), 1), 11);
     const Rect b = world().placed.bounds;
     Scene s = with_light(b.w / 2.0, b.h / 2.0);
     s.params.ray_skip = 1 << 20;

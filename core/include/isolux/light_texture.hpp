@@ -2,6 +2,7 @@
 // world pixel over a rectangle slightly larger than the view.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "isolux/image.hpp"
@@ -28,7 +29,10 @@ struct LightTexture {
 // 255 per channel; since every contribution is >= 0 the result is
 // min(255, total), whatever the order lights are added in. A white light of
 // intensity 1 adds exactly the paper's 255 / (1 + d) to all three channels.
-void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& light, const Params& p);
+// Only rows [row_begin, row_end) of the texture are touched (world y), so
+// threads may add into separate bands of one texture.
+void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& light, const Params& p,
+                      int row_begin = std::numeric_limits<int>::min(), int row_end = std::numeric_limits<int>::max());
 
 // The paper's inverse translation between retraces: the texture of `view`
 // read from `traced` (a world-anchored texture of an earlier frame). Texels

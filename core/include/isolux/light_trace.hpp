@@ -38,13 +38,19 @@ struct BresenhamRay {
 std::uint8_t falloff(std::int64_t d, double falloff_scale);
 
 // One light's traced pixels, over the part of its area that matters (`clip`,
-// world pixels): lit[i] is 1 where a ray reached the pixel before any
-// obstacle; reached[i] is 1 where any ray passed (shadow mode's "beyond the
-// obstacle" is reached and not lit).
+// world pixels). value[i] is what Algorithm 2 draws there: the paper's
+// intensity falloff(d) where a ray reached the pixel before any obstacle (the
+// light texture of one white light), 0 where none did. (A lit pixel so far out
+// that the falloff is 0 reads as unlit; it adds nothing either way.)
+// reached[i] (shadow mode only) is 1 where any ray passed: shadow mode's
+// "beyond the obstacle" is reached and not lit.
 struct LightMask {
     Rect clip;
     std::int64_t cx = 0, cy = 0;  // the light's centre pixel
-    std::vector<std::uint8_t> lit, reached;
+    double falloff_scale = 1.0;
+    std::vector<std::uint8_t> value, reached;
+
+    bool lit(std::size_t i) const { return value[i] != 0; }
 };
 
 // The border pixels of the (2a+1) x (2b+1) area around the origin, each once,

@@ -11,8 +11,9 @@ namespace isolux {
 // For every overlay sprite that meets the light's mask, in draw order (back to
 // front, so the sprite in front decides a shared pixel): a sprite that stands
 // above the light's centre on screen (its ground point's y < the centre's y,
-// i.e. behind the light) has its opacity map added: its opaque pixels become
-// lit; any other sprite's opaque pixels become unlit. `opacity` holds one
+// i.e. behind the light) has its opacity map added: its opaque pixels get the
+// light's intensity at their distance; any other sprite's opaque pixels
+// become unlit. `opacity` holds one
 // opacity map per tileset sprite. Returns how many sprites it touched.
 int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const std::vector<Mask>& opacity);
 
