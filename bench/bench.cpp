@@ -229,7 +229,11 @@ void frame_static(benchmark::State& st, bool still) {
 // The same view and lights on maps of growing size.
 void frame_map_size(benchmark::State& st, int side) {
     const World& w = bench::world("default", side);
-    const Camera cam{600, 300, 960, 540};
+    // The view centred on tile (8, 8): the same tiles on every map (a larger
+    // map extends a smaller one), wherever the layout puts them in the world.
+    int tx = 0, ty = 0;
+    tile_center(w.map.layout, w.map.tile_width, w.map.tile_height, 8, 8, tx, ty);
+    const Camera cam{double(tx + w.placed.shift_x - 480), double(ty + w.placed.shift_y - 270), 960, 540};
     Scene s;
     s.params.blur_radius = 2;
     for (int i = 0; i < 4; ++i) s.lights.push_back(Light{cam.x + 200 + 180.0 * i, cam.y + 150 + 60.0 * i});

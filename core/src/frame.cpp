@@ -202,7 +202,12 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
             for (std::size_t i = 0; i < lights.size(); ++i)
                 accumulate_light(st.traced, traced[i].mask, *lights[i], p, y0, y1);
         };
-        const int pool_size = std::max(1, std::min(threads_wanted, std::max(int(todo.size()), bands)));
+        // Threads only when there is enough work to pay for starting them.
+        long work = 0;
+        for (std::size_t k : todo) work += long(traced[k].mask.clip.w) * traced[k].mask.clip.h * 2;
+        for (const FrameState::TracedLight& t : traced) work += long(t.mask.clip.w) * t.mask.clip.h;
+        const int pool_size =
+            work < 200000 ? 1 : std::max(1, std::min(threads_wanted, std::max(int(todo.size()), bands)));
         const auto t0 = Clock::now();
         Clock::time_point t_traced;
         std::barrier sync(pool_size, [&]() noexcept { t_traced = Clock::now(); });
