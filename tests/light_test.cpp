@@ -450,3 +450,27 @@ TEST(Frame, anUnchangedLightIsNotTracedAgain) {
     r = render_frame(st, test_world(), s, Camera{}, 2);
     EXPECT_EQ(r.lights_traced, 3);
 }
+
+TEST(Frame, noLightsMeansNoTracingAndNoUpload) {
+    Scene s;
+    FrameState st;
+    st.options.cpu_blur_and_composite = false;  // as the app runs it
+    FrameReport r = render_frame(st, test_world(), s, Camera{}, 0);
+    EXPECT_FALSE(r.ran_stage(Stage::trace));
+    EXPECT_FALSE(r.retraced);
+    s.lights = {Light{400, 250}};
+    r = render_frame(st, test_world(), s, Camera{}, 1);
+    EXPECT_TRUE(r.retraced);
+    EXPECT_EQ(r.dirty, st.traced.rect);  // a new texture: all of it
+    s.lights.push_back(Light{600, 300});
+    r = render_frame(st, test_world(), s, Camera{}, 2);
+    EXPECT_EQ(r.lights_traced, 1);
+    // Only the new light's area changed: the upload can be that small.
+    EXPECT_EQ(r.dirty, intersect(light_area(s.lights[1], s.params), st.traced.rect));
+    s.lights.clear();
+    r = render_frame(st, test_world(), s, Camera{}, 3);
+    EXPECT_TRUE(r.retraced);  // the lights' areas go dark
+    EXPECT_FALSE(r.dirty.empty());
+    r = render_frame(st, test_world(), s, Camera{}, 4);
+    EXPECT_FALSE(r.retraced);
+}

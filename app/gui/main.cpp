@@ -150,7 +150,7 @@ void render(App& app, bool screenshot_mode) {
         app.view_y = (app.view.y - e.cam_y) * e.zoom;
     }
     FrameReport rep = render_frame(e.frame, e.world, scene, cam, e.frame_number);
-    if (rep.retraced) renderer_upload_light(app.renderer, e.frame.traced, e.frame.traced.rect);
+    if (rep.retraced) renderer_upload_light(app.renderer, e.frame.traced, rep.dirty);  // only what changed
     CompositeOptions opts;
     opts.show_light = e.overlays.raw_light;
     if (e.overlays.split_view) {

@@ -130,6 +130,8 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
         } else {
             for (const FrameState::TracedLight& c : st.light_cache) to_clear.push_back(c.mask.clip);
         }
+        const bool had_lights = !st.light_cache.empty();
+        const bool new_texture = to_clear.empty() && !(had_lights && st.traced.rect == tex_rect);
         if (must) st.light_cache.clear();  // obstacles or tracing parameters changed: nothing is reusable
         // The lights whose area meets the texture; the others have nothing to trace.
         std::vector<const Light*> lights;
@@ -237,6 +239,25 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
         }
         rep.ran[int(Stage::trace)] = true;
         rep.ms[int(Stage::trace)] += std::chrono::duration<double, std::milli>(t_done - t_traced).count();
+        // What changed: the areas of lights traced now and of lights gone or
+        // moved since (all of it when the texture itself is new).
+        Rect dirty;
+        if (!had_lights && lights.empty()) dirty = Rect{};
+        else if (new_texture || must) dirty = tex_rect;
+        else {
+            for (std::size_t k : todo) dirty = bounding(dirty, intersect(traced[k].mask.clip, tex_rect));
+            for (const FrameState::TracedLight& old : st.light_cache) {
+                bool kept = false;
+                for (const FrameState::TracedLight& now : traced)
+                    kept = kept || (now.cx == old.cx && now.cy == old.cy && now.a == old.a && now.b == old.b);
+                if (!kept) dirty = bounding(dirty, intersect(old.mask.clip, tex_rect));
+            }
+            if (st.trace_lights.size() == scene.lights.size() && todo.empty() && dirty.empty()) {
+                // Only colours or intensities changed: the lights' own areas.
+                for (const FrameState::TracedLight& now : traced) dirty = bounding(dirty, intersect(now.mask.clip, tex_rect));
+            }
+        }
+        rep.dirty = dirty;
         st.light_cache = std::move(traced);
         st.cache_corrected = st.options.opacity_correction;
         st.has_trace = true;
@@ -244,7 +265,15 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
         st.trace_params = p;
         st.trace_lights = scene.lights;
         st.blurred_radius = -1;
-        rep.retraced = true;
+        // No light now and none before: the texture stayed empty, nothing to
+        // upload or blur again.
+        rep.retraced = !dirty.empty();
+        if (!rep.retraced) {
+            rep.ran[int(Stage::trace)] = false;
+            rep.ms[int(Stage::trace)] = 0;
+            if (!(st.blurred.rect == st.traced.rect)) st.blurred = st.traced;  // all zero
+            st.blurred_radius = p.blur_radius;
+        }
     }
     if (!st.options.cpu_blur_and_composite) {
         st.view = view;

@@ -26,6 +26,7 @@ struct FrameReport {
     int lights_reused = 0;       // lights whose traced pixels were still valid (not traced again)
     int sprites_corrected = 0;   // sprite instances the opacity correction touched
     bool retraced = false;       // FrameState::traced changed this frame
+    Rect dirty;                  // where it changed (what an upload must send); empty when it did not
     bool ran_stage(Stage s) const { return ran[int(s)]; }
 };
 
