@@ -261,22 +261,7 @@ int run_sweep_command(const SweepArgs& a) {
     Scene s = load_scene(a.scene, &warnings);
     for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
     std::vector<SweepAxis> axes;
-    for (const std::string& text : a.params) {
-        const auto eq = text.find('=');
-        if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
-            throw Error("--param \"" + text + "\": expected NAME=V1,V2,...");
-        SweepAxis axis{text.substr(0, eq), {}};
-        std::string rest = text.substr(eq + 1);
-        for (std::size_t pos = 0;;) {
-            std::size_t end = rest.find(',', pos);
-            axis.values.push_back(rest.substr(pos, end == std::string::npos ? std::string::npos : end - pos));
-            if (end == std::string::npos) break;
-            pos = end + 1;
-        }
-        Params probe = s.params;
-        for (const std::string& v : axis.values) set_param(probe, axis.name, v, "--param");  // fail fast
-        axes.push_back(axis);
-    }
+    for (const std::string& text : a.params) axes.push_back(parse_sweep_axis(text, s.params, "--param"));
     std::vector<double> step;
     if (!parse_reals(a.step, step) || step.size() != 2) throw Error("--step \"" + a.step + "\": expected DX,DY");
     SweepOptions opt;

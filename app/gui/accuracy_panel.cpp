@@ -47,22 +47,8 @@ namespace {
 void start_sweep(App& app, AccuracyPanel& panel) {
     std::vector<SweepAxis> axes;
     try {
-        for (const std::string& text : panel.axes) {
-            if (text.empty()) continue;
-            const auto eq = text.find('=');
-            if (eq == std::string::npos) throw Error("\"" + text + "\": expected NAME=V1,V2,...");
-            SweepAxis a{text.substr(0, eq), {}};
-            std::string rest = text.substr(eq + 1);
-            for (std::size_t pos = 0;;) {
-                const std::size_t end = rest.find(',', pos);
-                a.values.push_back(rest.substr(pos, end == std::string::npos ? std::string::npos : end - pos));
-                if (end == std::string::npos) break;
-                pos = end + 1;
-            }
-            Params probe = app.editor.scene.params;
-            for (const std::string& v : a.values) set_param(probe, a.name, v, "sweep");
-            axes.push_back(a);
-        }
+        for (const std::string& text : panel.axes)
+            if (!text.empty()) axes.push_back(parse_sweep_axis(text, app.editor.scene.params, "sweep"));
     } catch (const Error& e) {
         panel.error = e.what();
         return;

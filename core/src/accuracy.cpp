@@ -69,6 +69,23 @@ ErrorMetrics compare_images(const Image& test, const Image& ref) {
     return compare_raw(test.rgba.data(), ref.rgba.data(), test.width, test.height, 4, 3);
 }
 
+SweepAxis parse_sweep_axis(std::string_view text, const Params& base, std::string_view source) {
+    const auto eq = text.find('=');
+    if (eq == std::string_view::npos || eq == 0 || eq + 1 == text.size())
+        throw Error(std::string(source) + " \"" + std::string(text) + "\": expected NAME=V1,V2,...");
+    SweepAxis axis{std::string(text.substr(0, eq)), {}};
+    const std::string_view rest = text.substr(eq + 1);
+    for (std::size_t pos = 0;;) {
+        const std::size_t end = rest.find(',', pos);
+        axis.values.emplace_back(rest.substr(pos, end == std::string_view::npos ? std::string_view::npos : end - pos));
+        if (end == std::string_view::npos) break;
+        pos = end + 1;
+    }
+    Params probe = base;
+    for (const std::string& v : axis.values) set_param(probe, axis.name, v, source);
+    return axis;
+}
+
 Params reference_params(Params p) {
     p.rays = Rays::every_pixel;
     p.ray_skip = 1;

@@ -35,6 +35,10 @@ struct SweepAxis {
     std::vector<std::string> values;  // as text, e.g. {"1", "2", "4"}
 };
 
+// Parses "NAME=V1,V2,..." and checks every value against `base` (so a bad
+// axis fails before any work); throws Error naming `source`.
+SweepAxis parse_sweep_axis(std::string_view text, const Params& base, std::string_view source);
+
 struct SweepOptions {
     int frames = 8;       // frames per run; the camera moves along its path
     int repeats = 3;      // runs per combination; times are medians over runs
