@@ -41,6 +41,15 @@ void run_script_step(App& app) {
     if (!app.script) return;
     Script& s = *app.script;
     ImGuiIO& io = ImGui::GetIO();
+    // The GLFW backend reads the real pointer every frame: put the scripted
+    // one back, so a press and its release land on the same widget.
+    if (s.has_mouse) io.MousePos = ImVec2(s.mouse_x, s.mouse_y);
+    auto move_to = [&](double x, double y) {
+        s.has_mouse = true;
+        s.mouse_x = float(x);
+        s.mouse_y = float(y);
+        io.MousePos = ImVec2(s.mouse_x, s.mouse_y);
+    };
     if (s.release >= 0) {
         io.MouseDown[s.release] = false;
         s.release = -1;
@@ -54,7 +63,7 @@ void run_script_step(App& app) {
         // The GLFW backend resets the buttons from the real mouse each frame:
         // hold the button for the whole drag.
         io.MouseDown[0] = true;
-        io.MousePos = ImVec2(float(s.drag_path.front().first), float(s.drag_path.front().second));
+        move_to(s.drag_path.front().first, s.drag_path.front().second);
         s.drag_path.erase(s.drag_path.begin());
         if (s.drag_path.empty()) s.release = 0;
         return;
@@ -70,11 +79,11 @@ void run_script_step(App& app) {
     if (step.op == "wait") s.wait = int(num(0));
     else if (step.op == "click" || step.op == "rclick") {
         const int button = step.op == "click" ? 0 : 1;
-        io.MousePos = ImVec2(float(num(0)), float(num(1)));
+        move_to(num(0), num(1));
         io.MouseDown[button] = true;
         s.release = button;
     } else if (step.op == "drag") {
-        io.MousePos = ImVec2(float(num(0)), float(num(1)));
+        move_to(num(0), num(1));
         io.MouseDown[0] = true;
         for (int i = 1; i <= 4; ++i)
             s.drag_path.push_back({num(0) + (num(2) - num(0)) * i / 4, num(1) + (num(3) - num(1)) * i / 4});

@@ -24,6 +24,8 @@ struct Script {
     int release = -1;    // mouse button to release next frame
     int key_up = -1;     // key to release next frame
     std::vector<std::pair<double, double>> drag_path;  // pending drag positions
+    bool has_mouse = false;  // the scripted pointer stays where the last command put it
+    float mouse_x = 0, mouse_y = 0;
     bool quit = false;
 };
 
