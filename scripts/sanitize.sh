@@ -9,7 +9,7 @@ cmake --build --preset asan
 # Mesa's and X11's own allocations outlive the process by design: suppress
 # leaks from those libraries only; isolux's own leaks still fail.
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:fast_unwind_on_malloc=0"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cd build/asan
 xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure --timeout 1200
