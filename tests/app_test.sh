@@ -85,7 +85,32 @@ if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/b
 [ -f "$ISOLUX_CONFIG_DIR/autosave.json" ] && ok || bad "unsaved work was not autosaved"
 [ "$(json "$ISOLUX_CONFIG_DIR/autosave.json" "len(d['lights'])")" = "4" ] && ok || bad "the autosave lacks the last light"
 
-# 5. No display: a clear message and the headless renderer.
+# 5. Every overlay, the error heat map, and the Accuracy panel's sweep: a
+#    point applied from it becomes the preset.
+cat >"$tmp/accuracy.script" <<SCRIPT
+wait 2
+overlay obstacles on
+overlay opacity_maps on
+overlay delta_y_bands on
+overlay split_view on
+wait 2
+overlay raw_light on
+wait 2
+overlay heatmap on
+wait 2
+sweep ray_skip=1,8 blur_radius=0
+wait-sweep
+save-sweep $tmp/sweep.csv
+apply-point 1
+wait 1
+save-preset $tmp/applied.json
+quit
+SCRIPT
+if timeout 300 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/accuracy.script" >"$tmp/log" 2>&1; then ok; else bad "overlay and accuracy run"; cat "$tmp/log"; fi
+[ "$(wc -l <"$tmp/sweep.csv" 2>/dev/null)" = "3" ] && ok || bad "the panel's sweep did not write two rows"
+[ "$(json "$tmp/applied.json" "d['ray_skip'], d['blur_radius']")" = "(8, 0)" ] && ok || bad "applying a sweep point did not set its parameters"
+
+# 6. No display: a clear message and the headless renderer.
 if env -u DISPLAY "$app" --scene "$src/assets/scenes/default.json" --screenshot "$tmp/nodisplay.png" >"$tmp/log" 2>&1 &&
   grep -q "no display" "$tmp/log" && [ -f "$tmp/nodisplay.png" ]; then ok; else bad "no-display fallback"; cat "$tmp/log"; fi
 if cmp -s "$tmp/nodisplay.png" "$tmp/cli.png"; then ok; else bad "the no-display render differs from isolux-cli"; fi

@@ -43,15 +43,17 @@ OverlayImage error_heatmap(const World& world, const Scene& scene, Rect view, Er
 }
 
 namespace {
+std::string label_of(const std::vector<SweepAxis>& axes, const SweepPoint& p);
+}  // namespace
 
-void start_sweep(App& app, AccuracyPanel& panel) {
+bool start_sweep(App& app, AccuracyPanel& panel) {
     std::vector<SweepAxis> axes;
     try {
         for (const std::string& text : panel.axes)
             if (!text.empty()) axes.push_back(parse_sweep_axis(text, app.editor.scene.params, "sweep"));
     } catch (const Error& e) {
         panel.error = e.what();
-        return;
+        return false;
     }
     if (panel.worker.joinable()) panel.worker.join();
     panel.error.clear();
@@ -83,7 +85,21 @@ void start_sweep(App& app, AccuracyPanel& panel) {
         panel.error = error;
         panel.running = false;
     });
+    return true;
 }
+
+bool apply_sweep_point(App& app, AccuracyPanel& panel, std::size_t index) {
+    if (index >= panel.results.size()) return false;
+    const SweepPoint& point = panel.results[index];
+    Params p = app.editor.scene.params;
+    for (std::size_t i = 0; i < panel.result_axes.size(); ++i)
+        set_param(p, panel.result_axes[i].name, point.values[i], "sweep");
+    set_params(app.editor, p, app.now);
+    set_status(app.editor, "applied " + label_of(panel.result_axes, point));
+    return true;
+}
+
+namespace {
 
 std::string label_of(const std::vector<SweepAxis>& axes, const SweepPoint& p) {
     std::string s;
@@ -117,7 +133,7 @@ void accuracy_panel(App& app, AccuracyPanel& panel) {
         const float f = panel.total > 0 ? float(panel.done) / float(panel.total) : 0.0f;
         ImGui::ProgressBar(f, ImVec2(-1, 0), (std::to_string(panel.done) + "/" + std::to_string(panel.total)).c_str());
     }
-    std::lock_guard<std::mutex> lock(panel.mutex);
+    std::unique_lock<std::mutex> lock(panel.mutex);
     if (!panel.error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", panel.error.c_str());
 
     // Error (final RMSE) against lighting time; orange: the Pareto front.
@@ -169,13 +185,7 @@ void accuracy_panel(App& app, AccuracyPanel& panel) {
                         nearest->final.psnr, nearest->final.max_abs, nearest->light.lit_mismatch * 100);
             ImGui::TextDisabled("click to apply these parameters");
             ImGui::EndTooltip();
-            if (ImGui::IsMouseClicked(0)) {
-                Params p = app.editor.scene.params;
-                for (std::size_t i = 0; i < panel.result_axes.size(); ++i)
-                    set_param(p, panel.result_axes[i].name, nearest->values[i], "sweep");
-                set_params(app.editor, p, app.now);
-                set_status(app.editor, "applied " + label_of(panel.result_axes, *nearest));
-            }
+            if (ImGui::IsMouseClicked(0)) apply_sweep_point(app, panel, std::size_t(nearest - pts.data()));
         }
     } else {
         dl->AddText(ImVec2(p0.x + 10, p0.y + 10), IM_COL32(150, 150, 150, 255), "run a sweep to see error against time");

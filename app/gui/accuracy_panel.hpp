@@ -41,6 +41,10 @@ struct AccuracyPanel {
 
 void accuracy_panel(App& app, AccuracyPanel& panel);
 
+// What the panel's buttons do, for the panel and for scripted input.
+bool start_sweep(App& app, AccuracyPanel& panel);                  // false (and panel.error) on a bad axis
+bool apply_sweep_point(App& app, AccuracyPanel& panel, std::size_t index);  // one undo step
+
 // The heat map for the app's current view and settings (CPU, both frames fresh).
 OverlayImage error_heatmap(const World& world, const Scene& scene, Rect view, ErrorMetrics* metrics);
 

@@ -72,6 +72,10 @@ void run_script_step(App& app) {
         --s.wait;
         return;
     }
+    if (s.waiting_sweep) {
+        if (app.accuracy.running) return;
+        s.waiting_sweep = false;
+    }
     if (s.next >= s.steps.size()) return;
     const ScriptStep& step = s.steps[s.next++];
     auto num = [&](int i) { return std::stod(step.args[i]); };
@@ -122,6 +126,33 @@ void run_script_step(App& app) {
     else if (step.op == "load-scene") load_scene_from(e, step.args[0], app.now);
     else if (step.op == "load-preset") import_preset(e, step.args[0], app.now);
     else if (step.op == "quit") s.quit = true;
+    else if (step.op == "overlay") {
+        const bool on = step.args[1] == "on";
+        Overlays& o = e.overlays;
+        const std::string& n = step.args[0];
+        if (n == "obstacles") o.obstacles = on;
+        else if (n == "opacity_maps") o.opacity_maps = on;
+        else if (n == "delta_y_bands") o.delta_y_bands = on;
+        else if (n == "light_areas") o.light_areas = on;
+        else if (n == "raw_light") o.raw_light = on;
+        else if (n == "split_view") o.split_view = on;
+        else if (n == "heatmap") app.accuracy.heatmap = on, app.accuracy.heatmap_stale = true;
+    } else if (step.op == "sweep") {
+        AccuracyPanel& a = app.accuracy;
+        for (std::size_t i = 0; i < 4; ++i) a.axes[i] = i < step.args.size() ? step.args[i] : "";
+        a.frames = 2;
+        a.repeats = 1;
+        a.open = true;
+        if (!start_sweep(app, a)) set_status(e, a.error, true);
+    } else if (step.op == "wait-sweep") s.waiting_sweep = true;
+    else if (step.op == "apply-point") apply_sweep_point(app, app.accuracy, std::size_t(num(0)));
+    else if (step.op == "save-sweep") {
+        try {
+            write_file_atomic(step.args[0], sweep_csv(app.accuracy.result_axes, app.accuracy.results));
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
+    }
 }
 
 void push_stats(App& app, const FrameReport& rep, double frame_ms) {

@@ -21,16 +21,18 @@ Script load_script(const std::filesystem::path& path) {
         step.line = line;
         if (!(in >> step.op)) continue;
         for (std::string a; in >> a;) step.args.push_back(a);
-        static const std::pair<const char*, std::size_t> arity[] = {
+        // -1: one or more.
+        static const std::pair<const char*, int> arity[] = {
             {"wait", 1}, {"click", 2}, {"rclick", 2}, {"drag", 4}, {"key", 1}, {"param", 2},
-            {"save-preset", 1}, {"save-scene", 1}, {"load-scene", 1}, {"load-preset", 1}, {"quit", 0}};
+            {"save-preset", 1}, {"save-scene", 1}, {"load-scene", 1}, {"load-preset", 1}, {"quit", 0},
+            {"overlay", 2}, {"sweep", -1}, {"wait-sweep", 0}, {"apply-point", 1}, {"save-sweep", 1}};
         bool known = false;
         for (auto [op, n] : arity)
             if (step.op == op) {
                 known = true;
-                if (step.args.size() != n)
+                if (n < 0 ? step.args.empty() : step.args.size() != std::size_t(n))
                     throw Error(path.string() + ":" + std::to_string(line) + ": " + step.op + " takes " +
-                                std::to_string(n) + " arguments");
+                                (n < 0 ? std::string("one or more") : std::to_string(n)) + " arguments");
             }
         if (!known) throw Error(path.string() + ":" + std::to_string(line) + ": unknown command \"" + step.op + "\"");
         s.steps.push_back(step);

@@ -2,7 +2,10 @@
 // as a user's mouse and keys would be, or to the editor's actions.
 //   wait N | click X Y | rclick X Y | drag X0 Y0 X1 Y1 | key [ctrl+]NAME
 //   param NAME VALUE (a slider moved: one undo step) | save-preset PATH |
-//   save-scene PATH | load-scene PATH | load-preset PATH | quit
+//   save-scene PATH | load-scene PATH | load-preset PATH | quit |
+//   overlay NAME on|off (obstacles, opacity_maps, delta_y_bands, light_areas,
+//   raw_light, split_view, heatmap) | sweep NAME=V1,V2... [...] (the Accuracy
+//   panel's sweep) | wait-sweep | apply-point K | save-sweep PATH (its CSV)
 // Coordinates are window pixels; '#' starts a comment.
 #pragma once
 #include <filesystem>
@@ -27,6 +30,7 @@ struct Script {
     bool has_mouse = false;  // the scripted pointer stays where the last command put it
     float mouse_x = 0, mouse_y = 0;
     bool quit = false;
+    bool waiting_sweep = false;  // wait-sweep: hold the script until the sweep ends
 };
 
 // Parses a script file; throws Error naming the file and line.
