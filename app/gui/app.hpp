@@ -32,8 +32,6 @@ struct Ui {
     Scene edit_before;
     int dragging_light = -1;
     Scene drag_before;
-    bool panning = false;
-    double pan_x = 0, pan_y = 0;
     std::string file_action;  // the file popup's action, "" when closed
     std::string path;         // its path field
     bool recovery_offered = false;

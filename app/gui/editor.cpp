@@ -143,31 +143,24 @@ void regenerate(Editor& e, const std::string& seed, int width, int height, Layou
     }
 }
 
-bool undo(Editor& e, double now) {
-    if (e.undo_stack.empty()) return false;
-    e.redo_stack.push_back(e.scene);
-    e.scene = e.undo_stack.back();
-    e.undo_stack.pop_back();
+namespace {
+// Undo and redo are one move between the two stacks, in opposite directions.
+bool step_history(Editor& e, std::vector<Scene>& from, std::vector<Scene>& to, double now, const char* what) {
+    if (from.empty()) return false;
+    to.push_back(e.scene);
+    e.scene = from.back();
+    from.pop_back();
     sync_world(e);
     if (e.selected >= int(e.scene.lights.size())) e.selected = -1;
     e.dirty = true;
     e.autosave_due = now + autosave_delay;
-    set_status(e, "undo");
+    set_status(e, what);
     return true;
 }
+}  // namespace
 
-bool redo(Editor& e, double now) {
-    if (e.redo_stack.empty()) return false;
-    e.undo_stack.push_back(e.scene);
-    e.scene = e.redo_stack.back();
-    e.redo_stack.pop_back();
-    sync_world(e);
-    if (e.selected >= int(e.scene.lights.size())) e.selected = -1;
-    e.dirty = true;
-    e.autosave_due = now + autosave_delay;
-    set_status(e, "redo");
-    return true;
-}
+bool undo(Editor& e, double now) { return step_history(e, e.undo_stack, e.redo_stack, now, "undo"); }
+bool redo(Editor& e, double now) { return step_history(e, e.redo_stack, e.undo_stack, now, "redo"); }
 
 bool save_scene_to(Editor& e, const fs::path& path) {
     try {

@@ -155,7 +155,9 @@ void run_script_step(App& app) {
     }
 }
 
-void push_stats(App& app, const FrameReport& rep, double frame_ms) {
+// One frame's figures: the stages that ran, their times, and the frame's own
+// time (the pipeline's, `frame_ms`) and rate (the whole loop's, `dt`).
+void push_stats(App& app, const FrameReport& rep, double frame_ms, double dt) {
     Stats& s = app.stats;
     for (int k = 0; k < stage_count; ++k) s.ms[k][s.head] = float(rep.ms[k]);
     const GpuTimes& g = app.renderer.times;
@@ -169,11 +171,11 @@ void push_stats(App& app, const FrameReport& rep, double frame_ms) {
     s.last_ran = rep.ran;
     s.lights_traced = rep.lights_traced;
     s.frame_ms = s.frame_ms * 0.9f + float(frame_ms) * 0.1f;
-    s.fps = s.frame_ms > 0 ? 1000.0f / s.frame_ms : 0;
+    if (dt > 0) s.fps = s.fps * 0.9f + float(1.0 / dt) * 0.1f;
 }
 
 // One frame of the pipeline: core traces (CPU), the renderer does the rest.
-void render(App& app, bool screenshot_mode) {
+FrameReport render(App& app, bool screenshot_mode) {
     Editor& e = app.editor;
     renderer_set_world(app.renderer, e.world);
     const Scene scene = render_scene(e);
@@ -230,8 +232,8 @@ void render(App& app, bool screenshot_mode) {
     }
     renderer_draw(app.renderer, app.view, scene.params, opts);
     renderer_present(app.renderer, app.window_w, app.window_h, app.view_x, app.view_y, e.zoom, app.view, 1.0f);
-    push_stats(app, rep, 0);
     ++e.frame_number;
+    return rep;
 }
 
 }  // namespace
@@ -349,9 +351,8 @@ int main(int argc, char** argv) {
         ImGui::NewFrame();
         if (!screenshot_mode) handle_viewport_input(app, dt);
         const auto f0 = std::chrono::steady_clock::now();
-        render(app, screenshot_mode);
-        app.stats.frame_ms = app.stats.frame_ms * 0.9f +
-                             float(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - f0).count()) * 0.1f;
+        const FrameReport rep = render(app, screenshot_mode);
+        push_stats(app, rep, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - f0).count(), dt);
         if (!screenshot_mode) draw_panels(app);
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -261,7 +261,6 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
         st.light_cache = std::move(traced);
         st.cache_corrected = st.options.opacity_correction;
         st.has_trace = true;
-        st.trace_frame = frame;
         st.trace_params = p;
         st.trace_lights = scene.lights;
         st.blurred_radius = -1;

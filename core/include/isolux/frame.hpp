@@ -68,7 +68,6 @@ struct FrameState {
 
     // The last trace, world-anchored: corrected light texture and its blur.
     bool has_trace = false;
-    long trace_frame = -1;
     Params trace_params;
     std::vector<Light> trace_lights;
     LightTexture traced, blurred;
