@@ -221,7 +221,7 @@ void frame_static(benchmark::State& st, bool still) {
     long f = 0;
     render_frame(fs, w, s, Camera{}, f++);
     for (auto _ : st) {
-        if (!still) fs.light_cache.clear(), fs.trace_lights.clear();  // forget the traces: all again
+        if (!still) fs.cache.lights.clear(), fs.cache.trace_lights.clear();  // forget the traces: all again
         benchmark::DoNotOptimize(render_frame(fs, w, s, Camera{}, f++));
     }
 }

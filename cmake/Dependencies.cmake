@@ -1,5 +1,4 @@
 # Every dependency is a Debian 12 package (see scripts/deps.sh).
-find_package(glm CONFIG REQUIRED)
 find_package(nlohmann_json 3 CONFIG REQUIRED)
 find_package(Threads REQUIRED)
 

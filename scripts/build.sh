@@ -2,5 +2,5 @@
 # Configures and builds isolux (Release, Ninja) into build/release.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake --preset release >/dev/null
+cmake --preset release -DISOLUX_WERROR="${ISOLUX_WERROR:-OFF}" >/dev/null
 cmake --build --preset release

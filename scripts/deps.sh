@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config clang libclang-rt-14-dev
-  libglm-dev libopenimageio-dev openimageio-tools nlohmann-json3-dev libcli11-dev
+  libopenimageio-dev openimageio-tools nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libtcod-dev
   libimgui-dev libglfw3-dev libgl-dev libegl-dev
   xvfb xauth libgl1-mesa-dri libegl-mesa0 python3

@@ -7,6 +7,7 @@
 #include "isolux/files.hpp"
 
 using namespace isolux;
+using namespace isolux::app;
 namespace fs = std::filesystem;
 
 namespace {
@@ -124,7 +125,7 @@ TEST(Editor, settingsSurviveACorruptFile) {
     for (int i = 0; i < 12; ++i) add_recent(s, "f" + std::to_string(i));
     add_recent(s, "f5");
     EXPECT_EQ(s.recent.size(), 8u);
-    EXPECT_EQ(s.recent.front(), "f5");
+    EXPECT_EQ(s.recent.front().path, "f5");
     save_settings(c.dir, s);
     EXPECT_EQ(load_settings(c.dir).recent, s.recent);
 }

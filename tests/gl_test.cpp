@@ -12,6 +12,7 @@
 #include "test_util.hpp"
 
 using namespace isolux;
+using namespace isolux::app;
 
 namespace {
 

@@ -130,7 +130,9 @@ TEST(Trace, equalsTheUnionOfThePapersRays) {
             EXPECT_EQ(tex.rgb[i * 3], ref[i]) << "trial " << trial;
         }
         for (std::size_t i = 0; i < m.value.size(); ++i)
-            if (obstacles.bits[i]) EXPECT_EQ(m.value[i], 0) << "an obstacle pixel is lit";
+            if (obstacles.bits[i]) {
+                EXPECT_EQ(m.value[i], 0) << "an obstacle pixel is lit";
+            }
     }
 }
 

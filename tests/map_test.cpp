@@ -93,7 +93,9 @@ TEST(Map, tilesHoldAFloorAndAtMostThreeOverlaysAndWaterHoldsNone) {
         ASSERT_LE(t.overlay_count, 3);
         for (int k = 0; k < t.overlay_count; ++k)
             EXPECT_EQ(tiles().sprites[t.overlays[k].sprite].kind, SpriteKind::overlay);
-        if (tiles().sprites[t.floor].has_tag("water")) EXPECT_EQ(t.overlay_count, 0);
+        if (tiles().sprites[t.floor].has_tag("water")) {
+            EXPECT_EQ(t.overlay_count, 0);
+        }
         with_overlays += t.overlay_count > 0;
     }
     EXPECT_GT(with_overlays, 0);

@@ -19,6 +19,7 @@
 #include "isolux/tileset_generator.hpp"
 
 using namespace isolux;
+using namespace isolux::app;
 
 namespace {
 
@@ -31,12 +32,27 @@ struct RenderArgs {
     int frames = 1;
     std::string camera_step;
     bool no_opacity_correction = false;
-    // Preset overrides: set only when given.
-    std::optional<int> ray_skip, delta_y, noise_window, blur, trace_every;
-    std::optional<double> ambient, falloff_scale, opacity_threshold;
-    std::optional<std::string> mode, rays, area;
-    bool dark_unlit = false;
+    // Preset overrides, one per row of the parameter table, set only when given.
+    std::vector<std::optional<std::string>> params = std::vector<std::optional<std::string>>(param_table().size());
+    std::optional<std::string> area;  // --area A,B: area_a and area_b at once
 };
+
+// One flag per row of the parameter table: --name-with-dashes (and its old
+// name), help from the row, booleans as plain flags.
+void add_param_flags(CLI::App& cmd, RenderArgs& ra) {
+    const auto table = param_table();
+    for (std::size_t i = 0; i < table.size(); ++i) {
+        const ParamInfo& info = table[i];
+        std::string names = info.flag;
+        if (info.old_flag) names += std::string(",") + info.old_flag;
+        std::string help = std::string(*info.symbol ? std::string(info.symbol) + ": " : "") + info.help + " " +
+                           param_range_text(info) + ", default " + format_param(info, param_default(info)) + ".";
+        if (info.type == ParamType::boolean)
+            cmd.add_flag_callback(names, [&ra, i] { ra.params[i] = "true"; }, help);
+        else
+            cmd.add_option(names, ra.params[i], help);
+    }
+}
 
 bool parse_ints(const std::string& s, char sep, std::vector<long long>& out) {
     out.clear();
@@ -96,8 +112,8 @@ Light parse_light(const std::string& text) {
     if (parts.size() >= 4) {
         std::vector<long long> ab;
         if (!parse_ints(parts[2] + "," + parts[3], ',', ab) || ab[0] < 0 || ab[1] < 0 ||
-            ab[0] > ParamLimits::max_area || ab[1] > ParamLimits::max_area)
-            throw Error(where + ": A and B must be integers in [0, " + std::to_string(ParamLimits::max_area) + "]");
+            ab[0] > max_area || ab[1] > max_area)
+            throw Error(where + ": A and B must be integers in [0, " + std::to_string(max_area) + "]");
         l.area_a = int(ab[0]);
         l.area_b = int(ab[1]);
     }
@@ -132,26 +148,15 @@ Scene scene_from_args(const RenderArgs& a) {
         for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
     }
     Params& p = s.params;
-    if (a.ray_skip) p.ray_skip = *a.ray_skip;
-    if (a.delta_y) p.delta_y = *a.delta_y;
-    if (a.noise_window) p.noise_window = *a.noise_window;
-    if (a.blur) p.blur_radius = *a.blur;
-    if (a.trace_every) p.trace_every = *a.trace_every;
-    if (a.ambient) p.ambient_clarity = *a.ambient;
-    if (a.falloff_scale) p.falloff_scale = *a.falloff_scale;
-    if (a.opacity_threshold) p.opacity_threshold = *a.opacity_threshold;
-    if (a.mode) p.mode = parse_mode(*a.mode, "--mode");
-    if (a.rays) p.rays = parse_rays(*a.rays, "--rays");
-    if (a.dark_unlit) p.dark_unlit = true;
     if (a.area) {
-        std::vector<long long> v;
-        if (!parse_ints(*a.area, ',', v) || v.size() != 2)
-            throw Error("--area \"" + *a.area + "\": expected A,B (half-extents in pixels)");
-        if (v[0] < 0 || v[1] < 0 || v[0] > ParamLimits::max_area || v[1] > ParamLimits::max_area)
-            throw Error("--area " + *a.area + ": a and b must be in [0, " + std::to_string(ParamLimits::max_area) + "]");
-        p.area_a = int(v[0]);
-        p.area_b = int(v[1]);
+        const std::size_t comma = a.area->find(',');
+        if (comma == std::string::npos) throw Error("--area \"" + *a.area + "\": expected A,B (half-extents in pixels)");
+        set_param(p, "area_a", a.area->substr(0, comma), "--area");
+        set_param(p, "area_b", a.area->substr(comma + 1), "--area");
     }
+    const auto table = param_table();
+    for (std::size_t i = 0; i < table.size(); ++i)
+        if (a.params[i]) set_param(p, table[i].name, *a.params[i], table[i].flag);
     validate(p, "parameters");
     for (const std::string& text : a.lights) s.lights.push_back(parse_light(text));
     return s;
@@ -159,8 +164,7 @@ Scene scene_from_args(const RenderArgs& a) {
 
 Rect view_from_args(const RenderArgs& a, const Scene& s, const World& w) {
     Rect view = w.placed.bounds;
-    if (s.camera.width > 0 && s.camera.height > 0)
-        view = {int(s.camera.x), int(s.camera.y), s.camera.width, s.camera.height};
+    if (s.camera.width > 0 && s.camera.height > 0) view = camera_view(s.camera, w);  // core's rounding
     if (!a.view.empty()) {
         std::vector<long long> v;
         if (!parse_ints(a.view, ',', v) || v.size() != 4 || v[2] < 1 || v[3] < 1 || v[2] > max_image_side ||
@@ -184,13 +188,8 @@ int run_render(const RenderArgs& a) {
         out = render_sprites(w.tileset, w.placed, view);
         if (a.layer == "obstacles") {
             // The paper's Figure 6: obstacle pixels in white over the map.
-            Mask obstacles = build_obstacle_map(w.tileset, w.placed, s.params, view);
-            for (int y = 0; y < view.h; ++y)
-                for (int x = 0; x < view.w; ++x)
-                    if (obstacles.bits[std::size_t(y) * view.w + x]) {
-                        std::uint8_t* p = out.at(x, y);
-                        p[0] = p[1] = p[2] = p[3] = 255;
-                    }
+            static constexpr std::uint8_t white[4] = {255, 255, 255, 255};
+            paint_mask(out, view, build_obstacle_map(w.tileset, w.placed, s.params, view), 0, 0, white);
         }
     } else if (a.layer == "light" || a.layer == "final") {
         std::vector<double> step{0, 0};
@@ -215,15 +214,7 @@ int run_render(const RenderArgs& a) {
                 std::cout << " (" << rep.lights_traced << " lights traced)\n";
             }
         }
-        if (a.layer == "final") {
-            out = st.final;
-        } else {
-            out = Image(st.light.rect.w, st.light.rect.h);
-            for (std::size_t i = 0, n = std::size_t(out.width) * out.height; i < n; ++i) {
-                for (int k = 0; k < 3; ++k) out.rgba[i * 4 + k] = st.light.rgb[i * 3 + k];
-                out.rgba[i * 4 + 3] = 255;
-            }
-        }
+        out = a.layer == "final" ? st.final : light_texture_image(st.light);
     } else if (a.layer == "opacity") {
         out = Image(view.w, view.h);
         for (std::size_t i = 3; i < out.rgba.size(); i += 4) out.rgba[i] = 255;
@@ -232,14 +223,8 @@ int run_render(const RenderArgs& a) {
             const SpriteInstance& in = w.placed.instances[i];
             const Sprite& sp = w.tileset.sprites[in.sprite];
             if (!maps[in.sprite]) maps[in.sprite] = opacity_map(sp.image, sprite_threshold(sp, s.params.opacity_threshold));
-            const Mask& m = *maps[in.sprite];
-            Rect r = intersect({in.x, in.y, m.width, m.height}, view);
-            for (int y = r.y; y < r.y + r.h; ++y)
-                for (int x = r.x; x < r.x + r.w; ++x)
-                    if (m.get(x - in.x, y - in.y)) {
-                        std::uint8_t* p = out.at(x - view.x, y - view.y);
-                        p[0] = p[1] = p[2] = 255;
-                    }
+            static constexpr std::uint8_t white[4] = {255, 255, 255, 255};
+            paint_mask(out, view, *maps[in.sprite], in.x, in.y, white);
         }
     }
     save_image(a.out, out);
@@ -286,11 +271,7 @@ int run_sweep_command(const SweepArgs& a) {
         std::cout << "wrote " << a.chart << "\n";
     }
     std::cout << "Pareto front (least final-frame RMSE for the time):\n";
-    std::vector<const SweepPoint*> front;
-    for (const SweepPoint& p : points)
-        if (p.pareto) front.push_back(&p);
-    std::sort(front.begin(), front.end(), [](auto x, auto y) { return x->lighting_ms < y->lighting_ms; });
-    for (const SweepPoint* p : front) {
+    for (const SweepPoint* p : pareto_front(points)) {
         std::cout << "  ";
         for (std::size_t i = 0; i < axes.size(); ++i) std::cout << axes[i].name << "=" << p->values[i] << " ";
         std::cout << " " << p->lighting_ms << " ms/frame lighting (" << p->total_ms << " in all), final RMSE " << p->final.rmse << ", lit mismatch "
@@ -321,18 +302,8 @@ int main(int argc, char** argv) {
     render->add_option("--camera-step", ra.camera_step, "Camera movement per frame DX,DY (pixels)");
     render->add_flag("--no-opacity-correction", ra.no_opacity_correction,
                      "Skip the opacity-map correction (shows the paper's Figure 6 problem)");
-    render->add_option("--ray-skip", ra.ray_skip, "k: trace every k-th border ray (>= 1)");
-    render->add_option("--rays", ra.rays, "border (Algorithm 2) or every_pixel (the 4ab reference)");
-    render->add_option("--ambient", ra.ambient, "Ambient clarity in [0, 1]");
-    render->add_option("--mode", ra.mode, "light, shadow or flat");
-    render->add_option("--delta-y", ra.delta_y, "Δy: lines Algorithm 1 reads (>= 1)");
-    render->add_option("--noise-window", ra.noise_window, "n: noise filter window (>= 1)");
-    render->add_option("--area", ra.area, "a,b: light half-extents in pixels (>= 0)");
-    render->add_option("--blur", ra.blur, "Box blur radius (>= 0)");
-    render->add_option("--trace-every", ra.trace_every, "l: retrace every l frames (>= 1)");
-    render->add_option("--falloff-scale", ra.falloff_scale, "i = 255 / (1 + d / falloff_scale), > 0");
-    render->add_option("--opacity-threshold", ra.opacity_threshold, "Alpha above this is opaque, [0, 1]");
-    render->add_flag("--dark-unlit", ra.dark_unlit, "Algorithm 3's variant: unlit pixels go dark");
+    add_param_flags(*render, ra);
+    render->add_option("--area", ra.area, "A,B: --area-a and --area-b at once");
     render->add_option("--view", ra.view, "World-pixel rectangle X,Y,W,H to render (default: the whole map)");
     render->add_option("--out", ra.out, "Output image (.png or .exr)")->required();
 

@@ -5,7 +5,7 @@
 
 namespace fs = std::filesystem;
 
-namespace isolux {
+namespace isolux::app {
 
 fs::path default_tileset_manifest() {
     const fs::path rel = fs::path("default") / "tileset.json";
@@ -23,4 +23,4 @@ fs::path default_tileset_manifest() {
     return {};
 }
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -4,7 +4,7 @@
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
 
-namespace isolux {
+namespace isolux::app {
 
 World build_world(const Scene& scene) {
     std::filesystem::path manifest = scene.tileset;
@@ -16,4 +16,4 @@ World build_world(const Scene& scene) {
     return make_world(load_tileset(manifest), scene);
 }
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -4,9 +4,9 @@
 #include "isolux/scene.hpp"
 #include "isolux/world.hpp"
 
-namespace isolux {
+namespace isolux::app {
 
 // Throws Error naming the tileset file on bad input.
 World build_world(const Scene& scene);
 
-}  // namespace isolux
+}  // namespace isolux::app

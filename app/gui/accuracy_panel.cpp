@@ -9,7 +9,7 @@
 #include "gui/app.hpp"
 #include "isolux/error.hpp"
 
-namespace isolux {
+namespace isolux::app {
 
 AccuracyPanel::~AccuracyPanel() {
     cancel = true;
@@ -158,10 +158,7 @@ void accuracy_panel(App& app, AccuracyPanel& panel) {
             return p0.x + 30 + float(u) * (size.x - 50);
         };
         auto fy = [&](double e) { return p0.y + size.y - 20 - float(e / emax) * (size.y - 35); };
-        std::vector<const SweepPoint*> front;
-        for (const SweepPoint& p : pts)
-            if (p.pareto) front.push_back(&p);
-        std::sort(front.begin(), front.end(), [](auto a, auto b) { return a->lighting_ms < b->lighting_ms; });
+        const std::vector<const SweepPoint*> front = pareto_front(pts);
         for (std::size_t i = 1; i < front.size(); ++i)
             dl->AddLine(ImVec2(fx(front[i - 1]->lighting_ms), fy(front[i - 1]->final.rmse)),
                         ImVec2(fx(front[i]->lighting_ms), fy(front[i]->final.rmse)), IM_COL32(224, 112, 32, 255), 1.5f);
@@ -205,4 +202,4 @@ void accuracy_panel(App& app, AccuracyPanel& panel) {
     ImGui::End();
 }
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -12,7 +12,7 @@
 #include "gui/overlays.hpp"
 #include "isolux/accuracy.hpp"
 
-namespace isolux {
+namespace isolux::app {
 
 struct App;
 
@@ -48,4 +48,4 @@ bool apply_sweep_point(App& app, AccuracyPanel& panel, std::size_t index);  // o
 // The heat map for the app's current view and settings (CPU, both frames fresh).
 OverlayImage error_heatmap(const World& world, const Scene& scene, Rect view, ErrorMetrics* metrics);
 
-}  // namespace isolux
+}  // namespace isolux::app

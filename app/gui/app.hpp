@@ -10,9 +10,7 @@
 #include "gui/renderer.hpp"
 #include "gui/script.hpp"
 
-struct GLFWwindow;
-
-namespace isolux {
+namespace isolux::app {
 
 // Per-stage times over the last frames, for the Stats panel.
 struct Stats {
@@ -35,15 +33,13 @@ struct Ui {
     std::string file_action;  // the file popup's action, "" when closed
     std::string path;         // its path field
     bool recovery_offered = false;
-    std::string seed;
-    int size[2] = {16, 16};
-    int layout = 1;
+    MapFields map_edit;       // the Map panel's fields while one is being edited
+    bool map_editing = false;
     double cursor_x = 0, cursor_y = 0;  // world pixel under the mouse
     bool cursor_in_view = false;
 };
 
 struct App {
-    GLFWwindow* window = nullptr;
     Renderer renderer;
     Editor editor;
     Ui ui;
@@ -60,7 +56,6 @@ struct App {
     Params overlay_params;
     std::vector<Light> overlay_lights;
     Rect overlay_region;
-    std::string screenshot;  // --screenshot path
     long screenshot_frames = 0;
     bool quit = false;
     int exit_code = 0;
@@ -77,4 +72,4 @@ void handle_viewport_input(App& app, double dt);
 // texture and the obstacle map of the view.
 bool export_image(App& app, const std::string& what, const std::string& path);
 
-}  // namespace isolux
+}  // namespace isolux::app

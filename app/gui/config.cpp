@@ -10,7 +10,7 @@
 
 namespace fs = std::filesystem;
 
-namespace isolux {
+namespace isolux::app {
 
 fs::path config_dir() {
     if (const char* d = std::getenv("ISOLUX_CONFIG_DIR"); d && *d) return d;
@@ -28,8 +28,18 @@ Settings load_settings(const fs::path& dir, std::string* warning) {
     try {
         auto j = nlohmann::json::parse(ss.str());
         if (j.contains("recent") && j["recent"].is_array())
-            for (const auto& r : j["recent"])
-                if (r.is_string() && s.recent.size() < 8) s.recent.push_back(r.get<std::string>());
+            for (const auto& r : j["recent"]) {
+                if (s.recent.size() >= 8) break;
+                if (r.is_string()) {
+                    s.recent.push_back({r.get<std::string>(), FileKind::scene});  // settings from before kinds
+                } else if (r.is_object() && r.contains("path") && r["path"].is_string()) {
+                    RecentFile f{r["path"].get<std::string>(), FileKind::scene};
+                    const std::string kind = r.contains("kind") && r["kind"].is_string() ? r["kind"].get<std::string>() : "";
+                    for (FileKind k : {FileKind::scene, FileKind::preset, FileKind::tileset})
+                        if (kind == to_string(k)) f.kind = k;
+                    s.recent.push_back(f);
+                }
+            }
         if (j.contains("show_stats") && j["show_stats"].is_boolean()) s.show_stats = j["show_stats"].get<bool>();
     } catch (const std::exception&) {
         if (warning) *warning = (dir / "settings.json").string() + ": unreadable, using defaults";
@@ -40,14 +50,25 @@ Settings load_settings(const fs::path& dir, std::string* warning) {
 void save_settings(const fs::path& dir, const Settings& s) {
     std::error_code ec;
     fs::create_directories(dir, ec);
-    nlohmann::json j{{"schema_version", 1}, {"recent", s.recent}, {"show_stats", s.show_stats}};
+    nlohmann::json recent = nlohmann::json::array();
+    for (const RecentFile& f : s.recent) recent.push_back({{"path", f.path}, {"kind", std::string(to_string(f.kind))}});
+    nlohmann::json j{{"schema_version", 1}, {"recent", recent}, {"show_stats", s.show_stats}};
     write_file_atomic(dir / "settings.json", j.dump(2) + "\n");
 }
 
-void add_recent(Settings& s, const std::string& path) {
-    s.recent.erase(std::remove(s.recent.begin(), s.recent.end(), path), s.recent.end());
-    s.recent.insert(s.recent.begin(), path);
+std::string_view to_string(FileKind k) {
+    switch (k) {
+        case FileKind::scene: return "scene";
+        case FileKind::preset: return "preset";
+        case FileKind::tileset: return "tileset";
+    }
+    return "scene";
+}
+
+void add_recent(Settings& s, const std::string& path, FileKind kind) {
+    std::erase_if(s.recent, [&](const RecentFile& f) { return f.path == path; });
+    s.recent.insert(s.recent.begin(), RecentFile{path, kind});
     if (s.recent.size() > 8) s.recent.resize(8);
 }
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -3,15 +3,26 @@
 #pragma once
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
-namespace isolux {
+namespace isolux::app {
 
 // $ISOLUX_CONFIG_DIR, else $XDG_CONFIG_HOME/isolux, else ~/.config/isolux.
 std::filesystem::path config_dir();
 
+// What a file was opened or saved as: the Recent menu opens it as the same.
+enum class FileKind { scene, preset, tileset };
+std::string_view to_string(FileKind k);
+
+struct RecentFile {
+    std::string path;
+    FileKind kind = FileKind::scene;
+    friend bool operator==(const RecentFile&, const RecentFile&) = default;
+};
+
 struct Settings {
-    std::vector<std::string> recent;  // most recent first, at most 8
+    std::vector<RecentFile> recent;  // most recent first, at most 8
     bool show_stats = true;
 };
 
@@ -19,6 +30,6 @@ struct Settings {
 // (and a warning in `warning`), never an error: settings are not user work.
 Settings load_settings(const std::filesystem::path& dir, std::string* warning = nullptr);
 void save_settings(const std::filesystem::path& dir, const Settings& s);  // atomic; throws Error
-void add_recent(Settings& s, const std::string& path);
+void add_recent(Settings& s, const std::string& path, FileKind kind = FileKind::scene);
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -8,7 +8,7 @@
 
 namespace fs = std::filesystem;
 
-namespace isolux {
+namespace isolux::app {
 
 namespace {
 
@@ -17,8 +17,8 @@ bool same_world_fields(const Scene& a, const Scene& b) {
            a.tileset == b.tileset;
 }
 
-void remember_file(Editor& e, const fs::path& path) {
-    add_recent(e.settings, fs::absolute(path).lexically_normal().string());
+void remember_file(Editor& e, const fs::path& path, FileKind kind) {
+    add_recent(e.settings, fs::absolute(path).lexically_normal().string(), kind);
     try {
         save_settings(e.config, e.settings);
     } catch (const Error&) {
@@ -26,13 +26,32 @@ void remember_file(Editor& e, const fs::path& path) {
     }
 }
 
-void center_camera(Editor& e) {
-    e.cam_x = 0;
-    e.cam_y = 0;
-    e.zoom = 1;
+// A scene's camera becomes the view; the document keeps none while editing.
+void take_camera(Editor& e) {
+    e.view.x = e.scene.camera.x;
+    e.view.y = e.scene.camera.y;
+    e.view.width = e.scene.camera.width;
+    e.view.height = e.scene.camera.height;
+    e.scene.camera = Camera{};
+    e.world_source.camera = Camera{};
 }
 
 }  // namespace
+
+void reset_view(Editor& e) {
+    e.view.x = e.view.y = 0;
+    e.view.zoom = 1;
+}
+
+MapFields map_fields(const Editor& e) {
+    return {e.scene.seed, e.scene.width, e.scene.height, e.scene.layout, e.scene.tileset};
+}
+
+Scene scene_to_save(const Editor& e) {
+    Scene s = e.scene;
+    s.camera = {e.view.x, e.view.y, e.view.width, e.view.height};
+    return s;
+}
 
 void set_status(Editor& e, std::string text, bool error) {
     e.status = std::move(text);
@@ -50,10 +69,7 @@ Editor make_editor(const Scene& scene, const fs::path& config) {
     e.world_source = scene;
     e.frame.options.cpu_sprites = false;
     e.frame.options.cpu_blur_and_composite = false;
-    if (scene.camera.width > 0) {
-        e.cam_x = scene.camera.x;
-        e.cam_y = scene.camera.y;
-    }
+    take_camera(e);
     return e;
 }
 
@@ -95,7 +111,7 @@ void place_light(Editor& e, double x, double y, double now) {
     e.scene.lights.push_back(l);
     e.selected = int(e.scene.lights.size()) - 1;
     commit_edit(e, before, now);
-    if (e.frame.has_obstacles && e.frame.obstacles.get(int(std::floor(x)), int(std::floor(y))))
+    if (e.frame.obstacles.get(int(std::floor(x)), int(std::floor(y))))
         set_status(e, "light " + std::to_string(e.selected + 1) +
                           " sits on an obstacle pixel: it lights nothing (Algorithm 2 tests the centre first)",
                     true);
@@ -159,14 +175,21 @@ bool step_history(Editor& e, std::vector<Scene>& from, std::vector<Scene>& to, d
 }
 }  // namespace
 
+bool open_recent(Editor& e, const RecentFile& file, double now) {
+    switch (file.kind) {
+        case FileKind::scene: return load_scene_from(e, file.path, now);
+        case FileKind::preset: return import_preset(e, file.path, now);
+        case FileKind::tileset: return load_tileset_from(e, file.path, now);
+    }
+    return false;
+}
+
 bool undo(Editor& e, double now) { return step_history(e, e.undo_stack, e.redo_stack, now, "undo"); }
 bool redo(Editor& e, double now) { return step_history(e, e.redo_stack, e.undo_stack, now, "redo"); }
 
 bool save_scene_to(Editor& e, const fs::path& path) {
     try {
-        Scene s = e.scene;
-        s.camera = {e.cam_x, e.cam_y, 0, 0};
-        save_scene(path, s);
+        save_scene(path, scene_to_save(e));
     } catch (const Error& err) {
         set_status(e, err.what(), true);
         return false;
@@ -175,7 +198,7 @@ bool save_scene_to(Editor& e, const fs::path& path) {
     e.dirty = false;
     e.autosave_due = -1;
     discard_autosave(e);
-    remember_file(e, path);
+    remember_file(e, path, FileKind::scene);
     set_status(e, "saved " + path.string());
     return true;
 }
@@ -195,18 +218,17 @@ bool load_scene_impl(Editor& e, const fs::path& path, double now, bool remember)
         FrameOptions keep = e.frame.options;
         e.frame = FrameState{};
         e.frame.options = keep;
+        take_camera(e);
         commit_edit(e, before, now);
     } catch (const Error& err) {
         set_status(e, err.what(), true);
         return false;
     }
-    e.cam_x = loaded.camera.x;
-    e.cam_y = loaded.camera.y;
     e.selected = -1;
     e.scene_path = path;
     e.dirty = false;
     e.autosave_due = -1;
-    if (remember) remember_file(e, path);
+    if (remember) remember_file(e, path, FileKind::scene);
     set_status(e, warnings.empty() ? "loaded " + path.string() : warnings.front(), !warnings.empty());
     return true;
 }
@@ -221,7 +243,7 @@ bool export_preset(Editor& e, const fs::path& path) {
         set_status(e, err.what(), true);
         return false;
     }
-    remember_file(e, path);
+    remember_file(e, path, FileKind::preset);
     set_status(e, "exported preset " + path.string());
     return true;
 }
@@ -235,7 +257,7 @@ bool import_preset(Editor& e, const fs::path& path, double now) {
         set_status(e, err.what(), true);
         return false;
     }
-    remember_file(e, path);
+    remember_file(e, path, FileKind::preset);
     set_status(e, warnings.empty() ? "loaded preset " + path.string() : warnings.front(), !warnings.empty());
     return true;
 }
@@ -245,7 +267,8 @@ bool load_tileset_from(Editor& e, const fs::path& manifest, double now) {
     e.scene.tileset = manifest.string();
     if (!sync_world(e)) return false;
     commit_edit(e, before, now);
-    center_camera(e);
+    reset_view(e);
+    remember_file(e, manifest, FileKind::tileset);
     set_status(e, "loaded tileset " + manifest.string());
     return true;
 }
@@ -258,9 +281,7 @@ bool autosave_tick(Editor& e, double now) {
     try {
         std::error_code ec;
         fs::create_directories(e.config, ec);
-        Scene s = e.scene;
-        s.camera = {e.cam_x, e.cam_y, 0, 0};
-        save_scene(autosave_path(e), s);
+        save_scene(autosave_path(e), scene_to_save(e));
     } catch (const Error& err) {
         set_status(e, std::string("autosave failed: ") + err.what(), true);
         return false;
@@ -308,4 +329,4 @@ int light_at(const Editor& e, double x, double y, double radius) {
     return best;
 }
 
-}  // namespace isolux
+}  // namespace isolux::app

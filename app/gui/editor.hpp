@@ -11,7 +11,7 @@
 #include "isolux/scene.hpp"
 #include "isolux/world.hpp"
 
-namespace isolux {
+namespace isolux::app {
 
 struct Overlays {
     bool obstacles = false;
@@ -37,14 +37,25 @@ struct Character {
     Light light;
 };
 
+// Where the editor looks: not part of the document (panning is not an edit),
+// written into the scene's camera only when the scene is saved.
+struct View {
+    double x = 0, y = 0;        // top-left, world pixels
+    int width = 0, height = 0;  // the scene camera's size, kept for saving and --screenshot (0: the whole map)
+    double zoom = 1;            // window pixels per world pixel
+};
+
 struct Editor {
-    Scene scene;  // the document: what is saved, undone and autosaved
+    // The document: what is saved, undone and autosaved. The one source of
+    // truth: panels read and edit it (through commit_edit), never a copy.
+    // Its camera stays empty while editing: `view` is where the editor looks.
+    Scene scene;
     World world;
     Scene world_source;  // the scene the world was built from (seed, size, layout, tileset)
     FrameState frame;  // core's caches for this view
     long frame_number = 0;
 
-    double cam_x = 0, cam_y = 0, zoom = 1;  // view top-left (world px), window px per world px
+    View view;
     int selected = -1;                      // selected light, or -1
     std::vector<Scene> undo_stack, redo_stack;
     bool dirty = false;                     // changes since the last save or load
@@ -71,6 +82,22 @@ Editor make_editor(const Scene& scene, const std::filesystem::path& config);
 // Messages: every action reports here instead of throwing.
 void set_status(Editor& e, std::string text, bool error = false);
 
+// The view back at the map's origin, zoom 1 (View › Reset view, Home).
+void reset_view(Editor& e);
+
+// What the Map panel shows: read from the document every frame.
+struct MapFields {
+    std::string seed;
+    int width = 0, height = 0;
+    Layout layout = Layout::diamond;
+    std::string tileset;
+    friend bool operator==(const MapFields&, const MapFields&) = default;
+};
+MapFields map_fields(const Editor& e);
+
+// The document as a file holds it: the scene with the view as its camera.
+Scene scene_to_save(const Editor& e);
+
 // Records the document before an edit (one undo step) and marks it dirty.
 // `before` is the document as it was; for slider drags the panel keeps it
 // from the drag's start and commits once at the end.
@@ -96,6 +123,8 @@ bool load_scene_from(Editor& e, const std::filesystem::path& path, double now);
 bool export_preset(Editor& e, const std::filesystem::path& path);
 bool import_preset(Editor& e, const std::filesystem::path& path, double now);
 bool load_tileset_from(Editor& e, const std::filesystem::path& manifest, double now);
+// Opens a Recent entry as the kind it was saved or opened as.
+bool open_recent(Editor& e, const RecentFile& file, double now);
 
 // Autosave: writes the document to config/autosave.json when due. Returns
 // true when it wrote.
@@ -112,4 +141,4 @@ Scene render_scene(const Editor& e);
 // The light under world pixel (x, y) (within `radius` pixels), or -1.
 int light_at(const Editor& e, double x, double y, double radius);
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -20,6 +20,7 @@
 #include "isolux/files.hpp"
 
 using namespace isolux;
+using namespace isolux::app;
 namespace fs = std::filesystem;
 
 namespace {
@@ -106,21 +107,15 @@ void run_script_step(App& app) {
             s.key_up = code;
         }
     } else if (step.op == "param") {
-        // A slider moved and released: the same edit the panel makes.
+        // A widget moved and released: the same edit the panel makes. Any
+        // row of the parameter table, by its field name and value text.
         Params p = e.scene.params;
-        const std::string& n = step.args[0];
-        const double v = num(1);
-        if (n == "delta_y") p.delta_y = int(v);
-        else if (n == "noise_window") p.noise_window = int(v);
-        else if (n == "ray_skip") p.ray_skip = int(v);
-        else if (n == "trace_every") p.trace_every = int(v);
-        else if (n == "area_a") p.area_a = int(v);
-        else if (n == "area_b") p.area_b = int(v);
-        else if (n == "ambient_clarity") p.ambient_clarity = v;
-        else if (n == "opacity_threshold") p.opacity_threshold = v;
-        else if (n == "blur_radius") p.blur_radius = int(v);
-        else if (n == "falloff_scale") p.falloff_scale = v;
-        set_params(e, p, app.now);
+        try {
+            set_param(p, step.args[0], step.args[1], "script param");
+            set_params(e, p, app.now);
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
     } else if (step.op == "save-preset") export_preset(e, step.args[0]);
     else if (step.op == "save-scene") save_scene_to(e, step.args[0]);
     else if (step.op == "load-scene") load_scene_from(e, step.args[0], app.now);
@@ -181,15 +176,15 @@ FrameReport render(App& app, bool screenshot_mode) {
     const Scene scene = render_scene(e);
     Camera cam;
     if (screenshot_mode) {
-        cam = scene.camera;  // width 0: the whole map, as isolux-cli renders it
+        cam = scene_to_save(e).camera;  // width 0: the whole map, as isolux-cli renders it
         app.view = camera_view(cam, e.world);
         app.view_x = app.view_y = 0;
     } else {
-        const double vw = std::ceil(app.window_w / e.zoom) + 1, vh = std::ceil(app.window_h / e.zoom) + 1;
-        cam = {e.cam_x, e.cam_y, int(vw), int(vh)};
+        const double vw = std::ceil(app.window_w / e.view.zoom) + 1, vh = std::ceil(app.window_h / e.view.zoom) + 1;
+        cam = {e.view.x, e.view.y, int(vw), int(vh)};
         app.view = camera_view(cam, e.world);
-        app.view_x = (app.view.x - e.cam_x) * e.zoom;
-        app.view_y = (app.view.y - e.cam_y) * e.zoom;
+        app.view_x = (app.view.x - e.view.x) * e.view.zoom;
+        app.view_y = (app.view.y - e.view.y) * e.view.zoom;
     }
     FrameReport rep = render_frame(e.frame, e.world, scene, cam, e.frame_number);
     if (rep.retraced) renderer_upload_light(app.renderer, e.frame.traced, rep.dirty);  // only what changed
@@ -231,7 +226,7 @@ FrameReport render(App& app, bool screenshot_mode) {
         app.overlay_dirty = false;
     }
     renderer_draw(app.renderer, app.view, scene.params, opts);
-    renderer_present(app.renderer, app.window_w, app.window_h, app.view_x, app.view_y, e.zoom, app.view, 1.0f);
+    renderer_present(app.renderer, app.window_w, app.window_h, app.view_x, app.view_y, e.view.zoom, app.view);
     ++e.frame_number;
     return rep;
 }
@@ -297,8 +292,6 @@ int main(int argc, char** argv) {
     }
 
     App app;
-    app.window = window;
-    app.screenshot = screenshot;
     app.screenshot_frames = frames > 0 ? frames : 1;
     const fs::path config = config_dir();
     try {

@@ -5,8 +5,9 @@
 
 #include "isolux/light_texture.hpp"
 #include "isolux/obstacle_map.hpp"
+#include "isolux/opacity_correction.hpp"
 
-namespace isolux {
+namespace isolux::app {
 
 namespace {
 void blend(std::uint8_t* d, int r, int g, int b, float a) {
@@ -58,7 +59,7 @@ OverlayImage build_overlays(const World& world, const FrameState& frame, const S
         for (const Light& l : scene.lights) {
             const Rect area = intersect(light_area(l, p), region);
             if (area.empty()) continue;
-            const double cy = std::floor(l.y);
+            const auto cy = std::int64_t(std::floor(l.y));
             std::vector<std::uint32_t> near;
             instances_in(world.placed, area, true, near);
             for (std::uint32_t k : near) {
@@ -67,7 +68,7 @@ OverlayImage build_overlays(const World& world, const FrameState& frame, const S
                 const Mask& op = frame.opacity[in.sprite];
                 const Rect r = intersect({in.x, in.y, op.width, op.height}, area);
                 if (r.empty()) continue;
-                const bool added = in.ground_y < cy;  // as correct_with_opacity_maps decides
+                const bool added = opacity_map_added(in, cy);
                 for (int y = r.y; y < r.y + r.h; ++y)
                     for (int x = r.x; x < r.x + r.w; ++x)
                         if (op.get(x - in.x, y - in.y))
@@ -86,4 +87,4 @@ OverlayImage build_overlays(const World& world, const FrameState& frame, const S
     return out;
 }
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -5,7 +5,7 @@
 #pragma once
 #include "gui/editor.hpp"
 
-namespace isolux {
+namespace isolux::app {
 
 struct OverlayImage {
     Image image;  // premultiplied RGBA over `rect`
@@ -17,4 +17,4 @@ struct OverlayImage {
 OverlayImage build_overlays(const World& world, const FrameState& frame, const Scene& scene, const Overlays& o,
                             Rect region);
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -12,7 +12,7 @@
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
 
-namespace isolux {
+namespace isolux::app {
 
 namespace {
 
@@ -41,23 +41,6 @@ void track_edit(App& app, const Scene& before_widget) {
         ui.editing = false;
         if (ImGui::IsItemDeactivatedAfterEdit()) commit_edit(app.editor, ui.edit_before, app.now);
     }
-}
-
-void slider_int(App& app, const char* label, int* v, int lo, int hi, const char* tip,
-                ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp) {
-    Scene before = app.editor.scene;
-    ImGui::SliderInt(label, v, lo, hi, "%d", flags);
-    track_edit(app, before);
-    help(tip);
-}
-
-void slider_float(App& app, const char* label, double* v, float lo, float hi, const char* tip,
-                  ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp) {
-    Scene before = app.editor.scene;
-    float f = float(*v);
-    if (ImGui::SliderFloat(label, &f, lo, hi, "%.3f", flags)) *v = f;
-    track_edit(app, before);
-    help(tip);
 }
 
 void open_file_popup(App& app, const std::string& action, const std::string& suggestion) {
@@ -91,11 +74,9 @@ void menu_bar(App& app) {
             ImGui::EndMenu();
         }
         if (ImGui::BeginMenu("Recent", !e.settings.recent.empty())) {
-            for (const std::string& r : e.settings.recent)
-                if (ImGui::MenuItem(r.c_str())) {
-                    if (r.find("preset") != std::string::npos) import_preset(e, r, app.now);
-                    else load_scene_from(e, r, app.now);
-                }
+            const std::vector<RecentFile> recent = e.settings.recent;  // opening one reorders the list
+            for (const RecentFile& r : recent)
+                if (ImGui::MenuItem(r.path.c_str(), std::string(to_string(r.kind)).c_str())) open_recent(e, r, app.now);
             ImGui::EndMenu();
         }
         ImGui::Separator();
@@ -108,7 +89,7 @@ void menu_bar(App& app) {
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("View")) {
-        if (ImGui::MenuItem("Reset view", "Home")) e.cam_x = e.cam_y = 0, e.zoom = 1;
+        if (ImGui::MenuItem("Reset view", "Home")) reset_view(e);
         ImGui::MenuItem("Stats", nullptr, &e.settings.show_stats);
         ImGui::MenuItem("Accuracy", nullptr, &app.accuracy.open);
         ImGui::EndMenu();
@@ -171,40 +152,53 @@ void recovery_popup(App& app) {
     }
 }
 
+// Shows the document's map fields; an edit applies (regenerates, one undo
+// step) when the field is left or Enter is pressed. While a field is active
+// ImGui edits `ui.map_edit`, which is refreshed from the document otherwise.
 void map_panel(App& app) {
     Editor& e = app.editor;
     Ui& ui = app.ui;
     ImGui::SetNextWindowPos(ImVec2(10, 30), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(320, 190), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Map")) return ImGui::End();
-    if (ImGui::IsWindowAppearing() && ui.seed.empty()) {
-        ui.seed = e.scene.seed;
-        ui.size[0] = e.scene.width;
-        ui.size[1] = e.scene.height;
-        ui.layout = int(e.scene.layout);
+    const MapFields shown = map_fields(e);
+    if (!ui.map_editing) ui.map_edit = shown;
+    MapFields& m = ui.map_edit;
+    bool apply = false, active = false;
+    ImGui::InputText("seed", &m.seed);
+    active |= ImGui::IsItemActive();
+    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    help("Any text. The same seed gives the same map, pixel for pixel, on every machine. Enter regenerates.");
+    int size[2] = {m.width, m.height};
+    if (ImGui::InputInt2("size", size)) m.width = size[0], m.height = size[1];
+    active |= ImGui::IsItemActive();
+    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    help("Map size in tiles, each side 1 to 1024. Enter regenerates.");
+    int layout = int(m.layout);
+    if (ImGui::Combo("layout", &layout, "paper\0diamond\0staggered\0")) {
+        m.layout = Layout(layout);
+        apply = true;
     }
-    ImGui::InputText("seed", &ui.seed);
-    help("Any text. The same seed gives the same map, pixel for pixel, on every machine.");
-    ImGui::InputInt2("size", ui.size);
-    help("Map size in tiles, each side 1 to 1024.");
-    ImGui::Combo("layout", &ui.layout, "paper\0diamond\0staggered\0");
     help("paper: section 3's assembly rule (a parallelogram); diamond and staggered: Tiled's isometric layouts.");
-    if (ImGui::Button("Regenerate")) {
-        if (ui.size[0] < 1 || ui.size[1] < 1 || ui.size[0] > max_map_side || ui.size[1] > max_map_side)
-            set_status(e, "size: each side must be in [1, " + std::to_string(max_map_side) + "] tiles", true);
-        else
-            regenerate(e, ui.seed, ui.size[0], ui.size[1], Layout(ui.layout), app.now);
-    }
+    ui.map_editing = active;
+    if (ImGui::Button("Regenerate")) apply = true;
     ImGui::SameLine();
     if (ImGui::Button("Random seed")) {
         static const char* words[] = {"amber", "birch", "cedar", "dune", "ember", "fern", "grove", "heath",
                                       "isle", "juniper", "kelp", "lichen", "moss", "nettle", "oak", "pine"};
         const auto t = std::uint64_t(app.now * 1000) ^ std::uint64_t(e.undo_stack.size() * 7919);
-        ui.seed = std::string(words[t % 16]) + "-" + std::to_string((t / 16) % 10000);
-        regenerate(e, ui.seed, ui.size[0], ui.size[1], Layout(ui.layout), app.now);
+        m.seed = std::string(words[t % 16]) + "-" + std::to_string((t / 16) % 10000);
+        apply = true;
     }
-    ImGui::Text("tileset: %s", e.scene.tileset.empty() ? "default" : e.scene.tileset.c_str());
-    if (ImGui::Button("Load tileset...")) open_file_popup(app, "load-tileset", e.scene.tileset);
+    if (apply) {
+        if (m.width < 1 || m.height < 1 || m.width > max_map_side || m.height > max_map_side)
+            set_status(e, "size: each side must be in [1, " + std::to_string(max_map_side) + "] tiles", true);
+        else if (!(m == shown))
+            regenerate(e, m.seed, m.width, m.height, m.layout, app.now);
+        ui.map_editing = false;
+    }
+    ImGui::Text("tileset: %s", shown.tileset.empty() ? "default" : shown.tileset.c_str());
+    if (ImGui::Button("Load tileset...")) open_file_popup(app, "load-tileset", shown.tileset);
     ImGui::SameLine();
     if (ImGui::Button("Default tileset") && !e.scene.tileset.empty()) {
         Scene before = e.scene;
@@ -214,67 +208,69 @@ void map_panel(App& app) {
     ImGui::End();
 }
 
+// The "(?)" text for a parameter: symbol, help, range and what it re-runs.
+std::string param_tooltip(const ParamInfo& info) {
+    std::string t = *info.symbol ? std::string(info.symbol) + ": " : "";
+    t += std::string(info.help) + "\nRange " + param_range_text(info) + ", default " +
+         format_param(info, param_default(info)) + ". ";
+    if (info.reruns == StageSet{}) t += "Changes only when rays are traced.";
+    else if (info.reruns.has(Stage::obstacle_map)) t += "Rebuilds the obstacle map.";
+    else if (info.reruns.has(Stage::trace)) t += "Retraces.";
+    else if (info.reruns.has(Stage::blur)) t += "Re-blurs only.";
+    else t += "Re-composites only.";
+    if (info.type == ParamType::integer || info.type == ParamType::real) t += " Ctrl+click to type any value.";
+    return t;
+}
+
+// One widget per row of the parameter table, grouped by the paper's section.
+// A drag is one undo step; the document is validated by set_params.
 void params_panel(App& app) {
     Editor& e = app.editor;
-    Params& p = e.scene.params;
     ImGui::SetNextWindowPos(ImVec2(10, 230), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(320, 420), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Parameters")) return ImGui::End();
     ImGui::PushItemWidth(170);
-    ImGui::TextDisabled("obstacle map (paper 3.1)");
-    slider_int(app, "delta y", &p.delta_y, 1, 128,
-               "Δy: how many rows Algorithm 1 reads on each sprite, ending at its lowest opaque row "
-               "(paper 3.1: 25 for 128-px sprites). Range 1 to 4096; rebuilds the obstacle map.");
-    slider_int(app, "noise window", &p.noise_window, 1, 16,
-               "n: the box noise filter's window; a pixel is cleared when its n x n window holds fewer "
-               "than n obstacle pixels (paper 3.1). Range 1 to 255; rebuilds the obstacle map.");
-    slider_float(app, "opacity threshold", &p.opacity_threshold, 0.0f, 1.0f,
-                 "Alpha above this is opaque, for the opacity maps and Algorithm 1. Range 0 to 1; "
-                 "rebuilds the obstacle map.");
-    ImGui::TextDisabled("tracing (paper 3.2)");
-    slider_int(app, "area a", &p.area_a, 0, 512,
-               "a: a light's half-width in pixels; its area is (2a+1) x (2b+1). Range 0 to 4096; retraces.");
-    slider_int(app, "area b", &p.area_b, 0, 512,
-               "b: a light's half-height in pixels. Range 0 to 4096; retraces.");
-    slider_int(app, "ray skip", &p.ray_skip, 1, 32,
-               "k: trace every k-th border ray (paper 3.2: skipped rays' gaps are blurred). >= 1; retraces.",
-               ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
-    slider_int(app, "l frames", &p.trace_every, 1, 30,
-               "l: rays are traced once every l frames; in between the light texture is shifted with the "
-               "camera (paper 3.2). >= 1. Walk the character (WASD) to see it.");
-    slider_float(app, "falloff scale", &p.falloff_scale, 0.25f, 64.0f,
-                 "i = 255 / (1 + max(|dx|,|dy|) / falloff scale). 1 is the paper's function; larger spreads "
-                 "the light. > 0; retraces.",
-                 ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
-    {
-        Scene before = e.scene;
-        int mode = int(p.mode);
-        if (ImGui::Combo("mode", &mode, "light\0shadow\0flat\0")) {
-            p.mode = Mode(mode);
-            commit_edit(e, before, app.now);
+    const char* group = "";
+    for (const ParamInfo& info : param_table()) {
+        if (std::string_view(group) != info.group) ImGui::TextDisabled("%s", group = info.group);
+        const Scene before = e.scene;
+        const double v = info.get(e.scene.params);
+        const ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | (info.logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
+        ImGui::PushID(info.name);
+        double edited = v;
+        bool changed = false;
+        switch (info.type) {
+            case ParamType::integer: {
+                int x = int(v);
+                changed = ImGui::SliderInt(info.label, &x, int(info.slider_min), int(info.slider_max), "%d", flags);
+                edited = std::clamp(double(x), info.min, info.max);
+                break;
+            }
+            case ParamType::real: {
+                float x = float(v);
+                changed = ImGui::SliderFloat(info.label, &x, float(info.slider_min), float(info.slider_max), "%.3f", flags);
+                edited = std::clamp(double(x), info.min, info.max);
+                if (info.min_open && edited <= info.min) edited = v;
+                break;
+            }
+            case ParamType::choice: {
+                int x = int(v);
+                changed = ImGui::Combo(info.label, &x, info.choices.data(), choice_count(info));
+                edited = x;
+                break;
+            }
+            case ParamType::boolean: {
+                bool x = v != 0;
+                changed = ImGui::Checkbox(info.label, &x);
+                edited = x ? 1 : 0;
+                break;
+            }
         }
-        help("light: rays stop at obstacles (the paper). shadow: paint what lies beyond the first obstacle "
-             "(paper 4). flat: no obstacles, falloff only (Figure 10b).");
-        before = e.scene;
-        int rays = int(p.rays);
-        if (ImGui::Combo("rays", &rays, "border\0every pixel\0")) {
-            p.rays = Rays(rays);
-            commit_edit(e, before, app.now);
-        }
-        help("border: a ray to each border pixel (Algorithm 2). every pixel: a ray to every pixel of the "
-             "area, the paper's 4ab rays; the accuracy reference, slow.");
-    }
-    ImGui::TextDisabled("shading (paper 3.2, Algorithm 3)");
-    slider_int(app, "blur radius", &p.blur_radius, 0, 16,
-               "Box blur of the light texture, in pixels (paper 3.2). Range 0 to 255; re-blurs only.");
-    slider_float(app, "ambient clarity", &p.ambient_clarity, 0.0f, 1.0f,
-                 "Algorithm 3's ambientClarity: texture x sqrt(c) + luminance x light / (c^2 + 0.1). "
-                 "Range 0 to 1 (paper: 0.4); re-composites only.");
-    {
-        Scene before = e.scene;
-        if (ImGui::Checkbox("dark unlit", &p.dark_unlit)) commit_edit(e, before, app.now);
-        help("Algorithm 3 variant (paper 4): the texture factor is multiplied by the light, so what no ray "
-             "reaches is black.");
+        if (changed && edited != v) info.set(e.scene.params, edited);  // live while dragging
+        if (info.type == ParamType::integer || info.type == ParamType::real) track_edit(app, before);
+        else if (changed) commit_edit(e, before, app.now);
+        ImGui::PopID();
+        help(param_tooltip(info).c_str());
     }
     ImGui::PopItemWidth();
     ImGui::End();
@@ -414,7 +410,7 @@ void status_bar(App& app) {
                          tile_at(e.world.map, e.world.placed, app.ui.cursor_x, app.ui.cursor_y, col, row);
     ImGui::Text("world (%.0f, %.0f)  tile %s  |  %.0f FPS  %.2f ms  |  zoom %.2f  |  %s%s", app.ui.cursor_x,
                 app.ui.cursor_y, on_tile ? (std::to_string(col) + ", " + std::to_string(row)).c_str() : "-",
-                app.stats.fps, app.stats.frame_ms, e.zoom, e.dirty ? "unsaved  |  " : "", "");
+                app.stats.fps, app.stats.frame_ms, e.view.zoom, e.dirty ? "unsaved  |  " : "", "");
     ImGui::SameLine();
     if (e.status_error) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", e.status.c_str());
     else ImGui::TextUnformatted(e.status.c_str());
@@ -430,7 +426,7 @@ void light_area_overlay(App& app) {
     ImDrawList* dl = ImGui::GetBackgroundDrawList();
     const Scene s = render_scene(e);
     auto to_screen = [&](double wx, double wy) {
-        return ImVec2(float(app.view_x + (wx - app.view.x) * e.zoom), float(app.view_y + (wy - app.view.y) * e.zoom));
+        return ImVec2(float(app.view_x + (wx - app.view.x) * e.view.zoom), float(app.view_y + (wy - app.view.y) * e.view.zoom));
     };
     for (int i = 0; i < int(s.lights.size()); ++i) {
         const Light& l = s.lights[i];
@@ -445,7 +441,7 @@ void light_area_overlay(App& app) {
         dl->AddCircle(c, sel ? 7.0f : 5.0f, sel ? IM_COL32(255, 220, 90, 255) : IM_COL32(255, 255, 255, 200), 16, 2.0f);
     }
     if (e.overlays.split_view) {
-        const float x = float(app.view_x + app.view.w * e.overlays.split * e.zoom);
+        const float x = float(app.view_x + app.view.w * e.overlays.split * e.view.zoom);
         dl->AddLine(ImVec2(x, 0), ImVec2(x, float(app.window_h)), IM_COL32(255, 255, 255, 160), 1.5f);
     }
 }
@@ -471,8 +467,8 @@ void handle_viewport_input(App& app, double dt) {
     Editor& e = app.editor;
     Ui& ui = app.ui;
     const double mx = io.MousePos.x, my = io.MousePos.y;
-    ui.cursor_x = app.view.x + (mx - app.view_x) / e.zoom;
-    ui.cursor_y = app.view.y + (my - app.view_y) / e.zoom;
+    ui.cursor_x = app.view.x + (mx - app.view_x) / e.view.zoom;
+    ui.cursor_y = app.view.y + (my - app.view_y) / e.view.zoom;
     ui.cursor_in_view = !io.WantCaptureMouse && mx >= 0 && my >= 0;
 
     if (!io.WantCaptureKeyboard) {
@@ -487,7 +483,7 @@ void handle_viewport_input(App& app, double dt) {
             else save_scene_to(e, e.scene_path);
         }
         if (ImGui::IsKeyPressed(GLFW_KEY_DELETE, false) && e.selected >= 0) remove_light(e, e.selected, app.now);
-        if (ImGui::IsKeyPressed(GLFW_KEY_HOME, false)) e.cam_x = e.cam_y = 0, e.zoom = 1;
+        if (ImGui::IsKeyPressed(GLFW_KEY_HOME, false)) reset_view(e);
         Character& c = e.character;
         if (c.enabled && !ctrl) {
             double dx = 0, dy = 0;
@@ -498,8 +494,8 @@ void handle_viewport_input(App& app, double dt) {
             c.x += dx * c.speed * dt;
             c.y += dy * c.speed * dt * 0.5;  // isometric: half speed vertically
             if (c.follow) {
-                e.cam_x = c.x - app.window_w / 2.0 / e.zoom;
-                e.cam_y = c.y - app.window_h / 2.0 / e.zoom;
+                e.view.x = c.x - app.window_w / 2.0 / e.view.zoom;
+                e.view.y = c.y - app.window_h / 2.0 / e.view.zoom;
             }
         }
     }
@@ -507,19 +503,19 @@ void handle_viewport_input(App& app, double dt) {
     if (io.WantCaptureMouse) return;
     // Zoom at the cursor.
     if (io.MouseWheel != 0) {
-        const double old = e.zoom;
-        e.zoom = std::clamp(e.zoom * std::pow(1.15, io.MouseWheel), 0.25, 8.0);
-        e.cam_x = ui.cursor_x - (ui.cursor_x - e.cam_x) * old / e.zoom;
-        e.cam_y = ui.cursor_y - (ui.cursor_y - e.cam_y) * old / e.zoom;
+        const double old = e.view.zoom;
+        e.view.zoom = std::clamp(e.view.zoom * std::pow(1.15, io.MouseWheel), 0.25, 8.0);
+        e.view.x = ui.cursor_x - (ui.cursor_x - e.view.x) * old / e.view.zoom;
+        e.view.y = ui.cursor_y - (ui.cursor_y - e.view.y) * old / e.view.zoom;
     }
     // Pan: middle drag, or Space + left drag.
     const bool space = ImGui::IsKeyDown(GLFW_KEY_SPACE);
     if (ImGui::IsMouseDown(2) || (space && ImGui::IsMouseDown(0))) {
-        e.cam_x -= io.MouseDelta.x / e.zoom;
-        e.cam_y -= io.MouseDelta.y / e.zoom;
+        e.view.x -= io.MouseDelta.x / e.view.zoom;
+        e.view.y -= io.MouseDelta.y / e.view.zoom;
         return;
     }
-    const double pick = 8.0 / e.zoom;
+    const double pick = 8.0 / e.view.zoom;
     if (ImGui::IsMouseClicked(0)) {
         const int hit = light_at(e, ui.cursor_x, ui.cursor_y, pick);
         if (hit >= 0) {
@@ -550,24 +546,10 @@ bool export_image(App& app, const std::string& what, const std::string& path) {
         if (what == "final") {
             save_image(path, renderer_read_final(app.renderer));
         } else if (what == "light") {
-            LightTexture blurred = box_blur(e.frame.traced, e.scene.params.blur_radius);
-            LightTexture view = shift_light_texture(blurred, app.view);
-            Image im(view.rect.w, view.rect.h);
-            for (std::size_t i = 0; i < std::size_t(im.width) * im.height; ++i) {
-                for (int k = 0; k < 3; ++k) im.rgba[i * 4 + k] = view.rgb[i * 3 + k];
-                im.rgba[i * 4 + 3] = 255;
-            }
-            save_image(path, im);
+            const LightTexture blurred = box_blur(e.frame.traced, e.scene.params.blur_radius);
+            save_image(path, light_texture_image(shift_light_texture(blurred, app.view)));
         } else {
-            Image im(app.view.w, app.view.h);
-            for (int y = 0; y < im.height; ++y)
-                for (int x = 0; x < im.width; ++x) {
-                    const std::uint8_t v = e.frame.obstacles.get(app.view.x + x, app.view.y + y) ? 255 : 0;
-                    std::uint8_t* p = im.at(x, y);
-                    p[0] = p[1] = p[2] = v;
-                    p[3] = 255;
-                }
-            save_image(path, im);
+            save_image(path, mask_image(e.frame.obstacles, app.view));
         }
     } catch (const Error& err) {
         set_status(e, err.what(), true);
@@ -577,4 +559,4 @@ bool export_image(App& app, const std::string& what, const std::string& path) {
     return true;
 }
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -9,7 +9,7 @@
 
 namespace fs = std::filesystem;
 
-namespace isolux {
+namespace isolux::app {
 
 namespace {
 
@@ -152,7 +152,7 @@ void blur_and_composite(Renderer& r, Rect view, const Params& p, const Composite
     r.ran.blur = false;
     r.ran.composite = false;
     bool light_changed = false;
-    if (r.light_dirty || r.blurred_radius != p.blur_radius) {
+    if (r.light_dirty || !r.blur_valid || stages_changed(r.blur_params, p).has(Stage::blur)) {
         // The blur runs once per retrace, like core's render_frame.
         r.ran.blur = true;
         light_changed = true;
@@ -181,11 +181,11 @@ void blur_and_composite(Renderer& r, Rect view, const Params& p, const Composite
         glDrawArrays(GL_TRIANGLES, 0, 3);
         end_query(r, 1);
         r.light_dirty = false;
-        r.blurred_radius = p.blur_radius;
+        r.blur_valid = true;
+        r.blur_params = p;
     }
     const bool same = r.composite_valid && !light_changed && !r.ran.sprites && r.composite_view == view &&
-                      r.composite_params.ambient_clarity == p.ambient_clarity &&
-                      r.composite_params.dark_unlit == p.dark_unlit && r.composite_params.mode == p.mode &&
+                      !stages_changed(r.composite_params, p).has(Stage::composite) &&
                       r.composite_show == int(o.show_light) && r.composite_split == o.split;
     if (same) return;  // nothing the composite reads changed
     r.ran.composite = true;
@@ -440,8 +440,7 @@ void renderer_draw_with_colour(Renderer& r, const Image& colour, Rect view, cons
     blur_and_composite(r, view, p, o);
 }
 
-void renderer_present(Renderer& r, int ww, int wh, double x, double y, double zoom, Rect view,
-                      float overlay_opacity) {
+void renderer_present(Renderer& r, int ww, int wh, double x, double y, double zoom, Rect view) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, ww, wh);
     glClearColor(0.08f, 0.09f, 0.11f, 1.0f);
@@ -463,7 +462,7 @@ void renderer_present(Renderer& r, int ww, int wh, double x, double y, double zo
     uniform_2f(p, "u_view_size", float(view.w), float(view.h));
     uniform_2f(p, "u_overlay_origin", float(r.overlay_rect.x), float(r.overlay_rect.y));
     uniform_2f(p, "u_overlay_size", float(std::max(1, r.overlay_rect.w)), float(std::max(1, r.overlay_rect.h)));
-    uniform_f(p, "u_overlay_opacity", r.overlay_rect.empty() ? 0.0f : overlay_opacity);
+    uniform_f(p, "u_overlay_opacity", r.overlay_rect.empty() ? 0.0f : 1.0f);
     glUniform3f(glGetUniformLocation(p, "u_background"), 0.08f, 0.09f, 0.11f);
     glBindVertexArray(r.vao);
     glDrawArrays(GL_TRIANGLES, 0, 6);
@@ -483,4 +482,4 @@ Image read_target(const GpuTarget& t) {
 Image renderer_read_final(Renderer& r) { return read_target(r.final); }
 Image renderer_read_blurred(Renderer& r) { return read_target(r.blurred); }
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -14,7 +14,7 @@
 #include "isolux/params.hpp"
 #include "isolux/world.hpp"
 
-namespace isolux {
+namespace isolux::app {
 
 struct GpuTarget {
     GLuint fbo = 0, tex = 0;
@@ -53,7 +53,8 @@ struct Renderer {
     GLuint light_tex = 0, flat_tex = 0, overlay_tex = 0;
     Rect light_rect, flat_rect, overlay_rect;
     GpuTarget color, blur_sums, blurred, final;
-    int blurred_radius = -1;
+    bool blur_valid = false;
+    Params blur_params;  // what `blurred` was made with
     bool light_dirty = true;
 
     // What the last renderer_draw ran: a pass is skipped when its inputs did
@@ -100,12 +101,12 @@ void renderer_draw(Renderer& r, Rect view, const Params& p, const CompositeOptio
 void renderer_draw_with_colour(Renderer& r, const Image& colour, Rect view, const Params& p, const CompositeOptions& o);
 
 // Draws `final` onto the window: the view's top-left at window pixel (x, y),
-// `zoom` window pixels per world pixel, overlays at `overlay_opacity`.
-void renderer_present(Renderer& r, int window_w, int window_h, double x, double y, double zoom,
-                      Rect view, float overlay_opacity);
+// `zoom` window pixels per world pixel, with the overlay image over it (each
+// overlay already blended at its own opacity by build_overlays).
+void renderer_present(Renderer& r, int window_w, int window_h, double x, double y, double zoom, Rect view);
 
 // Reads the final target back (top row first, straight alpha).
 Image renderer_read_final(Renderer& r);
 Image renderer_read_blurred(Renderer& r);  // the blurred light texture, RGB in rgba, A = 255
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -5,7 +5,7 @@
 
 #include "isolux/error.hpp"
 
-namespace isolux {
+namespace isolux::app {
 
 Script load_script(const std::filesystem::path& path) {
     std::ifstream f(path);
@@ -40,4 +40,4 @@ Script load_script(const std::filesystem::path& path) {
     return s;
 }
 
-}  // namespace isolux
+}  // namespace isolux::app

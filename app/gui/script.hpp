@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace isolux {
+namespace isolux::app {
 
 struct ScriptStep {
     std::string op;
@@ -36,4 +36,4 @@ struct Script {
 // Parses a script file; throws Error naming the file and line.
 Script load_script(const std::filesystem::path& path);
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -6,7 +6,7 @@
 
 namespace fs = std::filesystem;
 
-namespace isolux {
+namespace isolux::app {
 
 fs::path shader_folder() {
     if (const char* env = std::getenv("ISOLUX_SHADERS"); env && *env && fs::exists(fs::path(env) / "composite.frag"))
@@ -36,4 +36,4 @@ std::string shader_source(const fs::path& folder, const std::string& name) {
     return {};
 }
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace isolux {
+namespace isolux::app {
 
 struct EmbeddedShader {
     const char* name;
@@ -21,4 +21,4 @@ std::filesystem::path shader_folder();
 // embedded copy; empty when neither has it.
 std::string shader_source(const std::filesystem::path& folder, const std::string& name);
 
-}  // namespace isolux
+}  // namespace isolux::app

@@ -4,7 +4,7 @@
 
 #include <cstdlib>
 
-namespace isolux {
+namespace isolux::app {
 
 namespace {
 std::string g_glfw_error;
@@ -40,4 +40,4 @@ void close_window(GLFWwindow* w) {
     glfwTerminate();
 }
 
-}  // namespace isolux
+}  // namespace isolux::app

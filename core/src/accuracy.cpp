@@ -94,6 +94,14 @@ Params reference_params(Params p) {
     return p;
 }
 
+std::vector<const SweepPoint*> pareto_front(const std::vector<SweepPoint>& points) {
+    std::vector<const SweepPoint*> front;
+    for (const SweepPoint& p : points)
+        if (p.pareto) front.push_back(&p);
+    std::stable_sort(front.begin(), front.end(), [](auto a, auto b) { return a->lighting_ms < b->lighting_ms; });
+    return front;
+}
+
 void mark_pareto(std::vector<SweepPoint>& points) {
     std::vector<std::size_t> order(points.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -268,10 +276,7 @@ std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Swee
       << (log_x ? " (log scale)" : "") << "</text>\n"
       << "<text transform=\"translate(16," << (T + H - B) / 2
       << ") rotate(-90)\" text-anchor=\"middle\">final frame RMSE vs reference (0-255)</text>\n";
-    std::vector<const SweepPoint*> front;
-    for (const SweepPoint& p : points)
-        if (p.pareto) front.push_back(&p);
-    std::sort(front.begin(), front.end(), [](auto a, auto b) { return a->lighting_ms < b->lighting_ms; });
+    const std::vector<const SweepPoint*> front = pareto_front(points);
     if (front.size() > 1) {
         s << "<polyline fill=\"none\" stroke=\"#e07020\" stroke-width=\"1.5\" points=\"";
         for (const SweepPoint* p : front) s << fx(p->lighting_ms) << "," << fy(p->final.rmse) << " ";

@@ -148,6 +148,9 @@ json parse_json(std::string_view text, std::string_view source) {
         return json::parse(text);
     } catch (const json::parse_error& e) {
         throw Error(std::string(source) + ": malformed JSON at byte " + std::to_string(e.byte));
+    } catch (const json::exception& e) {
+        // e.g. a number beyond the range of a double (out_of_range 406)
+        throw Error(std::string(source) + ": malformed JSON (" + e.what() + ")");
     }
 }
 
@@ -160,7 +163,6 @@ struct Fields {
         throw Error(where + ": " + field + " " + what);
     }
     bool has(const char* k) const { return obj.contains(k) && !obj[k].is_null(); }
-    const json& get(const char* k) const { return obj[k]; }
 
     long long integer(const char* k, long long lo, long long hi) const {
         const json& v = obj[k];
@@ -212,44 +214,49 @@ void check_schema(const Fields& f, std::vector<std::string>* warnings) {
                                      std::to_string(schema_version) + ")");
 }
 
-const std::initializer_list<const char*> param_fields = {
-    "delta_y", "noise_window", "ray_skip", "trace_every", "area_a", "area_b", "ambient_clarity",
-    "opacity_threshold", "blur_radius", "falloff_scale", "mode", "dark_unlit", "rays"};
-
+// Reads every parameter the object holds, by the table; the rest stay at
+// their defaults.
 Params params_from(const Fields& f) {
     Params p;
-    using L = ParamLimits;
-    if (f.has("delta_y")) p.delta_y = int(f.integer("delta_y", 1, L::max_delta_y));
-    if (f.has("noise_window")) p.noise_window = int(f.integer("noise_window", 1, L::max_noise_window));
-    if (f.has("ray_skip")) p.ray_skip = int(f.integer("ray_skip", 1, L::max_ray_skip));
-    if (f.has("trace_every")) p.trace_every = int(f.integer("trace_every", 1, L::max_trace_every));
-    if (f.has("area_a")) p.area_a = int(f.integer("area_a", 0, L::max_area));
-    if (f.has("area_b")) p.area_b = int(f.integer("area_b", 0, L::max_area));
-    if (f.has("ambient_clarity")) p.ambient_clarity = f.real("ambient_clarity");
-    if (f.has("opacity_threshold")) p.opacity_threshold = f.real("opacity_threshold");
-    if (f.has("blur_radius")) p.blur_radius = int(f.integer("blur_radius", 0, L::max_blur_radius));
-    if (f.has("falloff_scale")) p.falloff_scale = f.real("falloff_scale");
-    if (f.has("mode")) p.mode = parse_mode(f.text("mode"), f.where + ": mode");
-    if (f.has("dark_unlit")) p.dark_unlit = f.boolean("dark_unlit");
-    if (f.has("rays")) p.rays = parse_rays(f.text("rays"), f.where + ": rays");
-    validate(p, f.where);
+    for (const ParamInfo& info : param_table()) {
+        const char* k = info.name;
+        if (!f.has(k)) continue;
+        double v = 0;
+        switch (info.type) {
+            case ParamType::integer: v = double(f.integer(k, (long long)info.min, (long long)info.max)); break;
+            case ParamType::real: v = f.real(k); break;
+            case ParamType::choice: v = parse_param(info, f.text(k), f.where); break;
+            case ParamType::boolean: v = f.boolean(k) ? 1 : 0; break;
+        }
+        check_param(info, v, f.where);
+        info.set(p, v);
+    }
     return p;
 }
 
 json params_json(const Params& p) {
-    return json{{"delta_y", p.delta_y},
-                {"noise_window", p.noise_window},
-                {"ray_skip", p.ray_skip},
-                {"trace_every", p.trace_every},
-                {"area_a", p.area_a},
-                {"area_b", p.area_b},
-                {"ambient_clarity", p.ambient_clarity},
-                {"opacity_threshold", p.opacity_threshold},
-                {"blur_radius", p.blur_radius},
-                {"falloff_scale", p.falloff_scale},
-                {"mode", std::string(to_string(p.mode))},
-                {"dark_unlit", p.dark_unlit},
-                {"rays", std::string(to_string(p.rays))}};
+    json j = json::object();
+    for (const ParamInfo& info : param_table()) {
+        const double v = info.get(p);
+        switch (info.type) {
+            case ParamType::integer: j[info.name] = (long long)v; break;
+            case ParamType::real: j[info.name] = v; break;
+            case ParamType::choice: j[info.name] = format_param(info, v); break;
+            case ParamType::boolean: j[info.name] = v != 0; break;
+        }
+    }
+    return j;
+}
+
+// Warns about every field of a preset object that is neither a parameter nor
+// one of `extra`.
+void warn_unknown_params(const Fields& f, std::initializer_list<const char*> extra, std::vector<std::string>* warnings) {
+    if (!warnings) return;
+    for (auto it = f.obj.begin(); it != f.obj.end(); ++it) {  // nlohmann's object is a std::map: ordered
+        bool known = find_param(it.key()) != nullptr;
+        for (const char* k : extra) known = known || it.key() == k;
+        if (!known) warnings->push_back(f.where + ": unknown field \"" + it.key() + "\" ignored");
+    }
 }
 
 std::string hex_color(const Light& l) {
@@ -288,13 +295,7 @@ Params preset_from_json(std::string_view text, std::string_view source, std::vec
     check_object(j, std::string(source));
     Fields f{j, std::string(source)};
     check_schema(f, warnings);
-    std::vector<const char*> known(param_fields);
-    known.push_back("schema_version");
-    known.push_back("name");
-    if (warnings)
-        for (auto it = j.begin(); it != j.end(); ++it)
-            if (std::find_if(known.begin(), known.end(), [&](const char* k) { return it.key() == k; }) == known.end())
-                warnings->push_back(f.where + ": unknown field \"" + it.key() + "\" ignored");
+    warn_unknown_params(f, {"schema_version", "name"}, warnings);
     return params_from(f);
 }
 
@@ -336,12 +337,7 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
         } else {
             check_object(p, src + ": preset");
             Fields pf{p, src + ": preset"};
-            std::vector<const char*> known(param_fields);
-            known.push_back("name");
-            if (warnings)
-                for (auto it = p.begin(); it != p.end(); ++it)
-                    if (std::find_if(known.begin(), known.end(), [&](const char* k) { return it.key() == k; }) == known.end())
-                        warnings->push_back(pf.where + ": unknown field \"" + it.key() + "\" ignored");
+            warn_unknown_params(pf, {"name"}, warnings);
             s.params = params_from(pf);
         }
     }
@@ -359,8 +355,8 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
             l.x = lf.real("x");
             l.y = lf.real("y");
             if (std::abs(l.x) > 1e9 || std::abs(l.y) > 1e9) lf.fail("x, y", "must be within ±1e9 pixels");
-            if (lf.has("a")) l.area_a = int(lf.integer("a", 0, ParamLimits::max_area));
-            if (lf.has("b")) l.area_b = int(lf.integer("b", 0, ParamLimits::max_area));
+            if (lf.has("a")) l.area_a = int(lf.integer("a", 0, max_area));
+            if (lf.has("b")) l.area_b = int(lf.integer("b", 0, max_area));
             if (lf.has("color") && !parse_hex_color(lf.text("color"), l.r, l.g, l.b))
                 lf.fail("color", "must be RRGGBB hex, got \"" + lf.text("color") + "\"");
             if (lf.has("intensity")) {

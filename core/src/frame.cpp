@@ -2,9 +2,10 @@
 #include "isolux/frame.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <atomic>
 #include <barrier>
+#include <cassert>
+#include <cmath>
 #include <cstring>
 #include <thread>
 
@@ -39,14 +40,20 @@ Rect camera_view(const Camera& c, const World& w) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using TracedLight = FrameCache::TracedLight;
 
+double ms_between(Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// Times one stage into the report for as long as it lives.
 struct Timer {
     FrameReport& report;
     Stage stage;
     Clock::time_point start = Clock::now();
     ~Timer() {
         report.ran[int(stage)] = true;
-        report.ms[int(stage)] += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        report.ms[int(stage)] += ms_between(start, Clock::now());
     }
 };
 
@@ -62,249 +69,313 @@ Rect bounding(Rect a, Rect b) {
     return {x0, y0, x1 - x0, y1 - y0};
 }
 
-bool same_obstacle_params(const Params& a, const Params& b) {
-    return a.delta_y == b.delta_y && a.noise_window == b.noise_window && a.opacity_threshold == b.opacity_threshold;
+// Whether a parameter that `stage` reads changed from `before` to `now`.
+bool params_changed_for(Stage stage, const Params& before, const Params& now) {
+    return stages_changed(before, now).has(stage);
 }
 
-bool same_trace_params(const Params& a, const Params& b) {
-    return a.area_a == b.area_a && a.area_b == b.area_b && a.ray_skip == b.ray_skip && a.rays == b.rays &&
-           a.mode == b.mode && a.falloff_scale == b.falloff_scale;
+// Runs `work` on `count` threads, the caller's among them, and waits for all.
+template <class Work>
+void run_on_threads(int count, Work& work) {
+    std::vector<std::jthread> pool;
+    for (int id = 1; id < count; ++id) pool.emplace_back([&work] { work(); });
+    work();
 }
 
-bool same_composite_params(const Params& a, const Params& b) {
-    return a.ambient_clarity == b.ambient_clarity && a.dark_unlit == b.dark_unlit && a.mode == b.mode;
+// ---------------------------------------------------------------- the steps
+
+// The view's sprites (drawn by the GPU in the app).
+void draw_view_sprites(FrameState& st, const World& world, Rect view, bool world_changed, FrameReport& rep) {
+    if (!st.options.cpu_sprites) return;
+    if (!world_changed && st.view == view && st.sprites.width == view.w) return;
+    Timer t{rep, Stage::sprites};
+    st.sprites = render_sprites(world.tileset, world.placed, view);
 }
 
-}  // namespace
-
-FrameReport render_frame(FrameState& st, const World& world, const Scene& scene, const Camera& camera, long frame) {
-    FrameReport rep;
-    const Params& p = scene.params;
-    const Rect view = camera_view(camera, world);
-    const bool world_changed = st.world_revision != world.revision;
-
-    // The view's sprites (drawn by the GPU in the app).
-    if (st.options.cpu_sprites && (world_changed || !(st.view == view) || st.sprites.width != view.w)) {
-        Timer t{rep, Stage::sprites};
-        st.sprites = render_sprites(world.tileset, world.placed, view);
-    }
-
-    // Which lights could light the texture, and the obstacles their rays cross.
-    const Rect tex_rect = grow(view, st.options.margin);
+// The light texture's rectangle and every light area that meets it: the
+// obstacles their rays can cross.
+Rect region_lights_need(const World& world, const Scene& scene, Rect tex_rect) {
     Rect needed = tex_rect;
     for (const Light& l : scene.lights) {
-        const Rect area = light_area(l, p);
+        const Rect area = light_area(l, scene.params);
         if (!intersect(area, tex_rect).empty()) needed = bounding(needed, area);
     }
-    needed = intersect(needed, world.placed.bounds);
+    return intersect(needed, world.placed.bounds);
+}
 
-    // The obstacle map's content changes only with the world, Δy, n or the
-    // threshold; a larger region is the same map over more pixels (the build
-    // is exact per region), so it alone does not force a retrace.
-    const bool obstacles_changed = world_changed || !st.has_obstacles || !same_obstacle_params(st.obstacle_params, p);
-    if (obstacles_changed || !covers(st.obstacle_region, needed)) {
-        Timer t{rep, Stage::obstacle_map};
-        // Some room around what is needed, so a panning camera does not
-        // rebuild every frame; never more than the map.
-        st.obstacle_region = needed.empty() ? needed : intersect(grow(needed, 256), world.placed.bounds);
-        st.obstacles = build_obstacle_map(world.tileset, world.placed, p, st.obstacle_region);
-        st.opacity.clear();
-        for (const Sprite& s : world.tileset.sprites)
-            st.opacity.push_back(opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)));
-        st.obstacle_params = p;
-        st.world_revision = world.revision;
-        st.has_obstacles = true;
-    }
+// Paper 3.1: the obstacle map and the sprites' opacity maps. Their content
+// changes only with the world, Δy, n or the threshold; a larger region is the
+// same map over more pixels (the build is exact per region), so it alone does
+// not force a retrace. Returns whether the content changed.
+bool update_obstacle_map(FrameState& st, const World& world, const Params& p, Rect needed, bool world_changed,
+                         FrameReport& rep) {
+    FrameCache& c = st.cache;
+    const bool changed =
+        world_changed || !c.has_obstacles || params_changed_for(Stage::obstacle_map, c.obstacle_params, p);
+    if (!changed && covers(c.obstacle_region, needed)) return false;
+    Timer t{rep, Stage::obstacle_map};
+    // Some room around what is needed, so a panning camera does not rebuild
+    // every frame; never more than the map.
+    c.obstacle_region = needed.empty() ? needed : intersect(grow(needed, 256), world.placed.bounds);
+    st.obstacles = build_obstacle_map(world.tileset, world.placed, p, c.obstacle_region);
+    st.opacity.clear();
+    for (const Sprite& s : world.tileset.sprites)
+        st.opacity.push_back(opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)));
+    c.obstacle_params = p;
+    c.world_revision = world.revision;
+    c.has_obstacles = true;
+    return changed;
+}
 
-    const bool must = !st.has_trace || obstacles_changed || !same_trace_params(st.trace_params, p) ||
-                      st.cache_corrected != st.options.opacity_correction;
-    const bool due = frame % p.trace_every == 0 &&
-                     (st.trace_lights != scene.lights || !covers(st.traced.rect, view));
-    const bool retrace = must || due;
-    if (retrace) {
-        // Reuse the texture: only the rectangles lights drew into last time
-        // hold anything to clear (in the bands below, in parallel).
-        std::vector<Rect> to_clear;
-        if (!(st.traced.rect == tex_rect) || st.traced.rgb.size() != std::size_t(tex_rect.w) * tex_rect.h * 3) {
-            st.traced = LightTexture(tex_rect);
+// Paper 3.2: rays are traced once every l frames. `must`: nothing traced can
+// be reused (obstacles or tracing parameters changed).
+struct TraceDecision {
+    bool must = false, retrace = false;
+};
+
+TraceDecision decide_retrace(const FrameState& st, const Scene& scene, Rect view, long frame, bool obstacles_changed) {
+    const FrameCache& c = st.cache;
+    const Params& p = scene.params;
+    TraceDecision d;
+    d.must = !c.has_trace || obstacles_changed || params_changed_for(Stage::trace, c.trace_params, p) ||
+             c.lights_corrected != st.options.opacity_correction;
+    const bool due = frame % p.trace_every == 0 && (c.trace_lights != scene.lights || !covers(st.traced.rect, view));
+    d.retrace = d.must || due;
+    return d;
+}
+
+// The lights whose area meets the texture, each with its cached trace when
+// one is still valid; `todo` lists those to trace now.
+struct LightPlan {
+    std::vector<const Light*> lights;
+    std::vector<TracedLight> traced;  // by index in `lights`
+    std::vector<std::size_t> todo;
+};
+
+LightPlan plan_lights(const FrameCache& c, const Scene& scene, Rect tex_rect, FrameReport& rep) {
+    const Params& p = scene.params;
+    LightPlan plan;
+    for (const Light& l : scene.lights)
+        if (!intersect(light_area(l, p), tex_rect).empty()) plan.lights.push_back(&l);
+    plan.traced.resize(plan.lights.size());
+    for (std::size_t i = 0; i < plan.lights.size(); ++i) {
+        const Light& l = *plan.lights[i];
+        TracedLight& t = plan.traced[i];
+        t.cx = std::int64_t(std::floor(l.x));
+        t.cy = std::int64_t(std::floor(l.y));
+        t.a = light_a(l, p);
+        t.b = light_b(l, p);
+        const Rect clip = intersect(light_area(l, p), tex_rect);
+        auto same = [&](const TracedLight& old) {
+            return old.cx == t.cx && old.cy == t.cy && old.a == t.a && old.b == t.b && old.mask.clip == clip;
+        };
+        // Lights mostly keep their place in the list: look there first.
+        const TracedLight* hit = nullptr;
+        if (i < c.lights.size() && same(c.lights[i])) hit = &c.lights[i];
+        for (std::size_t j = 0; !hit && j < c.lights.size(); ++j)
+            if (same(c.lights[j])) hit = &c.lights[j];
+        if (hit) {
+            t.mask = hit->mask;
+            ++rep.lights_reused;
         } else {
-            for (const FrameState::TracedLight& c : st.light_cache) to_clear.push_back(c.mask.clip);
+            t.mask.clip = clip;
+            plan.todo.push_back(i);
         }
-        const bool had_lights = !st.light_cache.empty();
-        const bool new_texture = to_clear.empty() && !(had_lights && st.traced.rect == tex_rect);
-        if (must) st.light_cache.clear();  // obstacles or tracing parameters changed: nothing is reusable
-        // The lights whose area meets the texture; the others have nothing to trace.
-        std::vector<const Light*> lights;
-        for (const Light& l : scene.lights)
-            if (!intersect(light_area(l, p), tex_rect).empty()) lights.push_back(&l);
-        std::vector<FrameState::TracedLight> traced(lights.size());
-        std::vector<std::size_t> todo;
-        for (std::size_t i = 0; i < lights.size(); ++i) {
-            const Light& l = *lights[i];
-            FrameState::TracedLight& t = traced[i];
-            t.cx = std::int64_t(std::floor(l.x));
-            t.cy = std::int64_t(std::floor(l.y));
-            t.a = light_a(l, p);
-            t.b = light_b(l, p);
-            const Rect clip = intersect(light_area(l, p), tex_rect);
-            auto same = [&](const FrameState::TracedLight& c) {
-                return c.cx == t.cx && c.cy == t.cy && c.a == t.a && c.b == t.b && c.mask.clip == clip;
-            };
-            // Lights mostly keep their place in the list: look there first.
-            const FrameState::TracedLight* hit = nullptr;
-            if (i < st.light_cache.size() && same(st.light_cache[i])) hit = &st.light_cache[i];
-            for (std::size_t j = 0; !hit && j < st.light_cache.size(); ++j)
-                if (same(st.light_cache[j])) hit = &st.light_cache[j];
-            if (hit) {
-                t.mask = hit->mask;
-                ++rep.lights_reused;
-            } else {
-                t.mask.clip = clip;
-                todo.push_back(i);
-            }
+    }
+    return plan;
+}
+
+// Reuses the light texture when it has the right rectangle: only the areas
+// lights drew into last time hold anything, and they are cleared in
+// trace_and_accumulate. Returns those areas; `fresh` says the texture is new.
+std::vector<Rect> prepare_texture(FrameState& st, Rect tex_rect, bool& fresh) {
+    std::vector<Rect> to_clear;
+    if (!(st.traced.rect == tex_rect) || st.traced.rgb.size() != std::size_t(tex_rect.w) * tex_rect.h * 3) {
+        st.traced = LightTexture(tex_rect);
+    } else {
+        for (const TracedLight& c : st.cache.lights) to_clear.push_back(c.mask.clip);
+    }
+    fresh = to_clear.empty() && !(!st.cache.lights.empty() && st.traced.rect == tex_rect);
+    return to_clear;
+}
+
+// Algorithm 2 for every light in plan.todo, the opacity correction on each,
+// then every light drawn into the texture. One set of threads does both
+// phases, meeting at a barrier in between: workers take the next light as
+// they finish one (lights differ in cost), then bands of rows (lights are not
+// spread evenly over the rows). The saturating sum is the same in any order,
+// so the bytes do not depend on the thread count.
+void trace_and_accumulate(FrameState& st, const World& world, const Params& p, LightPlan& plan,
+                          const std::vector<Rect>& to_clear, Rect tex_rect, FrameReport& rep) {
+    const int threads_wanted =
+        st.options.threads > 0 ? st.options.threads : std::max(1, int(std::thread::hardware_concurrency()));
+    const bool correct = st.options.opacity_correction && p.mode != Mode::flat;
+    const std::size_t n = plan.todo.size();
+    std::vector<double> trace_ms(n, 0), correct_ms(n, 0);
+    std::vector<int> touched(n, 0);
+
+    std::atomic<std::size_t> next_light{0};
+    auto trace_lights = [&] {
+        for (std::size_t k; (k = next_light++) < n;) {
+            TracedLight& tl = plan.traced[plan.todo[k]];
+            const auto t0 = Clock::now();
+            const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
+            tl.mask = trace_light(st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
+                                  area_is_clear(st.obstacles, area));
+            const auto t1 = Clock::now();
+            if (correct) touched[k] = correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
+            trace_ms[k] = ms_between(t0, t1);
+            correct_ms[k] = ms_between(t1, Clock::now());
         }
-        const int threads_wanted = st.options.threads > 0 ? st.options.threads
-                                                          : std::max(1, int(std::thread::hardware_concurrency()));
-        // One pass per light: trace, then the opacity correction. Workers take
-        // the next light as they finish one (lights differ in cost).
-        const bool correct = st.options.opacity_correction && p.mode != Mode::flat;
-        std::vector<double> trace_ms(todo.size(), 0), correct_ms(todo.size(), 0);
-        std::vector<int> touched(todo.size(), 0);
-        std::atomic<std::size_t> next{0};
-        auto worker = [&] {
-            for (std::size_t k; (k = next++) < todo.size();) {
-                FrameState::TracedLight& tl = traced[todo[k]];
-                const auto t0 = Clock::now();
-                const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
-                tl.mask = trace_light(st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
-                                      area_is_clear(st.obstacles, area));
-                const auto t1 = Clock::now();
-                if (correct) touched[k] = correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
-                trace_ms[k] = std::chrono::duration<double, std::milli>(t1 - t0).count();
-                correct_ms[k] = std::chrono::duration<double, std::milli>(Clock::now() - t1).count();
-            }
-        };
-        // Then the lights are drawn into the light texture (part of
-        // tracing): workers take bands of rows. The saturating sum is the
-        // same in any order, so the bytes do not depend on the split. One set
-        // of threads does both, meeting at a barrier in between.
-        // More bands than threads, taken as threads come free: lights are not
-        // spread evenly over the rows.
-        const int bands = std::max(1, std::min(threads_wanted * 8, tex_rect.h / 32));
-        std::atomic<int> next_band{0};
-        auto band = [&](int k) {
-            const int y0 = tex_rect.y + int(std::int64_t(tex_rect.h) * k / bands);
-            const int y1 = tex_rect.y + int(std::int64_t(tex_rect.h) * (k + 1) / bands);
-            for (const Rect& c : to_clear) {
-                const Rect z = intersect(intersect(c, tex_rect), Rect{tex_rect.x, y0, tex_rect.w, y1 - y0});
-                for (int y = z.y; y < z.y + z.h; ++y)
-                    std::memset(&st.traced.rgb[(std::size_t(y - tex_rect.y) * tex_rect.w + (z.x - tex_rect.x)) * 3], 0,
-                                std::size_t(z.w) * 3);
-            }
-            for (std::size_t i = 0; i < lights.size(); ++i)
-                accumulate_light(st.traced, traced[i].mask, *lights[i], p, y0, y1);
-        };
-        // Threads only when there is enough work to pay for starting them.
-        long work = 0;
-        for (std::size_t k : todo) work += long(traced[k].mask.clip.w) * traced[k].mask.clip.h * 2;
-        for (const FrameState::TracedLight& t : traced) work += long(t.mask.clip.w) * t.mask.clip.h;
-        const int pool_size =
-            work < 200000 ? 1 : std::max(1, std::min(threads_wanted, std::max(int(todo.size()), bands)));
-        const auto t0 = Clock::now();
-        Clock::time_point t_traced;
-        std::barrier sync(pool_size, [&]() noexcept { t_traced = Clock::now(); });
-        auto run = [&] {
-            worker();
-            sync.arrive_and_wait();
-            for (int k; (k = next_band++) < bands;) band(k);
-        };
-        std::vector<std::thread> pool;
-        for (int id = 1; id < pool_size; ++id) pool.emplace_back(run);
-        run();
-        for (std::thread& th : pool) th.join();
-        const auto t_done = Clock::now();
-        if (!todo.empty()) {
-            // Wall time, split between the two stages in proportion to their work.
-            const double wall = std::chrono::duration<double, std::milli>(t_traced - t0).count();
-            double tr = 0, co = 0;
-            for (std::size_t k = 0; k < todo.size(); ++k) tr += trace_ms[k], co += correct_ms[k];
-            const double share = tr + co > 0 ? tr / (tr + co) : 1.0;
-            rep.ms[int(Stage::trace)] += wall * share;
-            if (correct) {
-                rep.ran[int(Stage::opacity_correction)] = true;
-                rep.ms[int(Stage::opacity_correction)] += wall * (1 - share);
-            }
-            rep.lights_traced = int(todo.size());
-            for (int n : touched) rep.sprites_corrected += n;
+    };
+    const int bands = std::max(1, std::min(threads_wanted * 8, tex_rect.h / 32));
+    std::atomic<int> next_band{0};
+    auto accumulate_band = [&](int k) {
+        const int y0 = tex_rect.y + int(std::int64_t(tex_rect.h) * k / bands);
+        const int y1 = tex_rect.y + int(std::int64_t(tex_rect.h) * (k + 1) / bands);
+        for (const Rect& c : to_clear) {
+            const Rect z = intersect(intersect(c, tex_rect), Rect{tex_rect.x, y0, tex_rect.w, y1 - y0});
+            for (int y = z.y; y < z.y + z.h; ++y)
+                std::memset(&st.traced.rgb[(std::size_t(y - tex_rect.y) * tex_rect.w + (z.x - tex_rect.x)) * 3], 0,
+                            std::size_t(z.w) * 3);
         }
-        rep.ran[int(Stage::trace)] = true;
-        rep.ms[int(Stage::trace)] += std::chrono::duration<double, std::milli>(t_done - t_traced).count();
-        // What changed: the areas of lights traced now and of lights gone or
-        // moved since (all of it when the texture itself is new).
-        Rect dirty;
-        if (!had_lights && lights.empty()) dirty = Rect{};
-        else if (new_texture || must) dirty = tex_rect;
-        else {
-            for (std::size_t k : todo) dirty = bounding(dirty, intersect(traced[k].mask.clip, tex_rect));
-            for (const FrameState::TracedLight& old : st.light_cache) {
-                bool kept = false;
-                for (const FrameState::TracedLight& now : traced)
-                    kept = kept || (now.cx == old.cx && now.cy == old.cy && now.a == old.a && now.b == old.b);
-                if (!kept) dirty = bounding(dirty, intersect(old.mask.clip, tex_rect));
-            }
-            if (st.trace_lights.size() == scene.lights.size() && todo.empty() && dirty.empty()) {
-                // Only colours or intensities changed: the lights' own areas.
-                for (const FrameState::TracedLight& now : traced) dirty = bounding(dirty, intersect(now.mask.clip, tex_rect));
-            }
+        for (std::size_t i = 0; i < plan.lights.size(); ++i)
+            accumulate_light(st.traced, plan.traced[i].mask, *plan.lights[i], p, y0, y1);
+    };
+
+    // Threads only when there is enough work to pay for starting them.
+    long work = 0;
+    for (std::size_t k : plan.todo) work += long(plan.traced[k].mask.clip.w) * plan.traced[k].mask.clip.h * 2;
+    for (const TracedLight& t : plan.traced) work += long(t.mask.clip.w) * t.mask.clip.h;
+    const int pool_size = work < 200000 ? 1 : std::max(1, std::min(threads_wanted, std::max(int(n), bands)));
+    const auto t0 = Clock::now();
+    Clock::time_point t_traced;
+    std::barrier sync(pool_size, [&]() noexcept { t_traced = Clock::now(); });
+    auto run = [&] {
+        trace_lights();
+        sync.arrive_and_wait();
+        for (int k; (k = next_band++) < bands;) accumulate_band(k);
+    };
+    run_on_threads(pool_size, run);
+    const auto t_done = Clock::now();
+
+    if (n > 0) {
+        // Wall time, split between the two stages in proportion to their work.
+        const double wall = ms_between(t0, t_traced);
+        double tr = 0, co = 0;
+        for (std::size_t k = 0; k < n; ++k) tr += trace_ms[k], co += correct_ms[k];
+        const double share = tr + co > 0 ? tr / (tr + co) : 1.0;
+        rep.ms[int(Stage::trace)] += wall * share;
+        if (correct) {
+            rep.ran[int(Stage::opacity_correction)] = true;
+            rep.ms[int(Stage::opacity_correction)] += wall * (1 - share);
         }
-        rep.dirty = dirty;
-        st.light_cache = std::move(traced);
-        st.cache_corrected = st.options.opacity_correction;
-        st.has_trace = true;
-        st.trace_params = p;
-        st.trace_lights = scene.lights;
-        st.blurred_radius = -1;
+        rep.lights_traced = int(n);
+        for (int t : touched) rep.sprites_corrected += t;
+    }
+    rep.ran[int(Stage::trace)] = true;
+    rep.ms[int(Stage::trace)] += ms_between(t_traced, t_done);
+}
+
+// What changed in the texture: the areas of lights traced now and of lights
+// gone or moved since (all of it when the texture itself is new).
+Rect dirty_region(const FrameCache& c, const Scene& scene, const LightPlan& plan, Rect tex_rect, bool fresh,
+                  bool must, bool had_lights) {
+    if (!had_lights && plan.lights.empty()) return {};
+    if (fresh || must) return tex_rect;
+    Rect dirty;
+    for (std::size_t k : plan.todo) dirty = bounding(dirty, intersect(plan.traced[k].mask.clip, tex_rect));
+    for (const TracedLight& old : c.lights) {
+        bool kept = false;
+        for (const TracedLight& now : plan.traced)
+            kept = kept || (now.cx == old.cx && now.cy == old.cy && now.a == old.a && now.b == old.b);
+        if (!kept) dirty = bounding(dirty, intersect(old.mask.clip, tex_rect));
+    }
+    if (c.trace_lights.size() == scene.lights.size() && plan.todo.empty() && dirty.empty()) {
+        // Only colours or intensities changed: the lights' own areas.
+        for (const TracedLight& now : plan.traced) dirty = bounding(dirty, intersect(now.mask.clip, tex_rect));
+    }
+    return dirty;
+}
+
+// Keeps this trace for the next frames, and invalidates the blur.
+void keep_trace(FrameState& st, const Scene& scene, LightPlan& plan, FrameReport& rep) {
+    FrameCache& c = st.cache;
+    c.lights = std::move(plan.traced);
+    c.lights_corrected = st.options.opacity_correction;
+    c.has_trace = true;
+    c.trace_params = scene.params;
+    c.trace_lights = scene.lights;
+    c.has_blur = false;
+    rep.retraced = !rep.dirty.empty();
+    if (!rep.retraced) {
         // No light now and none before: the texture stayed empty, nothing to
         // upload or blur again.
-        rep.retraced = !dirty.empty();
-        if (!rep.retraced) {
-            rep.ran[int(Stage::trace)] = false;
-            rep.ms[int(Stage::trace)] = 0;
-            if (!(st.blurred.rect == st.traced.rect)) st.blurred = st.traced;  // all zero
-            st.blurred_radius = p.blur_radius;
-        }
+        rep.ran[int(Stage::trace)] = false;
+        rep.ms[int(Stage::trace)] = 0;
+        if (!(c.blurred.rect == st.traced.rect)) c.blurred = st.traced;  // all zero
+        c.has_blur = true;
+        c.blur_params = scene.params;
     }
-    if (!st.options.cpu_blur_and_composite) {
-        st.view = view;
-        return rep;
-    }
+}
 
+// Paper 3.2 and Algorithm 3 on the CPU: the blur, the inverse translation of
+// the world-anchored texture to the view, and the composite.
+void update_view(FrameState& st, const Params& p, Rect view, bool world_changed, FrameReport& rep) {
+    FrameCache& c = st.cache;
     bool light_changed = false;
-    if (st.blurred_radius != p.blur_radius) {
+    if (!c.has_blur || params_changed_for(Stage::blur, c.blur_params, p)) {
         if (p.blur_radius > 0) {
             Timer t{rep, Stage::blur};
-            st.blurred = box_blur(st.traced, p.blur_radius);
+            c.blurred = box_blur(st.traced, p.blur_radius);
         } else {
-            st.blurred = st.traced;
+            c.blurred = st.traced;
         }
-        st.blurred_radius = p.blur_radius;
+        c.has_blur = true;
+        c.blur_params = p;
         light_changed = true;
     }
     if (light_changed || !(st.light.rect == view)) {
         // Between retraces this is the paper's inverse translation: the
         // world-anchored texture read at the moved view.
         Timer t{rep, Stage::shift};
-        st.light = shift_light_texture(st.blurred, view);
+        st.light = shift_light_texture(c.blurred, view);
         light_changed = true;
     }
-
-    if (light_changed || !st.has_final || !(st.view == view) || world_changed ||
-        !same_composite_params(st.composite_params, p)) {
+    if (light_changed || !c.has_final || !(st.view == view) || world_changed ||
+        params_changed_for(Stage::composite, c.composite_params, p)) {
         Timer t{rep, Stage::composite};
         st.final = composite(st.sprites, view, st.light, p);
-        st.composite_params = p;
-        st.has_final = true;
+        c.composite_params = p;
+        c.has_final = true;
     }
+}
+
+}  // namespace
+
+FrameReport render_frame(FrameState& st, const World& world, const Scene& scene, const Camera& camera, long frame) {
+    assert(frame >= 0 && st.options.margin >= 0 && st.options.threads >= 0);
+    validate(scene.params, "scene parameters");  // an Error here, not a division by zero below
+    FrameReport rep;
+    const Rect view = camera_view(camera, world);
+    const Rect tex_rect = grow(view, st.options.margin);
+    const bool world_changed = st.cache.world_revision != world.revision;
+
+    draw_view_sprites(st, world, view, world_changed, rep);
+    const Rect needed = region_lights_need(world, scene, tex_rect);
+    const bool obstacles_changed = update_obstacle_map(st, world, scene.params, needed, world_changed, rep);
+    const TraceDecision trace = decide_retrace(st, scene, view, frame, obstacles_changed);
+    if (trace.retrace) {
+        bool fresh = false;
+        const std::vector<Rect> to_clear = prepare_texture(st, tex_rect, fresh);
+        const bool had_lights = !st.cache.lights.empty();
+        if (trace.must) st.cache.lights.clear();  // nothing traced is reusable
+        LightPlan plan = plan_lights(st.cache, scene, tex_rect, rep);
+        trace_and_accumulate(st, world, scene.params, plan, to_clear, tex_rect, rep);
+        rep.dirty = dirty_region(st.cache, scene, plan, tex_rect, fresh, trace.must, had_lights);
+        keep_trace(st, scene, plan, rep);
+    }
+    if (st.options.cpu_blur_and_composite) update_view(st, scene.params, view, world_changed, rep);
     st.view = view;
     return rep;
 }

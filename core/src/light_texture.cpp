@@ -79,4 +79,13 @@ LightTexture shift_light_texture(const LightTexture& traced, Rect view) {
     return out;
 }
 
+Image light_texture_image(const LightTexture& tex) {
+    Image out(tex.rect.w, tex.rect.h);
+    for (std::size_t i = 0, n = std::size_t(out.width) * out.height; i < n; ++i) {
+        for (int k = 0; k < 3; ++k) out.rgba[i * 4 + k] = tex.rgb[i * 3 + k];
+        out.rgba[i * 4 + 3] = 255;
+    }
+    return out;
+}
+
 }  // namespace isolux

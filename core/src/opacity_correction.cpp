@@ -26,10 +26,7 @@ int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const st
         const Rect r = intersect({in.x, in.y, op.width, op.height}, clip);
         if (r.empty()) continue;
         ++touched;
-        // "Stands": where the sprite meets the ground (its anchor), not its
-        // top or centre: a tall tree behind a light stands above it even when
-        // its canopy reaches below the light's centre on screen.
-        const bool added = in.ground_y < mask.cy;
+        const bool added = opacity_map_added(in, mask.cy);
         for (int y = r.y; y < r.y + r.h; ++y) {
             const std::uint8_t* src = &op.bits[std::size_t(y - in.y) * op.width + (r.x - in.x)];
             std::uint8_t* dst = &mask.value[std::size_t(y - clip.y) * clip.w + (r.x - clip.x)];

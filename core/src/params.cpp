@@ -1,6 +1,10 @@
+// The parameter table (params.hpp) and everything that only reads it.
 #include "isolux/params.hpp"
 
+#include <cassert>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "isolux/error.hpp"
@@ -8,136 +12,215 @@
 namespace isolux {
 
 namespace {
-void check_int(std::string_view source, const char* field, int v, int lo, int hi) {
-    if (v < lo || v > hi)
-        throw Error(std::string(source) + ": " + field + " = " + std::to_string(v) +
-                    " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+
+constexpr StageSet obstacle_map = stages_from(Stage::obstacle_map);
+constexpr StageSet trace = stages_from(Stage::trace);
+constexpr StageSet blur = stages_from(Stage::blur);
+constexpr StageSet composite = stages_from(Stage::composite);
+constexpr StageSet nothing = {};
+
+constexpr const char* obstacle_group = "obstacle map (paper 3.1)";
+constexpr const char* trace_group = "tracing (paper 3.2)";
+constexpr const char* shade_group = "shading (paper 3.2, Algorithm 3)";
+
+#define ISOLUX_FIELD(f) [](const Params& p) { return double(p.f); }, [](Params& p, double v) { p.f = decltype(p.f)(v); }
+
+// name, flag, old flag, label, symbol, group, type, min, max, min open,
+// slider min, slider max, logarithmic, choices, help, re-runs, field.
+const ParamInfo table[] = {
+    {"delta_y", "--delta-y", nullptr, "delta y", "Δy", obstacle_group, ParamType::integer, 1, 4096, false, 1, 128,
+     false, {}, "How many rows Algorithm 1 reads on each sprite, ending at its lowest opaque row (paper 3.1: 25 for "
+     "128-px sprites).", obstacle_map, ISOLUX_FIELD(delta_y)},
+    {"noise_window", "--noise-window", nullptr, "noise window", "n", obstacle_group, ParamType::integer, 1, 255, false,
+     1, 16, false, {}, "The box noise filter's window: a pixel is cleared when its n x n window holds fewer than n "
+     "obstacle pixels (paper 3.1).", obstacle_map, ISOLUX_FIELD(noise_window)},
+    {"opacity_threshold", "--opacity-threshold", nullptr, "opacity threshold", "", obstacle_group, ParamType::real, 0,
+     1, false, 0, 1, false, {}, "Alpha above this is opaque, for the opacity maps and Algorithm 1.", obstacle_map,
+     ISOLUX_FIELD(opacity_threshold)},
+    {"area_a", "--area-a", nullptr, "area a", "a", trace_group, ParamType::integer, 0, max_area, false, 0, 512, false,
+     {}, "A light's half-width in pixels; its area is (2a+1) x (2b+1) (paper 3.2).", trace, ISOLUX_FIELD(area_a)},
+    {"area_b", "--area-b", nullptr, "area b", "b", trace_group, ParamType::integer, 0, max_area, false, 0, 512, false,
+     {}, "A light's half-height in pixels (paper 3.2).", trace, ISOLUX_FIELD(area_b)},
+    {"ray_skip", "--ray-skip", nullptr, "ray skip", "k", trace_group, ParamType::integer, 1, 1 << 20, false, 1, 32,
+     true, {}, "Trace every k-th border ray; the gaps of skipped rays are blurred (paper 3.2).", trace,
+     ISOLUX_FIELD(ray_skip)},
+    {"trace_every", "--trace-every", nullptr, "l frames", "l", trace_group, ParamType::integer, 1, 10000, false, 1, 30,
+     false, {}, "Rays are traced once every l frames; in between the light texture is shifted with the camera "
+     "(paper 3.2). Walk the character (WASD) to see it.", nothing, ISOLUX_FIELD(trace_every)},
+    {"falloff_scale", "--falloff-scale", nullptr, "falloff scale", "", trace_group, ParamType::real, 0, 1e6, true,
+     0.25, 64, true, {}, "i = 255 / (1 + max(|dx|,|dy|) / falloff scale). 1 is the paper's function; larger spreads "
+     "the light.", trace, ISOLUX_FIELD(falloff_scale)},
+    {"mode", "--mode", nullptr, "mode", "", trace_group, ParamType::choice, 0, 2, false, 0, 2, false,
+     {"light", "shadow", "flat"}, "light: rays stop at obstacles (the paper). shadow: paint what lies beyond the "
+     "first obstacle (paper 4). flat: no obstacles, falloff only (Figure 10b).", trace, ISOLUX_FIELD(mode)},
+    {"rays", "--rays", nullptr, "rays", "", trace_group, ParamType::choice, 0, 1, false, 0, 1, false,
+     {"border", "every_pixel"}, "border: a ray to each border pixel (Algorithm 2). every_pixel: a ray to every pixel "
+     "of the area, the paper's 4ab rays; the accuracy reference, slow.", trace, ISOLUX_FIELD(rays)},
+    {"blur_radius", "--blur-radius", "--blur", "blur radius", "", shade_group, ParamType::integer, 0, 255, false, 0,
+     16, false, {}, "Box blur of the light texture, in pixels (paper 3.2).", blur, ISOLUX_FIELD(blur_radius)},
+    {"ambient_clarity", "--ambient-clarity", "--ambient", "ambient clarity", "", shade_group, ParamType::real, 0, 1,
+     false, 0, 1, false, {}, "Algorithm 3's ambientClarity: texture x sqrt(c) + luminance x light / (c^2 + 0.1) "
+     "(paper 4: 0.4).", composite, ISOLUX_FIELD(ambient_clarity)},
+    {"dark_unlit", "--dark-unlit", nullptr, "dark unlit", "", shade_group, ParamType::boolean, 0, 1, false, 0, 1,
+     false, {}, "Algorithm 3 variant (paper 4): the texture factor is multiplied by the light, so what no ray "
+     "reaches is black.", composite, ISOLUX_FIELD(dark_unlit)},
+};
+
+#undef ISOLUX_FIELD
+
+std::string number(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    // The shortest text that reads back to the same double.
+    for (int digits = 1; digits <= 17; ++digits) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%.*g", digits, x);
+        if (std::strtod(b, nullptr) == x) return b;
+    }
+    return buf;
 }
-void check_real(std::string_view source, const char* field, double v, double lo, double hi,
-                bool open_low = false) {
-    bool bad = !std::isfinite(v) || v > hi || (open_low ? v <= lo : v < lo);
-    if (bad)
-        throw Error(std::string(source) + ": " + field + " = " + std::to_string(v) +
-                    " is out of range " + (open_low ? "(" : "[") + std::to_string(lo) + ", " +
-                    std::to_string(hi) + "]");
-}
+
 }  // namespace
 
-void validate(const Params& p, std::string_view source) {
-    using L = ParamLimits;
-    check_int(source, "delta_y", p.delta_y, 1, L::max_delta_y);
-    check_int(source, "noise_window", p.noise_window, 1, L::max_noise_window);
-    check_int(source, "ray_skip", p.ray_skip, 1, L::max_ray_skip);
-    check_int(source, "trace_every", p.trace_every, 1, L::max_trace_every);
-    check_int(source, "area_a", p.area_a, 0, L::max_area);
-    check_int(source, "area_b", p.area_b, 0, L::max_area);
-    check_real(source, "ambient_clarity", p.ambient_clarity, 0.0, 1.0);
-    check_real(source, "opacity_threshold", p.opacity_threshold, 0.0, 1.0);
-    check_int(source, "blur_radius", p.blur_radius, 0, L::max_blur_radius);
-    check_real(source, "falloff_scale", p.falloff_scale, 0.0, L::max_falloff_scale, true);
+std::span<const ParamInfo> param_table() { return table; }
+
+const ParamInfo* find_param(std::string_view name) {
+    for (const ParamInfo& info : table)
+        if (name == info.name) return &info;
+    return nullptr;
 }
 
-std::string_view to_string(Mode m) {
-    switch (m) {
-        case Mode::light: return "light";
-        case Mode::shadow: return "shadow";
-        case Mode::flat: return "flat";
+double param_default(const ParamInfo& info) { return info.get(Params{}); }
+
+int choice_count(const ParamInfo& info) {
+    int n = 0;
+    while (n < int(info.choices.size()) && info.choices[n]) ++n;
+    return n;
+}
+
+std::string param_range_text(const ParamInfo& info) {
+    switch (info.type) {
+        case ParamType::choice: {
+            std::string s;
+            for (int i = 0; i < choice_count(info); ++i) {
+                if (i) s += ", ";
+                s += info.choices[i];
+            }
+            return s;
+        }
+        case ParamType::boolean: return "true, false";
+        default: {
+            std::string s(info.min_open ? "(" : "[");
+            s += number(info.min);
+            s += ", ";
+            s += number(info.max);
+            s += "]";
+            return s;
+        }
     }
-    return "light";
 }
 
-std::string_view to_string(Rays r) { return r == Rays::border ? "border" : "every_pixel"; }
+void check_param(const ParamInfo& info, double v, std::string_view source) {
+    const bool in_range = std::isfinite(v) && v <= info.max && (info.min_open ? v > info.min : v >= info.min);
+    const bool whole = info.type == ParamType::real || v == std::floor(v);
+    if (in_range && whole) return;
+    const std::string where = std::string(source) + ": " + info.name;
+    if (info.type == ParamType::choice || info.type == ParamType::boolean)
+        throw Error(where + " = " + number(v) + " is not one of " + param_range_text(info));
+    throw Error(where + " = " + number(v) + " is out of range " + param_range_text(info));
+}
+
+void validate(const Params& p, std::string_view source) {
+    for (const ParamInfo& info : table) check_param(info, info.get(p), source);
+}
+
+std::string format_param(const ParamInfo& info, double v) {
+    switch (info.type) {
+        case ParamType::choice: {
+            const int i = int(v);
+            return i >= 0 && i < choice_count(info) ? info.choices[i] : number(v);
+        }
+        case ParamType::boolean: return v != 0 ? "true" : "false";
+        default: return number(v);
+    }
+}
+
+double parse_param(const ParamInfo& info, std::string_view text, std::string_view source) {
+    const std::string where = std::string(source) + ": " + info.name;
+    const std::string t(text);
+    double v = 0;
+    switch (info.type) {
+        case ParamType::choice: {
+            for (int i = 0; i < choice_count(info); ++i)
+                if (t == info.choices[i]) return i;
+            throw Error(where + " \"" + t + "\" is not one of " + param_range_text(info));
+        }
+        case ParamType::boolean:
+            if (t == "true" || t == "1") return 1;
+            if (t == "false" || t == "0") return 0;
+            throw Error(where + ": \"" + t + "\" is not true or false");
+        case ParamType::integer: {
+            std::size_t used = 0;
+            long long x = 0;
+            try {
+                x = std::stoll(t, &used);
+            } catch (...) {
+                used = 0;
+            }
+            if (t.empty() || used != t.size()) throw Error(where + ": \"" + t + "\" is not an integer");
+            v = x < -1e15 || x > 1e15 ? double(x > 0 ? 1e15 : -1e15) : double(x);
+            break;
+        }
+        case ParamType::real: {
+            std::size_t used = 0;
+            try {
+                v = std::stod(t, &used);
+            } catch (...) {
+                used = 0;
+            }
+            if (t.empty() || used != t.size() || !std::isfinite(v))
+                throw Error(where + ": \"" + t + "\" is not a number");
+            break;
+        }
+    }
+    check_param(info, v, source);
+    return v;
+}
+
+StageSet stages_changed(const Params& a, const Params& b) {
+    StageSet s;
+    for (const ParamInfo& info : table)
+        if (info.get(a) != info.get(b)) s = s | info.reruns;
+    return s;
+}
+
+std::string_view to_string(Mode m) { return find_param("mode")->choices[std::size_t(m)]; }
+
+std::string_view to_string(Rays r) { return find_param("rays")->choices[std::size_t(r)]; }
 
 Mode parse_mode(std::string_view s, std::string_view source) {
-    if (s == "light") return Mode::light;
-    if (s == "shadow") return Mode::shadow;
-    if (s == "flat") return Mode::flat;
-    throw Error(std::string(source) + ": mode \"" + std::string(s) +
-                "\" is not one of light, shadow, flat");
+    return Mode(int(parse_param(*find_param("mode"), s, source)));
 }
 
 Rays parse_rays(std::string_view s, std::string_view source) {
-    if (s == "border") return Rays::border;
-    if (s == "every_pixel") return Rays::every_pixel;
-    throw Error(std::string(source) + ": rays \"" + std::string(s) +
-                "\" is not one of border, every_pixel");
+    return Rays(int(parse_param(*find_param("rays"), s, source)));
 }
 
 std::vector<std::string> param_names() {
-    return {"delta_y", "noise_window", "ray_skip", "trace_every", "area_a", "area_b", "ambient_clarity",
-            "opacity_threshold", "blur_radius", "falloff_scale", "mode", "dark_unlit", "rays"};
+    std::vector<std::string> names;
+    for (const ParamInfo& info : table) names.emplace_back(info.name);
+    return names;
 }
 
 void set_param(Params& p, std::string_view name, std::string_view value, std::string_view source) {
-    const std::string where = std::string(source) + ": " + std::string(name);
-    const std::string v(value);
-    auto as_int = [&]() {
-        std::size_t used = 0;
-        long long x = 0;
-        try {
-            x = std::stoll(v, &used);
-        } catch (...) {
-            used = 0;
-        }
-        if (used != v.size() || v.empty() || x < -1000000000LL || x > 1000000000LL)
-            throw Error(where + ": \"" + v + "\" is not an integer");
-        return int(x);
-    };
-    auto as_real = [&]() {
-        std::size_t used = 0;
-        double x = 0;
-        try {
-            x = std::stod(v, &used);
-        } catch (...) {
-            used = 0;
-        }
-        if (used != v.size() || v.empty() || !std::isfinite(x)) throw Error(where + ": \"" + v + "\" is not a number");
-        return x;
-    };
-    Params q = p;
-    if (name == "delta_y") q.delta_y = as_int();
-    else if (name == "noise_window") q.noise_window = as_int();
-    else if (name == "ray_skip") q.ray_skip = as_int();
-    else if (name == "trace_every") q.trace_every = as_int();
-    else if (name == "area_a") q.area_a = as_int();
-    else if (name == "area_b") q.area_b = as_int();
-    else if (name == "ambient_clarity") q.ambient_clarity = as_real();
-    else if (name == "opacity_threshold") q.opacity_threshold = as_real();
-    else if (name == "blur_radius") q.blur_radius = as_int();
-    else if (name == "falloff_scale") q.falloff_scale = as_real();
-    else if (name == "mode") q.mode = parse_mode(v, where);
-    else if (name == "rays") q.rays = parse_rays(v, where);
-    else if (name == "dark_unlit") {
-        if (v != "true" && v != "false" && v != "1" && v != "0") throw Error(where + ": \"" + v + "\" is not true or false");
-        q.dark_unlit = v == "true" || v == "1";
-    } else {
-        throw Error(std::string(source) + ": unknown parameter \"" + std::string(name) + "\"");
-    }
-    validate(q, source);
-    p = q;
+    const ParamInfo* info = find_param(name);
+    if (!info) throw Error(std::string(source) + ": unknown parameter \"" + std::string(name) + "\"");
+    info->set(p, parse_param(*info, value, source));
 }
 
 std::string get_param(const Params& p, std::string_view name) {
-    auto real = [](double x) {
-        std::string s = std::to_string(x);
-        while (!s.empty() && s.back() == '0') s.pop_back();
-        if (!s.empty() && s.back() == '.') s.pop_back();
-        return s;
-    };
-    if (name == "delta_y") return std::to_string(p.delta_y);
-    if (name == "noise_window") return std::to_string(p.noise_window);
-    if (name == "ray_skip") return std::to_string(p.ray_skip);
-    if (name == "trace_every") return std::to_string(p.trace_every);
-    if (name == "area_a") return std::to_string(p.area_a);
-    if (name == "area_b") return std::to_string(p.area_b);
-    if (name == "ambient_clarity") return real(p.ambient_clarity);
-    if (name == "opacity_threshold") return real(p.opacity_threshold);
-    if (name == "blur_radius") return std::to_string(p.blur_radius);
-    if (name == "falloff_scale") return real(p.falloff_scale);
-    if (name == "mode") return std::string(to_string(p.mode));
-    if (name == "rays") return std::string(to_string(p.rays));
-    if (name == "dark_unlit") return p.dark_unlit ? "true" : "false";
-    return "";
+    const ParamInfo* info = find_param(name);
+    return info ? format_param(*info, info->get(p)) : "";
 }
 
 std::vector<std::string> builtin_preset_names() { return {"paper", "fast", "quality"}; }

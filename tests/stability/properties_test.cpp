@@ -42,7 +42,9 @@ TEST(StabilityProperties, nothingBehindAnObstacleAlongATracedRayIsLit) {
             }
         ASSERT_EQ(test::lit_of(m), expect) << "seed " << seed;
         for (std::size_t i = 0; i < m.value.size(); ++i)
-            if (obs.bits[i]) ASSERT_EQ(m.value[i], 0) << "an obstacle pixel is lit, seed " << seed;
+            if (obs.bits[i]) {
+                ASSERT_EQ(m.value[i], 0) << "an obstacle pixel is lit, seed " << seed;
+            }
     }
 }
 

@@ -68,6 +68,8 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
 
 // Marks the points on the Pareto front of (lighting_ms, final RMSE).
 void mark_pareto(std::vector<SweepPoint>& points);
+// The marked points, fastest first (a chart's line, a report's list).
+std::vector<const SweepPoint*> pareto_front(const std::vector<SweepPoint>& points);
 
 // CSV (one row per combination) and an SVG chart of error against time.
 std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points);

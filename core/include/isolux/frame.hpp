@@ -11,13 +11,10 @@
 #include "isolux/image.hpp"
 #include "isolux/light_texture.hpp"
 #include "isolux/scene.hpp"
+#include "isolux/stage.hpp"
 #include "isolux/world.hpp"
 
 namespace isolux {
-
-enum class Stage { sprites, obstacle_map, trace, opacity_correction, blur, shift, composite };
-inline constexpr int stage_count = 7;
-std::string_view to_string(Stage s);
 
 struct FrameReport {
     std::array<bool, stage_count> ran{};
@@ -43,17 +40,14 @@ struct FrameOptions {
     int threads = 1;
 };
 
-// What a frame keeps for the next one. Default-constructed: nothing cached.
-struct FrameState {
-    FrameOptions options;
-
-    // Obstacle map and per-sprite opacity maps, with what they were built from.
+// What the last frame was built from: private to render_frame, which reads
+// it to skip the stages whose inputs did not change.
+struct FrameCache {
+    // The obstacle map's inputs and the region it covers.
+    bool has_obstacles = false;
     std::uint64_t world_revision = ~0ull;
     Params obstacle_params;
     Rect obstacle_region;
-    Mask obstacles;
-    std::vector<Mask> opacity;
-    bool has_obstacles = false;
 
     // Each light's traced and corrected pixels, kept while the obstacle map,
     // the tracing parameters and the light's centre, area and clip are the
@@ -63,23 +57,39 @@ struct FrameState {
         int a = 0, b = 0;
         LightMask mask;
     };
-    std::vector<TracedLight> light_cache;
-    bool cache_corrected = true;  // whether the cached masks had the opacity correction
+    std::vector<TracedLight> lights;
+    bool lights_corrected = true;  // whether the cached masks had the opacity correction
 
-    // The last trace, world-anchored: corrected light texture and its blur.
+    // The last trace's inputs.
     bool has_trace = false;
     Params trace_params;
     std::vector<Light> trace_lights;
-    LightTexture traced, blurred;
-    int blurred_radius = -1;
 
-    // The view's sprites, light texture and final image.
-    Rect view;
-    Image sprites;
-    LightTexture light;  // the view's light texture, what the composite reads
-    Image final;
-    Params composite_params;
+    // The blurred light texture and its inputs (the blur re-runs after every trace).
+    bool has_blur = false;
+    Params blur_params;
+    LightTexture blurred;
+
+    // The final image's inputs.
     bool has_final = false;
+    Params composite_params;
+};
+
+// What a frame leaves for the caller, and its caches for the next frame.
+// Default-constructed: nothing built yet.
+struct FrameState {
+    FrameOptions options;
+
+    // Outputs, valid after render_frame (those of stages an option turns off stay empty).
+    Mask obstacles;              // the obstacle map over the region lights need (paper 3.1)
+    std::vector<Mask> opacity;   // each tileset sprite's opacity map, by sprite index
+    LightTexture traced;         // the last trace: corrected light texture, world-anchored
+    Rect view;                   // what the view shows, world pixels
+    Image sprites;               // the view's sprites (cpu_sprites)
+    LightTexture light;          // the view's blurred light texture, what the composite reads
+    Image final;                 // the lit frame (cpu_blur_and_composite)
+
+    FrameCache cache;
 };
 
 // The view a camera shows: its rectangle, or the map's size at the camera's
@@ -87,7 +97,8 @@ struct FrameState {
 Rect camera_view(const Camera& camera, const World& world);
 
 // Runs frame number `frame` (0, 1, 2, ...) for the scene's lights and
-// parameters seen through `camera`. Retraces on the first frame, whenever a
+// parameters seen through `camera`. Throws Error naming the field when the
+// scene's parameters are out of range (validate()). Retraces on the first frame, whenever a
 // tracing parameter or the obstacle map changed, and on frames that are a
 // multiple of trace_every when lights moved or the view left the traced
 // texture; other frames shift the last texture with the camera.

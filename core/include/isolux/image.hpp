@@ -52,4 +52,13 @@ struct Mask {
     long count() const;
 };
 
+// Paints `rgba` over every pixel of `image` where `mask` is set. The image
+// shows the world rectangle `image_rect`; the mask's pixel (x, y) lies at world
+// (x + dx, y + dy) (0, 0 for a world-placed mask such as the obstacle map, a
+// sprite instance's position for its opacity map).
+void paint_mask(Image& image, Rect image_rect, const Mask& mask, int dx, int dy, const std::uint8_t rgba[4]);
+
+// An opaque black image of `region`, white where the mask is set.
+Image mask_image(const Mask& mask, Rect region);
+
 }  // namespace isolux

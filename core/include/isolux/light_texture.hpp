@@ -39,6 +39,9 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
 // outside `traced` are 0 (unlit).
 LightTexture shift_light_texture(const LightTexture& traced, Rect view);
 
+// The texture as an opaque RGBA image (for export and display).
+Image light_texture_image(const LightTexture& tex);
+
 // The (2a+1) x (2b+1) area of a light (its own a, b or the preset's), world pixels.
 Rect light_area(const Light& light, const Params& p);
 int light_a(const Light& light, const Params& p);

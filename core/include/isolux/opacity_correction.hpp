@@ -15,6 +15,16 @@ namespace isolux {
 // light's intensity at their distance; any other sprite's opaque pixels
 // become unlit. `opacity` holds one
 // opacity map per tileset sprite. Returns how many sprites it touched.
+//
+// The add/subtract rule, on its own (the app's overlay shows it): whether a
+// sprite's opacity map is added to a light centred at row `light_cy`.
+// "Stands" means where the sprite meets the ground (its anchor), not its top
+// or centre: a tall tree behind a light stands above it even when its canopy
+// reaches below the light's centre on screen.
+inline bool opacity_map_added(const SpriteInstance& sprite, std::int64_t light_cy) {
+    return sprite.ground_y < light_cy;
+}
+
 int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const std::vector<Mask>& opacity);
 
 }  // namespace isolux

@@ -1,10 +1,21 @@
-// The paper's parameters in one plain struct. A default-constructed Params is
-// the paper's setting (section 3 and Figure 8) where the paper gives a value,
-// and the project's documented choice where it does not (docs/method.md).
+// The paper's parameters: one plain struct, and one table that describes each
+// field (its file name, command-line flag, type, range, the paper's symbol, a
+// help line and the frame stages it re-runs). Validation, set/get by name,
+// preset and scene JSON, the command line, the app's sliders and the frame's
+// caches all read the table: adding a parameter is a field here, one row in
+// params.cpp's table, and its effect.
+//
+// A default-constructed Params is the paper's setting (section 3 and Figure 8)
+// where the paper gives a value, and the project's documented choice where it
+// does not (docs/method.md).
 #pragma once
+#include <array>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "isolux/stage.hpp"
 
 namespace isolux {
 
@@ -21,6 +32,7 @@ enum class Rays {
     every_pixel,  // every pixel of the area: the paper's "4ab rays", the accuracy reference
 };
 
+// The defaults live here; the table reads them from Params{}.
 struct Params {
     int delta_y = 25;              // Δy: lines read per sprite by Algorithm 1 (paper 3.1: 25 for 128 px)
     int noise_window = 3;          // n: box noise filter window (paper 3.1; value not given)
@@ -39,19 +51,61 @@ struct Params {
     friend bool operator==(const Params&, const Params&) = default;
 };
 
-// The accepted range of each parameter, checked by validate() and the files.
-struct ParamLimits {
-    static constexpr int max_delta_y = 4096;
-    static constexpr int max_noise_window = 255;
-    static constexpr int max_ray_skip = 1 << 20;
-    static constexpr int max_trace_every = 10000;
-    static constexpr int max_area = 4096;
-    static constexpr int max_blur_radius = 255;
-    static constexpr double max_falloff_scale = 1e6;
+// Largest light half-extent a or b, pixels: for the preset's area and for a
+// light's own.
+inline constexpr int max_area = 4096;
+
+enum class ParamType {
+    integer,  // an int field
+    real,     // a double field
+    choice,   // an enum field, named by `choices`
+    boolean,  // a bool field
 };
 
+// One row of the parameter table. Every value passes through a double: ints,
+// enum values and bools are exact in it.
+struct ParamInfo {
+    const char* name;      // field name in presets and scenes, set_param, sweeps and the app's script
+    const char* flag;      // command-line flag: the name with dashes ("--blur-radius")
+    const char* old_flag;  // an older flag kept as an alias ("--blur"), or nullptr
+    const char* label;     // the app's slider label
+    const char* symbol;    // the paper's symbol (UTF-8), or ""
+    const char* group;     // the app's section, citing the paper
+    ParamType type;
+    double min, max;       // accepted range; both ends included unless min_open
+    bool min_open;
+    double slider_min, slider_max;  // the app's slider span (Ctrl+click types any accepted value)
+    bool logarithmic;      // slider scale
+    std::array<const char*, 3> choices;  // ParamType::choice: names by enum value (nullptr past the last)
+    const char* help;      // one line: what it does, in the paper's words
+    StageSet reruns;       // frame stages a change re-runs (empty: it changes only when traces happen)
+    double (*get)(const Params&);
+    void (*set)(Params&, double);  // the value must already be valid (check_param)
+};
+
+// The table, in the order presets, --help and the app list parameters.
+std::span<const ParamInfo> param_table();
+// The row called `name`, or nullptr.
+const ParamInfo* find_param(std::string_view name);
+// The parameter's default (its value in Params{}).
+double param_default(const ParamInfo& info);
+// Number of names in a choice row.
+int choice_count(const ParamInfo& info);
+
+// Throws Error "source: field = value is out of range [lo, hi]" (or "is not
+// one of ..." for a choice) when `v` is not an accepted value of the row.
+void check_param(const ParamInfo& info, double v, std::string_view source);
 // Throws Error naming `source` and the field when a value is out of range.
 void validate(const Params& p, std::string_view source = "parameters");
+// Text for a value ("25", "0.4", "every_pixel", "true") and back; parse
+// throws Error naming `source` and the field when malformed or out of range.
+std::string format_param(const ParamInfo& info, double v);
+double parse_param(const ParamInfo& info, std::string_view text, std::string_view source);
+// "[1, 4096]", "(0, 1e+06]", "light, shadow, flat" or "true, false".
+std::string param_range_text(const ParamInfo& info);
+
+// The stages that must re-run when the parameters go from `a` to `b`.
+StageSet stages_changed(const Params& a, const Params& b);
 
 std::string_view to_string(Mode m);
 std::string_view to_string(Rays r);
@@ -64,7 +118,7 @@ Rays parse_rays(std::string_view s, std::string_view source);
 // or the value malformed or out of range.
 void set_param(Params& p, std::string_view name, std::string_view value, std::string_view source);
 std::vector<std::string> param_names();
-// The parameter's value as text (for CSV columns and labels).
+// The parameter's value as text (for CSV columns and labels); "" when unknown.
 std::string get_param(const Params& p, std::string_view name);
 
 // Built-in presets: "paper" (the defaults), "fast", "quality".
