@@ -87,5 +87,20 @@ check light_twice_same2 0 "" -- render --size 6x6 --light 400,250 --out "$tmp/l2
 if cmp -s "$tmp/l1.png" "$tmp/l2.png"; then pass=$((pass + 1)); else echo "FAIL lit render not byte-identical"; fail=$((fail + 1)); fi
 if cmp -s "$tmp/l1.png" "$tmp/a.png"; then echo "FAIL a light changed nothing"; fail=$((fail + 1)); else pass=$((pass + 1)); fi
 
+# A camera at a fractional, negative position: the CLI rounds it as core does
+# (floor), so it renders the same pixels as the explicit view.
+cat >"$tmp/cam.json" <<'JSON'
+{"schema_version": 1, "width": 6, "height": 6, "lights": [{"x": 300, "y": 200}],
+ "camera": {"x": -10.5, "y": 20.25, "width": 96, "height": 64}}
+JSON
+check camera_floor 0 "" -- render --scene "$tmp/cam.json" --out "$tmp/cam.png"
+check camera_view 0 "" -- render --scene "$tmp/cam.json" --view -11,20,96,64 --out "$tmp/view.png"
+if cmp -s "$tmp/cam.png" "$tmp/view.png"; then pass=$((pass + 1)); else echo "FAIL camera rounded differently from core"; fail=$((fail + 1)); fi
+# Old flag names stay as aliases of the table's.
+check blur_alias 0 "" -- render --size 4x4 --light 200,100 --blur 3 --out "$tmp/blur_old.png"
+check blur_new 0 "" -- render --size 4x4 --light 200,100 --blur-radius 3 --out "$tmp/blur_new.png"
+if cmp -s "$tmp/blur_old.png" "$tmp/blur_new.png"; then pass=$((pass + 1)); else echo "FAIL --blur and --blur-radius differ"; fail=$((fail + 1)); fi
+check json_huge_number 2 "malformed JSON" -- render --preset <(echo '{"schema_version": 1, "delta_y": 1e999}') --out "$tmp/x.png"
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -139,3 +139,101 @@ TEST(Editor, theCharactersLightIsRenderedButNeverSaved) {
     EXPECT_EQ(render_scene(e).lights.size(), 1u);
     EXPECT_TRUE(e.scene.lights.empty());
 }
+
+namespace {
+// What the Map panel shows is the document, and the world is built from it.
+void expect_map_panel_matches(const Editor& e, const char* when) {
+    const MapFields shown = map_fields(e);
+    EXPECT_EQ(shown.seed, e.scene.seed) << when;
+    EXPECT_EQ(shown.width, e.scene.width) << when;
+    EXPECT_EQ(shown.height, e.scene.height) << when;
+    EXPECT_EQ(shown.layout, e.scene.layout) << when;
+    EXPECT_EQ(shown.width, e.world.map.width) << when;
+    EXPECT_EQ(shown.height, e.world.map.height) << when;
+    EXPECT_EQ(shown.layout, e.world.map.layout) << when;
+    EXPECT_EQ(e.scene.seed, e.world_source.seed) << when;
+}
+}  // namespace
+
+TEST(Editor, theMapPanelShowsTheDocumentAfterUndoRedoOpenAndRecover) {
+    // The bug a new user met: random seed, 32x32, regenerate, Ctrl+Z: the map
+    // went back to 12x12 but the panel said 32x32, and Regenerate rebuilt 32x32.
+    TempConfig c;
+    fs::create_directories(c.dir);
+    Scene start = small_scene();
+    start.width = start.height = 12;
+    Editor e = make_editor(start, c.dir);
+    regenerate(e, "moss-42", 12, 12, Layout::diamond, 0);
+    regenerate(e, "moss-42", 32, 32, Layout::diamond, 1);
+    expect_map_panel_matches(e, "after regenerate");
+    ASSERT_TRUE(undo(e, 2));
+    expect_map_panel_matches(e, "after undo");
+    EXPECT_EQ(map_fields(e).width, 12);
+    // Regenerate with what the panel shows builds what it shows.
+    const MapFields shown = map_fields(e);
+    regenerate(e, shown.seed, shown.width, shown.height, shown.layout, 3);
+    EXPECT_EQ(e.world.map.width, 12);
+    ASSERT_TRUE(redo(e, 5));  // regenerating what is shown changed nothing: redo still goes to 32x32
+    expect_map_panel_matches(e, "after redo");
+    EXPECT_EQ(map_fields(e).width, 32);
+
+    Scene other = small_scene();
+    other.seed = "opened";
+    other.width = 7;
+    other.height = 5;
+    other.layout = Layout::staggered;
+    save_scene(c.dir / "other.json", other);
+    ASSERT_TRUE(load_scene_from(e, c.dir / "other.json", 6));
+    expect_map_panel_matches(e, "after open scene");
+    EXPECT_EQ(map_fields(e).seed, "opened");
+
+    regenerate(e, "unsaved", 9, 9, Layout::paper, 7);
+    EXPECT_TRUE(autosave_tick(e, 7 + autosave_delay));
+    Editor fresh = make_editor(small_scene(), c.dir);
+    ASSERT_TRUE(recover_autosave(fresh, 0));
+    expect_map_panel_matches(fresh, "after recover");
+    EXPECT_EQ(map_fields(fresh).seed, "unsaved");
+    EXPECT_EQ(map_fields(fresh).width, 9);
+}
+
+TEST(Editor, aSceneSavedInAFolderNamedPresetsReopensAsAScene) {
+    TempConfig c;
+    fs::create_directories(c.dir / "presets");
+    Editor e = make_editor(small_scene(), c.dir);
+    place_light(e, 50, 60, 0);
+    Params p = e.scene.params;
+    p.blur_radius = 5;
+    set_params(e, p, 0);
+    ASSERT_TRUE(save_scene_to(e, c.dir / "presets" / "level.json"));
+    ASSERT_EQ(e.settings.recent.front().kind, FileKind::scene);
+    ASSERT_TRUE(export_preset(e, c.dir / "tuned.json"));
+    ASSERT_EQ(e.settings.recent.front().kind, FileKind::preset);
+
+    // The kinds survive a restart.
+    save_settings(c.dir, e.settings);
+    Editor again = make_editor(small_scene(), c.dir);
+    ASSERT_EQ(again.settings.recent.size(), 2u);
+    const RecentFile scene_entry = again.settings.recent[1];
+    EXPECT_EQ(scene_entry.kind, FileKind::scene);
+    ASSERT_TRUE(open_recent(again, scene_entry, 1));
+    EXPECT_EQ(again.scene.lights.size(), 1u);  // opened as the scene it is, not as a preset
+    EXPECT_EQ(again.scene.params.blur_radius, 5);
+}
+
+TEST(Editor, theViewIsNotPartOfTheDocumentButIsSavedWithIt) {
+    TempConfig c;
+    fs::create_directories(c.dir);
+    Scene s = small_scene();
+    s.camera = {40, 30, 0, 0};
+    Editor e = make_editor(s, c.dir);
+    EXPECT_EQ(e.view.x, 40);
+    EXPECT_EQ(e.scene.camera, Camera{});  // one camera: the view
+    e.view.x = 100;  // panning is not an edit
+    EXPECT_FALSE(e.dirty);
+    EXPECT_TRUE(e.undo_stack.empty());
+    ASSERT_TRUE(save_scene_to(e, c.dir / "v.json"));
+    EXPECT_EQ(load_scene(c.dir / "v.json").camera.x, 100);
+    reset_view(e);
+    EXPECT_EQ(e.view.x, 0);
+    EXPECT_EQ(e.view.zoom, 1);
+}

@@ -25,21 +25,28 @@ namespace {
 
 constexpr long long max_render_pixels = 1LL << 28;  // 256 Mpx: 1 GiB of RGBA
 
+// A preset and its overrides on the command line.
+struct ParamArgs {
+    std::string preset;  // a preset file or a built-in name
+    // One per row of the parameter table, set only when given.
+    std::vector<std::optional<std::string>> values = std::vector<std::optional<std::string>>(param_table().size());
+    std::optional<std::string> area;  // --area A,B: area_a and area_b at once
+};
+
 struct RenderArgs {
-    std::string seed, size, layout, tileset, preset, scene, view, out;
+    std::string seed, size, layout, tileset, scene, view, out;
+    ParamArgs params;
     std::string layer = "final";
     std::vector<std::string> lights;
     int frames = 1;
     std::string camera_step;
     bool no_opacity_correction = false;
-    // Preset overrides, one per row of the parameter table, set only when given.
-    std::vector<std::optional<std::string>> params = std::vector<std::optional<std::string>>(param_table().size());
-    std::optional<std::string> area;  // --area A,B: area_a and area_b at once
 };
 
-// One flag per row of the parameter table: --name-with-dashes (and its old
-// name), help from the row, booleans as plain flags.
-void add_param_flags(CLI::App& cmd, RenderArgs& ra) {
+// --preset, then one flag per row of the parameter table: --name-with-dashes
+// (and its old name), help from the row, booleans as plain flags.
+void add_param_flags(CLI::App& cmd, ParamArgs& pa) {
+    cmd.add_option("--preset", pa.preset, "Preset JSON file, or a built-in: paper, fast, quality");
     const auto table = param_table();
     for (std::size_t i = 0; i < table.size(); ++i) {
         const ParamInfo& info = table[i];
@@ -48,10 +55,32 @@ void add_param_flags(CLI::App& cmd, RenderArgs& ra) {
         std::string help = std::string(*info.symbol ? std::string(info.symbol) + ": " : "") + info.help + " " +
                            param_range_text(info) + ", default " + format_param(info, param_default(info)) + ".";
         if (info.type == ParamType::boolean)
-            cmd.add_flag_callback(names, [&ra, i] { ra.params[i] = "true"; }, help);
+            cmd.add_flag_callback(names, [&pa, i] { pa.values[i] = "true"; }, help);
         else
-            cmd.add_option(names, ra.params[i], help);
+            cmd.add_option(names, pa.values[i], help);
     }
+    cmd.add_option("--area", pa.area, "A,B: --area-a and --area-b at once");
+}
+
+// The preset (the scene's, a file or a built-in), then the overrides.
+Params params_from_args(const ParamArgs& a, Params p) {
+    if (!a.preset.empty()) {
+        std::vector<std::string> warnings;
+        bool builtin = !std::filesystem::exists(a.preset) && a.preset.find('.') == std::string::npos;
+        p = builtin ? builtin_preset(a.preset) : load_preset(a.preset, &warnings);
+        for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
+    }
+    if (a.area) {
+        const std::size_t comma = a.area->find(',');
+        if (comma == std::string::npos) throw Error("--area \"" + *a.area + "\": expected A,B (half-extents in pixels)");
+        set_param(p, "area_a", a.area->substr(0, comma), "--area");
+        set_param(p, "area_b", a.area->substr(comma + 1), "--area");
+    }
+    const auto table = param_table();
+    for (std::size_t i = 0; i < table.size(); ++i)
+        if (a.values[i]) set_param(p, table[i].name, *a.values[i], table[i].flag);
+    validate(p, "parameters");
+    return p;
 }
 
 bool parse_ints(const std::string& s, char sep, std::vector<long long>& out) {
@@ -141,23 +170,7 @@ Scene scene_from_args(const RenderArgs& a) {
     }
     if (!a.layout.empty()) s.layout = parse_layout(a.layout, "--layout");
     if (!a.tileset.empty()) s.tileset = a.tileset;
-    if (!a.preset.empty()) {
-        std::vector<std::string> warnings;
-        bool builtin = !std::filesystem::exists(a.preset) && a.preset.find('.') == std::string::npos;
-        s.params = builtin ? builtin_preset(a.preset) : load_preset(a.preset, &warnings);
-        for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
-    }
-    Params& p = s.params;
-    if (a.area) {
-        const std::size_t comma = a.area->find(',');
-        if (comma == std::string::npos) throw Error("--area \"" + *a.area + "\": expected A,B (half-extents in pixels)");
-        set_param(p, "area_a", a.area->substr(0, comma), "--area");
-        set_param(p, "area_b", a.area->substr(comma + 1), "--area");
-    }
-    const auto table = param_table();
-    for (std::size_t i = 0; i < table.size(); ++i)
-        if (a.params[i]) set_param(p, table[i].name, *a.params[i], table[i].flag);
-    validate(p, "parameters");
+    s.params = params_from_args(a.params, s.params);
     for (const std::string& text : a.lights) s.lights.push_back(parse_light(text));
     return s;
 }
@@ -177,6 +190,25 @@ Rect view_from_args(const RenderArgs& a, const Scene& s, const World& w) {
         throw Error("the view is " + std::to_string(view.w) + "x" + std::to_string(view.h) +
                     " pixels, over the 256-megapixel limit: render part of the map with --view X,Y,W,H");
     return view;
+}
+
+// One line a row of the parameter table, tab-separated, with a header.
+void print_param_table() {
+    std::cout << "name\tflag\told_flag\ttype\tmin\tmax\tdefault\tsymbol\treruns\thelp\n";
+    static const char* types[] = {"integer", "real", "choice", "boolean"};
+    for (const ParamInfo& info : param_table()) {
+        std::string reruns;
+        for (int k = 0; k < stage_count; ++k)
+            if (info.reruns.has(Stage(k))) reruns += (reruns.empty() ? "" : ",") + std::string(to_string(Stage(k)));
+        const bool numeric = info.type == ParamType::integer || info.type == ParamType::real;
+        std::cout << info.name << '\t' << info.flag << '\t' << (info.old_flag ? info.old_flag : "-") << '\t'
+                  << types[int(info.type)] << '\t'
+                  << (numeric ? format_param(info, info.min) : std::string(info.type == ParamType::boolean ? "false" : info.choices[0]))
+                  << (info.min_open ? " (excluded)" : "") << '\t'
+                  << (numeric ? format_param(info, info.max) : format_param(info, info.max)) << '\t'
+                  << format_param(info, param_default(info)) << '\t' << (*info.symbol ? info.symbol : "-") << '\t'
+                  << (reruns.empty() ? "-" : reruns) << '\t' << info.help << '\n';
+    }
 }
 
 int run_render(const RenderArgs& a) {
@@ -292,7 +324,6 @@ int main(int argc, char** argv) {
     render->add_option("--size", ra.size, "Map size in tiles, WxH (default 16x16)");
     render->add_option("--layout", ra.layout, "paper, diamond or staggered (default diamond)");
     render->add_option("--tileset", ra.tileset, "Tileset manifest (default: assets/default/tileset.json)");
-    render->add_option("--preset", ra.preset, "Preset JSON file, or a built-in: paper, fast, quality");
     render->add_option("--scene", ra.scene, "Scene JSON file; other flags override its fields");
     render->add_option("--layer", ra.layer, "final (default), light, map, obstacles or opacity")
         ->check(CLI::IsMember({"final", "light", "map", "obstacles", "opacity"}));
@@ -302,10 +333,17 @@ int main(int argc, char** argv) {
     render->add_option("--camera-step", ra.camera_step, "Camera movement per frame DX,DY (pixels)");
     render->add_flag("--no-opacity-correction", ra.no_opacity_correction,
                      "Skip the opacity-map correction (shows the paper's Figure 6 problem)");
-    add_param_flags(*render, ra);
-    render->add_option("--area", ra.area, "A,B: --area-a and --area-b at once");
+    add_param_flags(*render, ra.params);
     render->add_option("--view", ra.view, "World-pixel rectangle X,Y,W,H to render (default: the whole map)");
     render->add_option("--out", ra.out, "Output image (.png or .exr)")->required();
+
+    ParamArgs pa;
+    std::string preset_out;
+    CLI::App* preset = app.add_subcommand("preset", "Write a preset: a built-in or file, with any parameter changed");
+    add_param_flags(*preset, pa);
+    preset->add_option("--out", preset_out, "Preset JSON to write (atomically)")->required();
+
+    CLI::App* params = app.add_subcommand("params", "List the parameters: field, flag, type, range, default, what a change re-runs");
 
     std::string tileset_out;
     double tileset_scale = 1.0;
@@ -339,6 +377,15 @@ int main(int argc, char** argv) {
     try {
         if (*render) return run_render(ra);
         if (*sweep) return run_sweep_command(sa);
+        if (*preset) {
+            save_preset(preset_out, params_from_args(pa, Params{}));
+            std::cout << "wrote " << preset_out << "\n";
+            return 0;
+        }
+        if (*params) {
+            print_param_table();
+            return 0;
+        }
         if (*tileset) {
             save_generated_tileset(tileset_out, generate_default_tileset(tileset_scale));
             std::cout << "wrote " << tileset_out << "/tileset.json\n";

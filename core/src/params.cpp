@@ -2,6 +2,7 @@
 #include "isolux/params.hpp"
 
 #include <cassert>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -69,6 +70,7 @@ const ParamInfo table[] = {
 #undef ISOLUX_FIELD
 
 std::string number(double x) {
+    if (x == std::floor(x) && std::abs(x) < 1e15) return std::to_string((long long)x);  // 10000, not 1e+04
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.17g", x);
     // The shortest text that reads back to the same double.
@@ -172,13 +174,11 @@ double parse_param(const ParamInfo& info, std::string_view text, std::string_vie
             break;
         }
         case ParamType::real: {
-            std::size_t used = 0;
-            try {
-                v = std::stod(t, &used);
-            } catch (...) {
-                used = 0;
-            }
-            if (t.empty() || used != t.size() || !std::isfinite(v))
+            // strtod, not stod: stod refuses denormals such as 5e-324
+            char* end = nullptr;
+            v = std::strtod(t.c_str(), &end);
+            const std::size_t used = std::size_t(end - t.c_str());
+            if (t.empty() || std::isspace((unsigned char)t[0]) || used != t.size() || !std::isfinite(v))
                 throw Error(where + ": \"" + t + "\" is not a number");
             break;
         }
