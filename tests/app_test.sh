@@ -46,6 +46,62 @@ if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/e
 [ "$(json "$tmp/preset.json" "d['ambient_clarity']")" = "0.3" ] && ok || bad "undo did not revert the slider"
 [ "$(json "$tmp/preset.json" "d['schema_version']")" = "1" ] && ok || bad "preset lacks schema_version"
 
+# 2b. The script's param command takes every row of the parameter table,
+# choices and booleans included, by field name (as presets spell them).
+cat >"$tmp/params.script" <<SCRIPT
+wait 2
+param mode shadow
+param rays every_pixel
+param dark_unlit true
+param blur_radius 4
+param area_a 300
+wait 2
+save-preset $tmp/params.json
+quit
+SCRIPT
+timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/params.script" >"$tmp/log" 2>&1 || { bad "params run"; cat "$tmp/log"; }
+[ "$(json "$tmp/params.json" "d['mode'], d['rays'], d['dark_unlit'], d['blur_radius'], d['area_a']")" = "('shadow', 'every_pixel', True, 4, 300)" ] && ok || bad "the param command ignored a parameter: $(cat "$tmp/params.json")"
+
+# 2c. The Map panel edits the document: Enter in the seed field regenerates;
+# after an undo the panel shows the undone size and Regenerate builds that
+# size (it used to keep its own copy and rebuild the undone map). The window is
+# 1600x900 and panels sit at their first-use places (no imgui.ini in scripts).
+cat >"$tmp/map.script" <<SCRIPT
+wait 3
+click 121 66
+wait 1
+key ctrl+a
+wait 1
+type moss-7
+wait 1
+key enter
+wait 3
+save-scene $tmp/m_seeded.json
+click 66 89
+wait 1
+key ctrl+a
+wait 1
+type 32
+wait 1
+key enter
+wait 3
+save-scene $tmp/m_sized.json
+key ctrl+z
+wait 3
+save-scene $tmp/m_undone.json
+click 57 135
+wait 3
+save-scene $tmp/m_regenerated.json
+window-shot $tmp/m_window.png
+quit
+SCRIPT
+timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/map.script" >"$tmp/log" 2>&1 || { bad "map panel run"; cat "$tmp/log"; }
+[ "$(json "$tmp/m_seeded.json" "d['seed'], d['width']")" = "('moss-7', 12)" ] && ok || bad "Enter in the seed field did not regenerate"
+[ "$(json "$tmp/m_sized.json" "d['seed'], d['width'], d['height']")" = "('moss-7', 32, 12)" ] && ok || bad "the size field did not apply"
+[ "$(json "$tmp/m_undone.json" "d['width']")" = "12" ] && ok || bad "undo did not restore the size"
+[ "$(json "$tmp/m_regenerated.json" "d['seed'], d['width'], d['height']")" = "('moss-7', 12, 12)" ] && ok || bad "Regenerate after undo built another size than the document's"
+[ "$(python3 -c "import struct;f=open('$tmp/m_window.png','rb');f.read(16);print(*struct.unpack('>II',f.read(8)))")" = "1600 900" ] && ok || bad "window-shot is not the window's size"
+
 # 3. A drag moves a light (one undo step), right-click removes one, Delete the selected.
 cat >"$tmp/drag.script" <<SCRIPT
 wait 2

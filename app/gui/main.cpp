@@ -102,10 +102,16 @@ void run_script_step(App& app) {
         if (k.size() == 1 && std::isalpha(unsigned(k[0]))) code = GLFW_KEY_A + (std::toupper(unsigned(k[0])) - 'A');
         else if (k == "delete") code = GLFW_KEY_DELETE;
         else if (k == "home") code = GLFW_KEY_HOME;
+        else if (k == "enter") code = GLFW_KEY_ENTER;
+        else if (k == "tab") code = GLFW_KEY_TAB;
         if (code >= 0) {
             io.KeysDown[code] = true;
             s.key_up = code;
         }
+    } else if (step.op == "window-shot") {
+        s.window_shot = step.args[0];
+    } else if (step.op == "type") {
+        for (char c : step.args[0]) io.AddInputCharacter(unsigned(c));
     } else if (step.op == "param") {
         // A widget moved and released: the same edit the panel makes. Any
         // row of the parameter table, by its field name and value text.
@@ -349,6 +355,14 @@ int main(int argc, char** argv) {
         if (!screenshot_mode) draw_panels(app);
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (app.script && !app.script->window_shot.empty()) {
+            try {
+                save_image(app.script->window_shot, renderer_read_window(app.window_w, app.window_h));
+            } catch (const Error& err) {
+                set_status(app.editor, err.what(), true);
+            }
+            app.script->window_shot.clear();
+        }
         glfwSwapBuffers(window);
         autosave_tick(app.editor, app.now);
         ++frames_run;

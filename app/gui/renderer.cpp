@@ -482,4 +482,17 @@ Image read_target(const GpuTarget& t) {
 Image renderer_read_final(Renderer& r) { return read_target(r.final); }
 Image renderer_read_blurred(Renderer& r) { return read_target(r.blurred); }
 
+Image renderer_read_window(int width, int height) {
+    Image out(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
+    // GL's first row is the window's bottom one.
+    for (int y = 0; y < height / 2; ++y)
+        std::swap_ranges(out.at(0, y), out.at(0, y) + std::size_t(width) * 4, out.at(0, height - 1 - y));
+    for (std::size_t i = 3; i < out.rgba.size(); i += 4) out.rgba[i] = 255;
+    return out;
+}
+
 }  // namespace isolux::app

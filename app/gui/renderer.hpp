@@ -107,6 +107,8 @@ void renderer_present(Renderer& r, int window_w, int window_h, double x, double 
 
 // Reads the final target back (top row first, straight alpha).
 Image renderer_read_final(Renderer& r);
-Image renderer_read_blurred(Renderer& r);  // the blurred light texture, RGB in rgba, A = 255
+Image renderer_read_blurred(Renderer& r);
+// The window as drawn so far this frame, panels included (top row first, opaque).
+Image renderer_read_window(int width, int height);  // the blurred light texture, RGB in rgba, A = 255
 
 }  // namespace isolux::app

@@ -1,6 +1,8 @@
 // Scripted input for tests and demos: one command a frame, fed to ImGui's IO
 // as a user's mouse and keys would be, or to the editor's actions.
 //   wait N | click X Y | rclick X Y | drag X0 Y0 X1 Y1 | key [ctrl+]NAME
+//   (a letter, delete, home, enter, tab) | type TEXT (characters into the focused field) |
+//   window-shot PATH (the whole window, panels included, as PNG) |
 //   param NAME VALUE (a slider moved: one undo step) | save-preset PATH |
 //   save-scene PATH | load-scene PATH | load-preset PATH | quit |
 //   overlay NAME on|off (obstacles, opacity_maps, delta_y_bands, light_areas,
@@ -31,6 +33,7 @@ struct Script {
     float mouse_x = 0, mouse_y = 0;
     bool quit = false;
     bool waiting_sweep = false;  // wait-sweep: hold the script until the sweep ends
+    std::string window_shot;     // window-shot: written once this frame is drawn
 };
 
 // Parses a script file; throws Error naming the file and line.

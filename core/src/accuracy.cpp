@@ -122,7 +122,7 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
     // Every combination, first axis slowest.
     std::vector<std::vector<std::string>> combos = {{}};
     for (const SweepAxis& a : axes) {
-        if (a.values.empty()) throw Error("--param " + a.name + ": no values");
+        if (a.values.empty()) throw Error("sweep axis " + a.name + ": no values");
         std::vector<std::vector<std::string>> next;
         for (const auto& c : combos)
             for (const std::string& v : a.values) {
@@ -135,7 +135,7 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
     std::vector<Params> params;
     for (const auto& c : combos) {
         Params p = scene.params;
-        for (std::size_t i = 0; i < axes.size(); ++i) set_param(p, axes[i].name, c[i], "--param");
+        for (std::size_t i = 0; i < axes.size(); ++i) set_param(p, axes[i].name, c[i], "sweep axis");
         params.push_back(p);
     }
 

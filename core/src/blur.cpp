@@ -2,11 +2,13 @@
 // algorithm is applied to the same." CPU reference of shaders/blur.frag.
 #include "isolux/blur.hpp"
 
+#include <cassert>
 #include <algorithm>
 
 namespace isolux {
 
 LightTexture box_blur(const LightTexture& tex, int radius) {
+    assert(radius >= 0 && tex.rgb.size() == std::size_t(std::max(0, tex.rect.w)) * std::max(0, tex.rect.h) * 3);
     if (radius <= 0 || tex.rect.empty()) return tex;
     const int w = tex.rect.w, h = tex.rect.h;
     const std::int64_t n = std::int64_t(2 * radius + 1) * (2 * radius + 1);

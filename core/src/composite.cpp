@@ -1,6 +1,7 @@
 // Paper Algorithm 3: the fragment shader. CPU reference of shaders/composite.frag.
 #include "isolux/composite.hpp"
 
+#include <cassert>
 #include <algorithm>
 #include <cmath>
 
@@ -25,6 +26,8 @@ void composite_pixel(const double c[3], const double L[3], const Params& p, doub
 }
 
 Image composite(const Image& colour, Rect view, const LightTexture& light, const Params& p) {
+    assert(colour.width == view.w && colour.height == view.h);
+    assert(p.ambient_clarity >= 0 && p.ambient_clarity <= 1);
     Image out(view.w, view.h);
     for (int y = 0; y < view.h; ++y)
         for (int x = 0; x < view.w; ++x) {

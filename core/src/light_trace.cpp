@@ -3,6 +3,7 @@
 // pixels from the centre outward and halting at the first obstacle pixel.
 #include "isolux/light_trace.hpp"
 
+#include <cassert>
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
@@ -43,6 +44,7 @@ BresenhamRay::BresenhamRay(std::int64_t x0, std::int64_t y0, std::int64_t x1, st
 }
 
 std::uint8_t falloff(std::int64_t d, double falloff_scale) {
+    assert(d >= 0 && falloff_scale > 0);
     if (falloff_scale == 1.0) return std::uint8_t(255 / (1 + d));  // the paper's integer function
     double v = 255.0 / (1.0 + double(d) / falloff_scale);
     return std::uint8_t(std::min(255.0, v));
@@ -229,6 +231,7 @@ std::int64_t trace_tree(const RayTree& t, const std::uint8_t* ob, const std::uin
 
 LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
                       Rect clip, bool area_is_clear) {
+    assert(a >= 0 && b >= 0 && p.ray_skip >= 1 && p.falloff_scale > 0);
     LightMask m;
     m.clip = clip;
     m.cx = cx;

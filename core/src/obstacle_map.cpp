@@ -3,6 +3,7 @@
 // tiny obstacles.
 #include "isolux/obstacle_map.hpp"
 
+#include <cassert>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,6 +13,7 @@
 namespace isolux {
 
 Mask sprite_obstacle(const Mask& opacity, int delta_y, SpriteObstacleTrace* trace) {
+    assert(delta_y >= 1);
     const int w = opacity.width, h = opacity.height;
     int bottom = -1;  // the sprite's lowest opaque row: where it stands on the ground
     for (int y = h - 1; y >= 0 && bottom < 0; --y)
@@ -69,6 +71,7 @@ Mask sprite_obstacle(const Mask& opacity, int delta_y, SpriteObstacleTrace* trac
 }
 
 Mask noise_filter(const Mask& in, int n) {
+    assert(n >= 1);
     const int w = in.width, h = in.height;
     // Summed-area table of the unfiltered mask: the in-place pass never reads a
     // pixel it cleared (see the header), so the original counts are the ones
@@ -93,6 +96,7 @@ Mask noise_filter(const Mask& in, int n) {
 }
 
 Mask build_obstacle_map(const Tileset& ts, const PlacedMap& placed, const Params& p, Rect region) {
+    assert(p.delta_y >= 1 && p.noise_window >= 1 && p.opacity_threshold >= 0 && p.opacity_threshold <= 1);
     // Algorithm 1 depends only on the sprite, Δy and the threshold: run it once
     // per sprite, then stamp it at every instance.
     std::vector<Mask> per_sprite(ts.sprites.size());

@@ -2,9 +2,11 @@
 // of the sprite is transparent or not, given a certain threshold".
 #include "isolux/opacity_map.hpp"
 
+#include <cassert>
 namespace isolux {
 
 Mask opacity_map(const Image& sprite, double threshold) {
+    assert(threshold >= 0 && threshold <= 1 && sprite.rgba.size() == std::size_t(sprite.width) * sprite.height * 4);
     Mask m(Rect{0, 0, sprite.width, sprite.height});
     for (int y = 0; y < sprite.height; ++y)
         for (int x = 0; x < sprite.width; ++x)
