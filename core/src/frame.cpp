@@ -71,7 +71,7 @@ Rect bounding(Rect a, Rect b) {
 
 // Whether a parameter that `stage` reads changed from `before` to `now`.
 bool params_changed_for(Stage stage, const Params& before, const Params& now) {
-    return stages_changed(before, now).has(stage);
+    return !(before == now) && stages_changed(before, now).has(stage);  // equal: the still frame's fast answer
 }
 
 // Runs `work` on `count` threads, the caller's among them, and waits for all.
@@ -355,7 +355,9 @@ void update_view(FrameState& st, const Params& p, Rect view, bool world_changed,
 
 FrameReport render_frame(FrameState& st, const World& world, const Scene& scene, const Camera& camera, long frame) {
     assert(frame >= 0 && st.options.margin >= 0 && st.options.threads >= 0);
-    validate(scene.params, "scene parameters");  // an Error here, not a division by zero below
+    // An Error here, not a division by zero below. The last trace's
+    // parameters were validated then.
+    if (!st.cache.has_trace || !(scene.params == st.cache.trace_params)) validate(scene.params, "scene parameters");
     FrameReport rep;
     const Rect view = camera_view(camera, world);
     const Rect tex_rect = grow(view, st.options.margin);
