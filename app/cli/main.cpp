@@ -16,7 +16,9 @@
 #include "isolux/frame.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_map.hpp"
+#include "isolux/composite.hpp"
 #include "isolux/tileset_generator.hpp"
+#include "isolux/truth.hpp"
 
 using namespace isolux;
 using namespace isolux::app;
@@ -37,6 +39,7 @@ struct RenderArgs {
     std::string seed, size, layout, tileset, scene, view, out;
     ParamArgs params;
     std::string layer = "final";
+    std::string reference = "3d";
     std::vector<std::string> lights;
     int frames = 1;
     std::string camera_step;
@@ -120,19 +123,27 @@ bool parse_reals(const std::string& s, std::vector<double>& out) {
     }
 }
 
-// --light X,Y[,A,B[,RRGGBB]]
+// --light X,Y[,A,B[,RRGGBB]][,h=H]
 Light parse_light(const std::string& text) {
     const std::string where = "--light \"" + text + "\"";
     std::vector<std::string> parts;
+    std::optional<std::string> height;
     for (std::size_t pos = 0;;) {
         std::size_t end = text.find(',', pos);
-        parts.push_back(text.substr(pos, end == std::string::npos ? std::string::npos : end - pos));
+        std::string part = text.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+        if (part.rfind("h=", 0) == 0) height = part.substr(2);
+        else parts.push_back(part);
         if (end == std::string::npos) break;
         pos = end + 1;
     }
     if (parts.size() != 2 && parts.size() != 4 && parts.size() != 5)
-        throw Error(where + ": expected X,Y or X,Y,A,B or X,Y,A,B,RRGGBB");
+        throw Error(where + ": expected X,Y or X,Y,A,B or X,Y,A,B,RRGGBB, each optionally with ,h=HEIGHT");
     Light l;
+    if (height) {
+        Params p;
+        set_param(p, "light_height", *height, where + " h");
+        l.height = p.light_height;
+    }
     std::vector<double> xy;
     if (!parse_reals(parts[0] + "," + parts[1], xy) || std::abs(xy[0]) > 1e9 || std::abs(xy[1]) > 1e9)
         throw Error(where + ": X and Y must be numbers within ±1e9");
@@ -247,6 +258,26 @@ int run_render(const RenderArgs& a) {
             }
         }
         out = a.layer == "final" ? st.final : light_texture_image(st.light);
+    } else if (a.layer == "truth" || a.layer == "difference") {
+        // The reference's lit frame, or where the model (unblurred, as traced
+        // and corrected) and the reference disagree over the map.
+        const Reference ref = parse_reference(a.reference, "--reference");
+        const LightTexture truth = reference_texture(w, s, view, ref);
+        if (a.layer == "truth") {
+            out = composite(render_sprites(w.tileset, w.placed, view), view, truth, s.params);
+        } else {
+            FrameState st;
+            st.options.opacity_correction = !a.no_opacity_correction;
+            st.options.cpu_blur_and_composite = false;
+            render_frame(st, w, s, Camera{double(view.x), double(view.y), view.w, view.h}, 0);
+            out = render_sprites(w.tileset, w.placed, view);
+            const Image diff = lit_difference(shift_light_texture(st.traced, view), truth);
+            for (std::size_t i = 0; i < out.rgba.size(); i += 4) {
+                for (int k = 0; k < 3; ++k) out.rgba[i + k] = std::uint8_t(out.rgba[i + k] / 3);  // the map, dimmed
+                out.rgba[i + 3] = 255;
+                if (diff.rgba[i + 3]) std::copy_n(&diff.rgba[i], 4, &out.rgba[i]);
+            }
+        }
     } else if (a.layer == "opacity") {
         out = Image(view.w, view.h);
         for (std::size_t i = 3; i < out.rgba.size(); i += 4) out.rgba[i] = 255;
@@ -325,9 +356,16 @@ int main(int argc, char** argv) {
     render->add_option("--layout", ra.layout, "paper, diamond or staggered (default diamond)");
     render->add_option("--tileset", ra.tileset, "Tileset manifest (default: assets/default/tileset.json)");
     render->add_option("--scene", ra.scene, "Scene JSON file; other flags override its fields");
-    render->add_option("--layer", ra.layer, "final (default), light, map, obstacles or opacity")
-        ->check(CLI::IsMember({"final", "light", "map", "obstacles", "opacity"}));
-    render->add_option("--light", ra.lights, "A light X,Y[,A,B[,RRGGBB]] in world pixels (repeatable)");
+    render->add_option("--layer", ra.layer,
+                       "final (default), light, map, obstacles, opacity, truth (lit by --reference) or difference "
+                       "(magenta: lit by the model only; cyan: by the reference only)")
+        ->check(CLI::IsMember({"final", "light", "map", "obstacles", "opacity", "truth", "difference"}));
+    render->add_option("--reference", ra.reference,
+                       "For --layer truth and difference: 3d (default; the sprites' true shapes, lights at their "
+                       "height), 3d_facing, exact_line or every_pixel");
+    render->add_option("--light", ra.lights,
+                       "A light X,Y[,A,B[,RRGGBB]][,h=HEIGHT] in world pixels: its ground point, own half-extents, "
+                       "colour and height above the ground (default --light-height) (repeatable)");
     render->add_option("--frames", ra.frames, "Frames to run; the last is written (default 1)")
         ->check(CLI::Range(1, 100000));
     render->add_option("--camera-step", ra.camera_step, "Camera movement per frame DX,DY (pixels)");

@@ -61,21 +61,29 @@ Image load_image(const fs::path& path) {
                     std::to_string(spec.height) + " is outside [1, " + std::to_string(max_image_side) + "]");
     const int nch = spec.nchannels;
     if (nch < 1 || nch > 16) throw Error(quoted(path) + ": unsupported channel count " + std::to_string(nch));
-    std::vector<std::uint8_t> buf(std::size_t(spec.width) * spec.height * nch);
-    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT8, buf.data()))
+    // Read at 16 bits when the source has more than 8, so that alpha keeps
+    // its precision for the opacity threshold.
+    const bool deep = spec.format.size() > 1;
+    const std::size_t n = std::size_t(spec.width) * spec.height;
+    std::vector<std::uint16_t> buf(n * nch);
+    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT16, buf.data()))
         throw Error(quoted(path) + ": corrupt image data (" + in->geterror() + ")");
     in->close();
     Image out(spec.width, spec.height);
     const int alpha = spec.alpha_channel >= 0 ? spec.alpha_channel : (nch == 2 || nch >= 4 ? nch - 1 : -1);
-    for (std::size_t i = 0, n = std::size_t(spec.width) * spec.height; i < n; ++i) {
-        const std::uint8_t* s = &buf[i * nch];
+    if (deep && alpha >= 0) out.alpha16.resize(n);
+    // 16 to 8 bits exactly as OpenImageIO converts: round(v * 255 / 65535).
+    auto to8 = [](std::uint16_t v) { return std::uint8_t((v * 255u + 32767u) / 65535u); };
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint16_t* s = &buf[i * nch];
         std::uint8_t* d = &out.rgba[i * 4];
         if (nch <= 2) {
-            d[0] = d[1] = d[2] = s[0];  // grey
+            d[0] = d[1] = d[2] = to8(s[0]);  // grey
         } else {
-            d[0] = s[0], d[1] = s[1], d[2] = s[2];
+            d[0] = to8(s[0]), d[1] = to8(s[1]), d[2] = to8(s[2]);
         }
-        d[3] = alpha >= 0 ? s[alpha] : 255;
+        d[3] = alpha >= 0 ? to8(s[alpha]) : 255;
+        if (!out.alpha16.empty()) out.alpha16[i] = s[alpha];
     }
     return out;
 }
@@ -99,6 +107,20 @@ void save_image(const fs::path& path, const Image& image) {
         throw Error(quoted(path) + ": cannot write (" + out->geterror() + ")");
     }
     commit_temp(tmp, path);
+}
+
+std::vector<std::uint16_t> load_gray16(const fs::path& path, int width, int height) {
+    if (!fs::exists(path)) throw Error(quoted(path) + ": file not found");
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) throw Error(quoted(path) + ": not a readable image (" + OIIO::geterror() + ")");
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width != width || spec.height != height)
+        throw Error(quoted(path) + ": is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                    ", the sprite is " + std::to_string(width) + "x" + std::to_string(height));
+    std::vector<std::uint16_t> values(std::size_t(width) * height);
+    if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, values.data()))
+        throw Error(quoted(path) + ": corrupt image data (" + in->geterror() + ")");
+    return values;
 }
 
 void save_gray16(const fs::path& path, int width, int height, const std::vector<std::uint16_t>& values) {
@@ -259,6 +281,76 @@ void warn_unknown_params(const Fields& f, std::initializer_list<const char*> ext
     }
 }
 
+// A sprite's solids: [{"kind": "box", "min": [x,y,z], "max": [x,y,z]},
+// {"kind": "cylinder"|"cone", "base": [x,y,z], "radius": r, "height": h},
+// {"kind": "ellipsoid", "center": [x,y,z], "radii": [x,y,z]}].
+std::vector<Solid> shape_from(const json& arr, const std::string& where) {
+    if (!arr.is_array()) throw Error(where + ": must be an array of solids");
+    if (arr.size() > 1000) throw Error(where + ": holds more than 1000 solids");
+    std::vector<Solid> out;
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+        const std::string at = where + "[" + std::to_string(i) + "]";
+        check_object(arr[i], at);
+        Fields f{arr[i], at};
+        auto vec = [&](const char* k) {
+            if (!f.has(k)) f.fail(k, "is required");
+            const json& v = arr[i][k];
+            if (!v.is_array() || v.size() != 3 || !std::all_of(v.begin(), v.end(), [](const json& x) { return x.is_number(); }))
+                f.fail(k, "must be [x, y, z] numbers");
+            Vec3 r{v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
+            if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z) || std::abs(r.x) > 1e6 ||
+                std::abs(r.y) > 1e6 || std::abs(r.z) > 1e6)
+                f.fail(k, "must be finite numbers within ±1e6");
+            return r;
+        };
+        auto size = [&](const char* k) {
+            if (!f.has(k)) f.fail(k, "is required");
+            const double v = f.real(k);
+            if (v < 0 || v > 1e6) f.fail(k, "= " + std::to_string(v) + " must be in [0, 1e6]");
+            return v;
+        };
+        if (!f.has("kind")) f.fail("kind", "is required (box, cylinder, cone or ellipsoid)");
+        const std::string kind = f.text("kind");
+        Solid s;
+        if (kind == "box") {
+            s.kind = SolidKind::box;
+            s.a = vec("min");
+            s.b = vec("max");
+            if (s.b.x < s.a.x || s.b.y < s.a.y || s.b.z < s.a.z) f.fail("max", "must not be below min (a negative size)");
+        } else if (kind == "cylinder" || kind == "cone") {
+            s.kind = kind == "cone" ? SolidKind::cone : SolidKind::cylinder;
+            s.a = vec("base");
+            const double r = size("radius");
+            s.b = {r, r, size("height")};
+        } else if (kind == "ellipsoid") {
+            s.kind = SolidKind::ellipsoid;
+            s.a = vec("center");
+            s.b = vec("radii");
+            if (s.b.x < 0 || s.b.y < 0 || s.b.z < 0) f.fail("radii", "must not be negative");
+        } else {
+            f.fail("kind", "\"" + kind + "\" is unknown (use box, cylinder, cone or ellipsoid)");
+        }
+        out.push_back(s);
+    }
+    return out;
+}
+
+json shape_json(const std::vector<Solid>& shape) {
+    json arr = json::array();
+    auto v = [](Vec3 p) { return json::array({p.x, p.y, p.z}); };
+    for (const Solid& s : shape) {
+        switch (s.kind) {
+            case SolidKind::box: arr.push_back({{"kind", "box"}, {"min", v(s.a)}, {"max", v(s.b)}}); break;
+            case SolidKind::cylinder:
+            case SolidKind::cone:
+                arr.push_back({{"kind", std::string(to_string(s.kind))}, {"base", v(s.a)}, {"radius", s.b.x}, {"height", s.b.z}});
+                break;
+            case SolidKind::ellipsoid: arr.push_back({{"kind", "ellipsoid"}, {"center", v(s.a)}, {"radii", v(s.b)}}); break;
+        }
+    }
+    return arr;
+}
+
 std::string hex_color(const Light& l) {
     static const char* d = "0123456789abcdef";
     std::string s;
@@ -349,7 +441,7 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
             std::string where = src + ": lights[" + std::to_string(i) + "]";
             check_object(arr[i], where);
             Fields lf{arr[i], where};
-            lf.warn_unknown({"x", "y", "a", "b", "color", "intensity"}, warnings);
+            lf.warn_unknown({"x", "y", "a", "b", "color", "intensity", "height"}, warnings);
             Light l;
             if (!lf.has("x") || !lf.has("y")) lf.fail("x, y", "are required");
             l.x = lf.real("x");
@@ -362,6 +454,12 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
             if (lf.has("intensity")) {
                 l.intensity = lf.real("intensity");
                 if (l.intensity < 0 || l.intensity > 1000) lf.fail("intensity", "must be in [0, 1000]");
+            }
+            if (lf.has("height")) {
+                const ParamInfo& range = *find_param("light_height");
+                l.height = lf.real("height");
+                if (*l.height < range.min || *l.height > range.max)
+                    lf.fail("height", "must be in " + param_range_text(range) + " pixels");
             }
             s.lights.push_back(l);
         }
@@ -385,6 +483,7 @@ std::string scene_to_json(const Scene& s) {
         json o{{"x", l.x}, {"y", l.y}, {"color", hex_color(l)}, {"intensity", l.intensity}};
         if (l.area_a) o["a"] = *l.area_a;
         if (l.area_b) o["b"] = *l.area_b;
+        if (l.height) o["height"] = *l.height;
         lights.push_back(o);
     }
     json j{{"schema_version", schema_version},
@@ -473,6 +572,12 @@ Tileset load_tileset(const fs::path& manifest) {
         s.image = Image(rect.w, rect.h);
         for (int y = 0; y < rect.h; ++y)
             std::copy_n(sheet.at(rect.x, rect.y + y), std::size_t(rect.w) * 4, s.image.at(0, y));
+        if (!sheet.alpha16.empty()) {
+            s.image.alpha16.resize(std::size_t(rect.w) * rect.h);
+            for (int y = 0; y < rect.h; ++y)
+                std::copy_n(&sheet.alpha16[std::size_t(rect.y + y) * sheet.width + rect.x], std::size_t(rect.w),
+                            &s.image.alpha16[std::size_t(y) * rect.w]);
+        }
         if (!sf.has("kind")) sf.fail("kind", "is required (floor or overlay)");
         std::string kind = sf.text("kind");
         if (kind == "floor") s.kind = SpriteKind::floor;
@@ -505,6 +610,14 @@ Tileset load_tileset(const fs::path& manifest) {
             if (th < 0 || th > 1) sf.fail("opacity_threshold", "must be in [0, 1]");
             s.opacity_threshold = th;
         }
+        if (sf.has("height_map")) {
+            try {
+                s.height = load_gray16(manifest.parent_path() / sf.text("height_map"), rect.w, rect.h);
+            } catch (const Error& e) {
+                throw Error(where + ": height_map: " + e.what());
+            }
+        }
+        if (sf.has("shape")) s.shape = shape_from(arr[i]["shape"], where + ": shape");
         ts.sprites.push_back(std::move(s));
     }
     validate(ts);
@@ -527,7 +640,8 @@ void save_generated_tileset(const fs::path& folder, const GeneratedTileset& g) {
                            {"anchor", {s.anchor_x, s.anchor_y}},
                            {"kind", s.kind == SpriteKind::floor ? "floor" : "overlay"},
                            {"tags", s.tags},
-                           {"height_map", height_file}});
+                           {"height_map", height_file},
+                           {"shape", shape_json(s.shape)}});
     }
     json j{{"schema_version", schema_version},
            {"tile", {{"width", g.tileset.tile_width}, {"height", g.tileset.tile_height}}},

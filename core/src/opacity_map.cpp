@@ -8,6 +8,11 @@ namespace isolux {
 Mask opacity_map(const Image& sprite, double threshold) {
     assert(threshold >= 0 && threshold <= 1 && sprite.rgba.size() == std::size_t(sprite.width) * sprite.height * 4);
     Mask m(Rect{0, 0, sprite.width, sprite.height});
+    if (!sprite.alpha16.empty()) {
+        // A 16-bit source: 0.49973 is above 0.4995 here, though both round to 127/255.
+        for (std::size_t i = 0; i < m.bits.size(); ++i) m.bits[i] = sprite.alpha16[i] / 65535.0 > threshold;
+        return m;
+    }
     for (int y = 0; y < sprite.height; ++y)
         for (int x = 0; x < sprite.width; ++x)
             // Same expression on both sides of the comparison, so an alpha of

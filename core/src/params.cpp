@@ -57,6 +57,9 @@ const ParamInfo table[] = {
     {"rays", "--rays", nullptr, "rays", "", trace_group, ParamType::choice, 0, 1, false, 0, 1, false,
      {"border", "every_pixel"}, "border: a ray to each border pixel (Algorithm 2). every_pixel: a ray to every pixel "
      "of the area, the paper's 4ab rays; the accuracy reference, slow.", trace, ISOLUX_FIELD(rays)},
+    {"light_height", "--light-height", nullptr, "light height", "", trace_group, ParamType::real, 0, 4096, false, 0,
+     256, false, {}, "A light's height above the ground in pixels, for lights that give none. The paper's model "
+     "ignores it; the 3D reference and the height options use it.", trace, ISOLUX_FIELD(light_height)},
     {"blur_radius", "--blur-radius", "--blur", "blur radius", "", shade_group, ParamType::integer, 0, 255, false, 0,
      16, false, {}, "Box blur of the light texture, in pixels (paper 3.2).", blur, ISOLUX_FIELD(blur_radius)},
     {"ambient_clarity", "--ambient-clarity", "--ambient", "ambient clarity", "", shade_group, ParamType::real, 0, 1,

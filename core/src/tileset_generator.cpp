@@ -328,6 +328,18 @@ std::vector<Def> definitions() {
     return d;
 }
 
+// The primitive as the manifest's solid, in sprite pixels (the scale applied).
+Solid to_solid(const Prim& p, double scale) {
+    auto v = [&](V3 a) { return Vec3{a.x * scale, a.y * scale, a.z * scale}; };
+    switch (p.shape) {
+        case Shape::box: return {SolidKind::box, v(p.c), v(p.r)};
+        case Shape::ellipsoid: return {SolidKind::ellipsoid, v(p.c), v(p.r)};
+        case Shape::cylinder: return {SolidKind::cylinder, v(p.c), {p.r.x * scale, p.r.x * scale, p.r.z * scale}};
+        case Shape::cone: return {SolidKind::cone, v(p.c), {p.r.x * scale, p.r.x * scale, p.r.z * scale}};
+    }
+    return {};
+}
+
 }  // namespace
 
 GeneratedTileset generate_default_tileset(double scale) {
@@ -349,6 +361,7 @@ GeneratedTileset generate_default_tileset(double scale) {
         s.anchor_y = def.kind == SpriteKind::floor ? size / 4 : int(108 * scale + 0.5);
         Rendered r = render_model(def.model, size, size, s.anchor_x, s.anchor_y, scale, mix64(seed + ++i));
         s.image = std::move(r.image);
+        for (const Prim& p : def.model.prims) s.shape.push_back(to_solid(p, scale));
         g.tileset.sprites.push_back(std::move(s));
         g.heights.push_back(std::move(r.height));
         g.image_files.push_back(def.name + ".png");

@@ -28,6 +28,10 @@ Image load_image(const std::filesystem::path& path);
 // Writes RGBA8 as PNG, or EXR (half float) when the extension is .exr.
 void save_image(const std::filesystem::path& path, const Image& image);
 
+// Reads the first channel of an image as 16-bit values (height maps: pixels
+// above the ground, not scaled); throws Error unless it is width x height.
+std::vector<std::uint16_t> load_gray16(const std::filesystem::path& path, int width, int height);
+
 // Writes a single-channel 16-bit PNG (height maps).
 void save_gray16(const std::filesystem::path& path, int width, int height,
                  const std::vector<std::uint16_t>& values);

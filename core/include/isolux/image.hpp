@@ -22,6 +22,9 @@ Rect intersect(const Rect& a, const Rect& b);
 struct Image {
     int width = 0, height = 0;
     std::vector<std::uint8_t> rgba;  // width * height * 4
+    // Alpha at 16 bits when the source had more than 8 (empty otherwise), so
+    // opacity thresholds compare the source's precision.
+    std::vector<std::uint16_t> alpha16;
 
     Image() = default;
     Image(int w, int h) : width(w), height(h), rgba(std::size_t(w) * h * 4, 0) {}

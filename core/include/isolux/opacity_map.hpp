@@ -6,8 +6,8 @@
 
 namespace isolux {
 
-// True where alpha / 255 > threshold (strictly: alpha exactly at the threshold
-// is transparent). threshold in [0, 1]. The mask is in sprite pixels at (0, 0).
+// True where alpha / 255 > threshold (alpha16 / 65535 for 16-bit sources;
+// strictly: alpha exactly at the threshold is transparent). threshold in [0, 1]. The mask is in sprite pixels at (0, 0).
 Mask opacity_map(const Image& sprite, double threshold);
 
 // The threshold a sprite uses: its own override, else the preset's.

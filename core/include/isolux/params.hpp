@@ -47,6 +47,7 @@ struct Params {
     Mode mode = Mode::light;
     bool dark_unlit = false;       // Algorithm 3 variant: texFactor *= light (paper 4)
     Rays rays = Rays::border;
+    double light_height = 32;      // a light's height above the ground, pixels, when it gives none (not in the paper)
 
     friend bool operator==(const Params&, const Params&) = default;
 };

@@ -16,6 +16,7 @@ struct Light {
     std::optional<int> area_a, area_b;   // half-extents; the preset's when unset
     std::uint8_t r = 255, g = 255, b = 255;
     double intensity = 1.0;              // scales the paper's 255 / (1 + d)
+    std::optional<double> height;        // above the ground, pixels; the preset's light_height when unset
 
     friend bool operator==(const Light&, const Light&) = default;
 };

@@ -4,7 +4,10 @@
 #include <string>
 #include <vector>
 
+#include <cstdint>
+
 #include "isolux/image.hpp"
+#include "isolux/solid.hpp"
 
 namespace isolux {
 
@@ -17,6 +20,11 @@ struct Sprite {
     Image image;                    // the sprite's pixels, cut from its sheet
     int anchor_x = 0, anchor_y = 0; // sprite pixel placed on the tile's centre
     std::optional<double> opacity_threshold;  // overrides the preset's when set
+    // The true 3D volume (optional): solids relative to the anchor, pixels (solid.hpp).
+    std::vector<Solid> shape;
+    // The true visible surface height above the ground per pixel, pixels
+    // (optional: empty, or width x height values from the manifest's height_map).
+    std::vector<std::uint16_t> height;
 
     bool has_tag(std::string_view t) const;
 };

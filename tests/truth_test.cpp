@@ -1,0 +1,201 @@
+// The references the 2.5D model is measured against: the true 3D shapes and
+// the exact 2D line (core/src/truth.cpp, core/src/solid.cpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "isolux/hash.hpp"
+#include "isolux/light_trace.hpp"
+#include "isolux/tileset_generator.hpp"
+#include "isolux/truth.hpp"
+#include "test_util.hpp"
+
+using namespace isolux;
+
+namespace {
+
+// A surface of bare ground over `r`.
+Surface ground(Rect r) {
+    Surface s;
+    s.rect = r;
+    s.instance.assign(std::size_t(r.w) * r.h, -1);
+    s.height.assign(s.instance.size(), 0.0f);
+    return s;
+}
+
+WorldSolids one(const Solid& s) {
+    WorldSolids w;
+    w.solids = {s};
+    w.bounds = {solid_bounds(s)};
+    w.instance = {0};
+    return w;
+}
+
+bool lit(const LightMask& m, int x, int y) {
+    return m.value[std::size_t(y - m.clip.y) * m.clip.w + (x - m.clip.x)] != 0;
+}
+
+Params wide() {
+    Params p;
+    p.falloff_scale = 1e6;  // no pixel of the area falls to 0 by distance
+    return p;
+}
+
+}  // namespace
+
+TEST(Solid, aSegmentThroughABoxHitsItAndOneAboveMisses) {
+    const Solid box{SolidKind::box, {0, 0, 0}, {10, 10, 10}};
+    EXPECT_TRUE(segment_hits(box, {-5, 5, 5}, {15, 5, 5}, 1));
+    EXPECT_FALSE(segment_hits(box, {-5, 5, 15}, {15, 5, 15}, 1));
+    EXPECT_FALSE(segment_hits(box, {-5, 5, 5}, {15, 5, 5}, 0.2));  // stops before reaching it
+    const Solid ball{SolidKind::ellipsoid, {0, 0, 10}, {4, 4, 4}};
+    EXPECT_TRUE(segment_hits(ball, {-10, 0, 10}, {10, 0, 10}, 1));
+    EXPECT_FALSE(segment_hits(ball, {-10, 5, 10}, {10, 5, 10}, 1));
+    const Solid post{SolidKind::cylinder, {0, 0, 0}, {2, 2, 20}};
+    EXPECT_TRUE(segment_hits(post, {-5, 0, 19}, {5, 0, 19}, 1));
+    EXPECT_FALSE(segment_hits(post, {-5, 0, 21}, {5, 0, 21}, 1));
+    const Solid cone{SolidKind::cone, {0, 0, 0}, {10, 10, 20}};
+    EXPECT_TRUE(segment_hits(cone, {-20, 0, 1}, {20, 0, 1}, 1));
+    EXPECT_FALSE(segment_hits(cone, {-20, 6, 10}, {20, 6, 10}, 1));  // radius 5 at z = 10
+    EXPECT_TRUE(segment_hits(cone, {-20, 4, 10}, {20, 4, 10}, 1));
+}
+
+TEST(Solid, aSolidOfZeroSizeCastsNothing) {
+    for (const Solid& s : {Solid{SolidKind::box, {0, 0, 0}, {10, 0, 10}}, Solid{SolidKind::cylinder, {0, 0, 0}, {0, 0, 10}},
+                           Solid{SolidKind::cone, {0, 0, 0}, {5, 5, 0}}, Solid{SolidKind::ellipsoid, {0, 0, 0}, {5, 0, 5}}})
+        EXPECT_FALSE(segment_hits(s, {-20, 0, 0}, {20, 0, 0}, 1)) << to_string(s.kind);
+}
+
+// The light stands 10 px above the ground point of screen pixel (0, 0):
+// L = (0.75, 0.25, 10). Ground pixel (x, y) is P = (y + 0.5 + (x + 0.5) / 2,
+// y + 0.5 - (x + 0.5) / 2, 0), so P = L + (dX, dY) is pixel
+// (dX - dY, (dX + dY) / 2). A box stands at X in [10.75, 20.75], Y in
+// [-4.75, 5.25]: 10 to 20 px from the light along X.
+TEST(Truth, aLightBesideABoxCastsTheShadowWorkedOutByHand) {
+    const Rect area{-100, -100, 201, 201};
+    const Surface s = ground(area);
+    const Params p = wide();
+    const Solid tall{SolidKind::box, {10.75, -4.75, 0}, {20.75, 5.25, 1000}};
+    const LightMask m = truth_light(s, one(tall), 0, 0, 10, 100, 100, p, area, false);
+    EXPECT_TRUE(lit(m, 0, 0));
+    // P = L + (30, 0): straight behind the box: dark.
+    EXPECT_FALSE(lit(m, 30, 15));
+    // P = L + (30, 20): the line passes beside the box (dY from 6.7 to 13.3 across it): lit.
+    EXPECT_TRUE(lit(m, 10, 25));
+    // P = L + (-30, 0): the other way: lit.
+    EXPECT_TRUE(lit(m, -30, -15));
+
+    // A box 5 px high, lower than the light: its shadow ends. At L + (30, 0)
+    // the line is at z 6.7 to 3.3 across the box: dark; at L + (60, 0), z 8.3
+    // to 6.7: lit.
+    const Solid low{SolidKind::box, {10.75, -4.75, 0}, {20.75, 5.25, 5}};
+    const LightMask n = truth_light(s, one(low), 0, 0, 10, 100, 100, p, area, false);
+    EXPECT_FALSE(lit(n, 30, 15));
+    EXPECT_TRUE(lit(n, 60, 30));
+}
+
+TEST(Truth, aLightAboveEverythingLightsAllTheGroundAroundASolid) {
+    const Rect area{-60, -60, 121, 121};
+    const Surface s = ground(area);
+    const Solid low{SolidKind::box, {10.75, -4.75, 0}, {20.75, 5.25, 5}};
+    const LightMask m = truth_light(s, one(low), 0, 0, 4000, 60, 60, wide(), area, false);
+    for (int y = area.y; y < area.y + area.h; ++y)
+        for (int x = area.x; x < area.x + area.w; ++x) {
+            const Vec3 p = ground_frame(x + 0.5, y + 0.5, 0);
+            const bool under = p.x >= 10.75 - 2 && p.x <= 20.75 + 2 && p.y >= -4.75 - 2 && p.y <= 5.25 + 2;
+            if (!under) {
+                ASSERT_TRUE(lit(m, x, y)) << x << "," << y;
+            }
+        }
+}
+
+TEST(Truth, raisingALightNeverDarkensAGroundPixel) {
+    // Solids standing on the ground, no wider above than below.
+    WorldSolids w;
+    for (const Solid& s : {Solid{SolidKind::box, {20, 0, 0}, {30, 12, 18}}, Solid{SolidKind::cylinder, {-20, 10, 0}, {6, 6, 30}},
+                           Solid{SolidKind::cone, {5, -25, 0}, {9, 9, 25}}}) {
+        w.solids.push_back(s);
+        w.bounds.push_back(solid_bounds(s));
+        w.instance.push_back(0);
+    }
+    const Rect area{-70, -70, 141, 141};
+    const Surface s = ground(area);
+    LightMask before = truth_light(s, w, 0, 0, 2, 70, 70, wide(), area, false);
+    for (double h : {6.0, 12.0, 24.0, 48.0, 96.0}) {
+        const LightMask after = truth_light(s, w, 0, 0, h, 70, 70, wide(), area, false);
+        long darkened = 0, lit_before = 0;
+        for (std::size_t i = 0; i < before.value.size(); ++i) {
+            // Ground under a solid is hidden by it: not a ground pixel anyone sees.
+            const int x = area.x + int(i % std::size_t(area.w)), y = area.y + int(i / std::size_t(area.w));
+            const Vec3 p = ground_frame(x + 0.5, y + 0.5, 0);
+            bool hidden = false;
+            for (const auto& b : w.bounds)
+                hidden = hidden || (p.x >= b[0].x - 2 && p.x <= b[1].x + 2 && p.y >= b[0].y - 2 && p.y <= b[1].y + 2);
+            if (hidden) continue;
+            darkened += before.value[i] && !after.value[i];
+            lit_before += before.value[i] != 0;
+        }
+        EXPECT_EQ(darkened, 0) << "height " << h;
+        EXPECT_GT(lit_before, 0);
+        before = after;
+    }
+}
+
+TEST(Truth, facingDarkensWhatTheLightSeesFromBehind) {
+    // A ground pixel always faces a light above it; the facing reference adds
+    // darkness only on sprites, never on bare ground.
+    const Rect area{-30, -30, 61, 61};
+    const Surface s = ground(area);
+    const WorldSolids none;
+    const LightMask a = truth_light(s, none, 0, 0, 20, 30, 30, wide(), area, false);
+    const LightMask b = truth_light(s, none, 0, 0, 20, 30, 30, wide(), area, true);
+    EXPECT_EQ(a.value, b.value);
+    for (std::uint8_t v : a.value) ASSERT_NE(v, 0);
+}
+
+TEST(Truth, exactLineEqualsAlgorithm2TracedToEachPixel) {
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+        const Rect area{-20, -14, 41, 29};
+        Mask obstacles(area);
+        Pcg32 rng(seed);
+        for (auto& b : obstacles.bits) b = rng.below(100) < 12;
+        obstacles.set(0, 0, false);
+        Params p;
+        const LightMask m = exact_line_light(obstacles, 0, 0, 20, 14, p, area);
+        for (int y = area.y; y < area.y + area.h; ++y)
+            for (int x = area.x; x < area.x + area.w; ++x) {
+                std::vector<std::uint8_t> tex(std::size_t(area.w) * area.h, 0);
+                trace_light_ray_paper(obstacles, 0, 0, x, y, area, tex);
+                const std::uint8_t own = tex[std::size_t(y - area.y) * area.w + (x - area.x)];
+                ASSERT_EQ(lit(m, x, y), own != 0) << "seed " << seed << " pixel " << x << "," << y;
+            }
+    }
+}
+
+TEST(Truth, theGeneratorsShapesReproduceItsSpritesOpaquePixels) {
+    const GeneratedTileset g = generate_default_tileset(1.0);
+    for (const Sprite& s : g.tileset.sprites) {
+        if (s.kind != SpriteKind::overlay) continue;
+        ASSERT_FALSE(s.shape.empty()) << s.name;
+        const int w = s.image.width, h = s.image.height;
+        std::vector<char> covered(std::size_t(w) * h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                covered[std::size_t(y) * w + x] = surface_height(s.shape, x + 0.5 - s.anchor_x, y + 0.5 - s.anchor_y) > -HUGE_VAL;
+        long wrong = 0, opaque = 0;
+        for (int y = 1; y + 1 < h; ++y)
+            for (int x = 1; x + 1 < w; ++x) {
+                // Away from the antialiased edge: the 3x3 neighbourhood agrees.
+                const char c = covered[std::size_t(y) * w + x];
+                bool edge = false;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) edge = edge || covered[std::size_t(y + dy) * w + x + dx] != c;
+                if (edge) continue;
+                const bool is_opaque = s.image.at(x, y)[3] >= 192;  // above any baked ground shadow
+                opaque += is_opaque;
+                wrong += is_opaque != bool(c);
+            }
+        EXPECT_EQ(wrong, 0) << s.name << " (" << opaque << " opaque pixels)";
+        EXPECT_GT(opaque, 50) << s.name;
+    }
+}
