@@ -301,6 +301,7 @@ struct SweepArgs {
     std::vector<std::string> params;
     int frames = 8, repeats = 3;
     std::string step = "24,12";
+    std::string references = "every_pixel";
     bool no_carry = false;
 };
 
@@ -318,11 +319,19 @@ int run_sweep_command(const SweepArgs& a) {
     opt.step_x = step[0];
     opt.step_y = step[1];
     opt.carry_light = !a.no_carry;
+    opt.references.clear();
+    for (std::size_t pos = 0;;) {
+        const std::size_t end = a.references.find(',', pos);
+        opt.references.push_back(parse_reference(a.references.substr(pos, end == std::string::npos ? end : end - pos),
+                                                 "--reference"));
+        if (end == std::string::npos) break;
+        pos = end + 1;
+    }
     World w = build_world(s);
     long combos = 1;
     for (const SweepAxis& ax : axes) combos *= long(ax.values.size());
     std::cerr << "isolux-cli: sweeping " << combos << " combinations x " << opt.repeats << " runs x " << opt.frames
-              << " frames\n";
+              << " frames, against " << a.references << "\n";
     auto points = run_sweep(w, s, axes, opt, [&](int done, int total) {
         std::cerr << "\r  [" << done << "/" << total << "] " << int(100.0 * done / total) << "%" << std::flush;
     });
@@ -330,12 +339,17 @@ int run_sweep_command(const SweepArgs& a) {
     write_file_atomic(a.out, sweep_csv(axes, points));
     std::cout << "wrote " << a.out << "\n";
     if (!a.chart.empty()) {
-        write_file_atomic(a.chart, sweep_svg(axes, points, "Error against time: " + s.seed));
+        const Rect start = camera_view(s.camera, w);
+        const std::string what = std::filesystem::path(a.scene).filename().string() + " (seed \"" + s.seed + "\"), " +
+                                 std::to_string(opt.frames) + " frames from view " + std::to_string(start.x) + "," +
+                                 std::to_string(start.y) + " " + std::to_string(start.w) + "x" + std::to_string(start.h) +
+                                 " moving " + a.step + " px a frame, against " + a.references;
+        write_file_atomic(a.chart, sweep_svg(axes, points, "Error against time\n" + what));
         std::cout << "wrote " << a.chart << "\n";
     }
-    std::cout << "Pareto front (least final-frame RMSE for the time):\n";
+    std::cout << "Pareto front (least final-frame RMSE for the time), per reference:\n";
     for (const SweepPoint* p : pareto_front(points)) {
-        std::cout << "  ";
+        std::cout << "  [" << to_string(p->reference) << "] ";
         for (std::size_t i = 0; i < axes.size(); ++i) std::cout << axes[i].name << "=" << p->values[i] << " ";
         std::cout << " " << p->lighting_ms << " ms/frame lighting (" << p->total_ms << " in all), final RMSE " << p->final.rmse << ", lit mismatch "
                   << p->light.lit_mismatch * 100 << "%\n";
@@ -401,6 +415,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 100));
     sweep->add_option("--step", sa.step, "Camera movement per frame DX,DY (default 24,12)");
     sweep->add_flag("--no-carried-light", sa.no_carry, "No light moving with the camera");
+    sweep->add_option("--reference", sa.references,
+                      "What the error is measured against: every_pixel (default; the model's own 4ab rays), "
+                      "exact_line, 3d (the sprites' true shapes) or 3d_facing; a comma list measures each");
 
     try {
         app.parse(argc, argv);

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "isolux/composite.hpp"
 #include "isolux/error.hpp"
 
 namespace isolux {
@@ -47,6 +48,22 @@ std::string params_key(const Params& p) {
     std::string k;
     for (const std::string& n : param_names()) k += get_param(p, n) + ";";
     return k;
+}
+
+// Text for SVG: the five characters XML reserves, escaped.
+std::string xml(std::string_view text) {
+    std::string out;
+    for (char c : text) {
+        switch (c) {
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '&': out += "&amp;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&apos;"; break;
+            default: out += c;
+        }
+    }
+    return out;
 }
 
 std::string num(double v, int precision = 4) {
@@ -98,7 +115,10 @@ std::vector<const SweepPoint*> pareto_front(const std::vector<SweepPoint>& point
     std::vector<const SweepPoint*> front;
     for (const SweepPoint& p : points)
         if (p.pareto) front.push_back(&p);
-    std::stable_sort(front.begin(), front.end(), [](auto a, auto b) { return a->lighting_ms < b->lighting_ms; });
+    std::stable_sort(front.begin(), front.end(), [](auto a, auto b) {
+        if (a->reference != b->reference) return a->reference < b->reference;
+        return a->lighting_ms < b->lighting_ms;
+    });
     return front;
 }
 
@@ -109,17 +129,57 @@ void mark_pareto(std::vector<SweepPoint>& points) {
         if (points[a].lighting_ms != points[b].lighting_ms) return points[a].lighting_ms < points[b].lighting_ms;
         return points[a].final.rmse < points[b].final.rmse;
     });
-    double best = std::numeric_limits<double>::infinity();
+    // One front per reference: errors against different references do not compare.
+    std::map<Reference, double> best;
     for (std::size_t i : order) {
-        points[i].pareto = points[i].final.rmse < best;
-        best = std::min(best, points[i].final.rmse);
+        auto [it, fresh] = best.emplace(points[i].reference, std::numeric_limits<double>::infinity());
+        points[i].pareto = points[i].final.rmse < it->second;
+        it->second = std::min(it->second, points[i].final.rmse);
     }
 }
 
-std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const std::vector<SweepAxis>& axes,
-                                  const SweepOptions& opt, const std::function<void(int, int)>& progress,
-                                  const std::atomic<bool>* cancel) {
-    // Every combination, first axis slowest.
+void compare_in_areas(const LightTexture& model, const LightTexture& ref, const Surface& surface,
+                      const std::vector<Rect>& areas, AreaErrors& floor, AreaErrors& sprite, AreaErrors& all) {
+    const Rect r = surface.rect;
+    double sq[3] = {0, 0, 0};
+    long n[3] = {0, 0, 0}, mismatch[3] = {0, 0, 0};
+    std::vector<char> inside(std::size_t(std::max(0, r.w)));
+    for (int y = r.y; y < r.y + r.h; ++y) {
+        std::fill(inside.begin(), inside.end(), 0);
+        for (const Rect& a : areas) {
+            if (y < a.y || y >= a.y + a.h) continue;
+            const Rect row = intersect(a, Rect{r.x, y, r.w, 1});
+            for (int x = row.x; x < row.x + row.w; ++x) inside[std::size_t(x - r.x)] = 1;
+        }
+        for (int x = r.x; x < r.x + r.w; ++x) {
+            if (!inside[std::size_t(x - r.x)]) continue;
+            const std::size_t i = std::size_t(y - r.y) * r.w + (x - r.x);
+            const int kind = surface.instance[i] >= 0 ? 1 : 0;
+            const std::uint8_t zero[3] = {0, 0, 0};
+            const std::uint8_t* a = model.rect.contains(x, y) ? model.at(x, y) : zero;
+            const std::uint8_t* b = ref.rect.contains(x, y) ? ref.at(x, y) : zero;
+            double e = 0;
+            for (int k = 0; k < 3; ++k) e += double(a[k] - b[k]) * double(a[k] - b[k]);
+            const bool lit_a = a[0] || a[1] || a[2], lit_b = b[0] || b[1] || b[2];
+            for (int which : {kind, 2}) {
+                sq[which] += e / 3;
+                ++n[which];
+                mismatch[which] += lit_a != lit_b;
+            }
+        }
+    }
+    AreaErrors* out[3] = {&floor, &sprite, &all};
+    for (int k = 0; k < 3; ++k) {
+        out[k]->pixels = n[k];
+        out[k]->rmse = n[k] ? std::sqrt(sq[k] / double(n[k])) : 0;
+        out[k]->lit_mismatch = n[k] ? double(mismatch[k]) / double(n[k]) : 0;
+    }
+}
+
+namespace {
+
+// Every combination of the axes' values, first axis slowest.
+std::vector<std::vector<std::string>> combinations(const std::vector<SweepAxis>& axes) {
     std::vector<std::vector<std::string>> combos = {{}};
     for (const SweepAxis& a : axes) {
         if (a.values.empty()) throw Error("sweep axis " + a.name + ": no values");
@@ -132,12 +192,44 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
             }
         combos = next;
     }
+    return combos;
+}
+
+// One frame of the reference: its light texture over the view and its final image.
+struct ReferenceFrame {
+    LightTexture light;
+    Image final;
+    Surface surface;
+    std::vector<Rect> areas;
+};
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    if (v.empty()) return 0;
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
+void add_mean(AreaErrors& acc, const AreaErrors& m, int frames) {
+    acc.lit_mismatch += m.lit_mismatch / frames;
+    acc.rmse += m.rmse / frames;
+    acc.pixels += m.pixels / frames;
+}
+
+}  // namespace
+
+std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const std::vector<SweepAxis>& axes,
+                                  const SweepOptions& opt, const std::function<void(int, int)>& progress,
+                                  const std::atomic<bool>* cancel) {
+    const std::vector<std::vector<std::string>> combos = combinations(axes);
     std::vector<Params> params;
     for (const auto& c : combos) {
         Params p = scene.params;
         for (std::size_t i = 0; i < axes.size(); ++i) set_param(p, axes[i].name, c[i], "sweep axis");
         params.push_back(p);
     }
+    const std::vector<Reference> references =
+        opt.references.empty() ? std::vector<Reference>{Reference::every_pixel} : opt.references;
 
     const Rect start = camera_view(scene.camera, world);
     auto camera_at = [&](int f) {
@@ -156,66 +248,93 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
         return s;
     };
 
-    // References: a fresh every-pixel trace per frame, shared by the
-    // combinations that differ only in ray skip, rays, blur and l.
-    struct Ref {
-        std::vector<LightTexture> light;
-        std::vector<Image> final;
-    };
-    std::map<std::string, Ref> refs;
-    auto reference = [&](const Params& p) -> const Ref& {
+    // References, one per frame, shared by the combinations whose parameters
+    // the reference does not read (ray skip, rays, blur and l).
+    std::map<std::string, std::vector<ReferenceFrame>> refs;
+    auto reference = [&](const Params& p, Reference which) -> const std::vector<ReferenceFrame>& {
         const Params rp = reference_params(p);
-        const std::string key = params_key(rp);
+        const std::string key = std::string(to_string(which)) + ":" + params_key(rp);
         auto it = refs.find(key);
         if (it != refs.end()) return it->second;
-        Ref r;
+        std::vector<ReferenceFrame> frames;
         for (int f = 0; f < opt.frames; ++f) {
-            FrameState st;
-            render_frame(st, world, scene_at(rp, f), camera_at(f), 0);
-            r.light.push_back(st.light);
-            r.final.push_back(st.final);
+            const Scene s = scene_at(rp, f);
+            const Rect view = camera_view(camera_at(f), world);
+            ReferenceFrame r;
+            r.light = reference_texture(world, s, view, which);
+            r.final = composite(render_sprites(world.tileset, world.placed, view), view, r.light, rp);
+            r.surface = build_surface(world, view, rp.opacity_threshold);
+            for (const Light& l : s.lights) r.areas.push_back(light_area(l, rp));
+            frames.push_back(std::move(r));
         }
-        return refs.emplace(key, std::move(r)).first->second;
+        return refs.emplace(key, std::move(frames)).first->second;
     };
 
     std::vector<SweepPoint> out;
+    const int total = int(params.size() * references.size());
     for (std::size_t c = 0; c < params.size(); ++c) {
         if (cancel && cancel->load()) break;
-        SweepPoint pt;
-        pt.params = params[c];
-        pt.values = combos[c];
-        const Ref& ref = reference(pt.params);
+        // Times: each repeat's mean per frame; the median over repeats, and the spread.
         std::array<std::vector<double>, stage_count> runs;
+        std::vector<LightTexture> lights;
+        std::vector<Image> finals;
         for (int rep = 0; rep < std::max(1, opt.repeats); ++rep) {
             FrameState st;
             std::array<double, stage_count> sum{};
             for (int f = 0; f < opt.frames; ++f) {
-                FrameReport r = render_frame(st, world, scene_at(pt.params, f), camera_at(f), f);
+                const FrameReport r = render_frame(st, world, scene_at(params[c], f), camera_at(f), f);
                 for (int k = 0; k < stage_count; ++k) sum[k] += r.ms[k];
                 if (rep == 0) {
-                    const ErrorMetrics l = compare_light(st.light, ref.light[f]);
-                    const ErrorMetrics fi = compare_images(st.final, ref.final[f]);
-                    for (auto [acc, m] : {std::pair{&pt.light, &l}, std::pair{&pt.final, &fi}}) {
-                        acc->lit_mismatch += m->lit_mismatch / opt.frames;
-                        acc->differing += m->differing / opt.frames;
-                        acc->rmse += m->rmse / opt.frames;
-                        acc->max_abs = std::max(acc->max_abs, m->max_abs);
-                    }
+                    lights.push_back(st.light);
+                    finals.push_back(st.final);
                 }
             }
             for (int k = 0; k < stage_count; ++k) runs[k].push_back(sum[k] / opt.frames);
         }
-        for (ErrorMetrics* m : {&pt.light, &pt.final})
-            m->psnr = m->rmse > 0 ? 20.0 * std::log10(255.0 / m->rmse) : std::numeric_limits<double>::infinity();
+        SweepPoint timed;
+        timed.params = params[c];
+        timed.values = combos[c];
+        std::vector<double> lighting_runs(runs[0].size(), 0);
         for (int k = 0; k < stage_count; ++k) {
-            std::vector<double>& v = runs[k];
-            std::sort(v.begin(), v.end());
-            pt.ms[k] = v[v.size() / 2];
-            pt.total_ms += pt.ms[k];
-            if (k != int(Stage::sprites) && k != int(Stage::composite)) pt.lighting_ms += pt.ms[k];
+            timed.ms[k] = median(runs[k]);
+            timed.total_ms += timed.ms[k];
+            const Stage st = Stage(k);
+            if (st != Stage::sprites && st != Stage::composite) {
+                timed.lighting_ms += timed.ms[k];
+                for (std::size_t r = 0; r < runs[k].size(); ++r) lighting_runs[r] += runs[k][r];
+            }
+            if (st == Stage::obstacle_map || st == Stage::trace || st == Stage::opacity_correction)
+                timed.app_cpu_ms += timed.ms[k];
+            if (st == Stage::blur || st == Stage::shift || st == Stage::composite) timed.cpu_only_ms += timed.ms[k];
         }
-        out.push_back(pt);
-        if (progress) progress(int(c + 1), int(params.size()));
+        timed.lighting_min_ms = *std::min_element(lighting_runs.begin(), lighting_runs.end());
+        timed.lighting_max_ms = *std::max_element(lighting_runs.begin(), lighting_runs.end());
+
+        for (Reference which : references) {
+            SweepPoint pt = timed;
+            pt.reference = which;
+            const std::vector<ReferenceFrame>& ref = reference(pt.params, which);
+            for (int f = 0; f < opt.frames; ++f) {
+                const ErrorMetrics l = compare_light(lights[std::size_t(f)], ref[std::size_t(f)].light);
+                const ErrorMetrics fi = compare_images(finals[std::size_t(f)], ref[std::size_t(f)].final);
+                for (auto [acc, m] : {std::pair{&pt.light, &l}, std::pair{&pt.final, &fi}}) {
+                    acc->lit_mismatch += m->lit_mismatch / opt.frames;
+                    acc->differing += m->differing / opt.frames;
+                    acc->rmse += m->rmse / opt.frames;
+                    acc->max_abs = std::max(acc->max_abs, m->max_abs);
+                }
+                AreaErrors fl, sp, all;
+                compare_in_areas(lights[std::size_t(f)], ref[std::size_t(f)].light, ref[std::size_t(f)].surface,
+                                 ref[std::size_t(f)].areas, fl, sp, all);
+                add_mean(pt.floor, fl, opt.frames);
+                add_mean(pt.sprite, sp, opt.frames);
+                add_mean(pt.area, all, opt.frames);
+            }
+            for (ErrorMetrics* m : {&pt.light, &pt.final})
+                m->psnr = m->rmse > 0 ? 20.0 * std::log10(255.0 / m->rmse) : std::numeric_limits<double>::infinity();
+            out.push_back(pt);
+            if (progress) progress(int(out.size()), total);
+        }
     }
     mark_pareto(out);
     return out;
@@ -228,7 +347,10 @@ std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Swee
     s << "ms_total,ms_lighting";
     for (const char* which : {"light", "final"})
         for (const char* m : {"lit_mismatch", "differing", "max_abs", "rmse", "psnr"}) s << "," << which << "_" << m;
-    s << ",pareto\n";
+    s << ",pareto,reference,ms_lighting_min,ms_lighting_max,ms_app_cpu,ms_cpu_only";
+    for (const char* which : {"floor", "sprite", "area"})
+        for (const char* m : {"lit_mismatch", "rmse", "pixels"}) s << "," << which << "_" << m;
+    s << "\n";
     for (const SweepPoint& p : points) {
         for (const std::string& v : p.values) s << v << ",";
         for (int k = 0; k < stage_count; ++k) s << num(p.ms[k], 5) << ",";
@@ -236,35 +358,54 @@ std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Swee
         for (const ErrorMetrics* m : {&p.light, &p.final})
             s << "," << num(m->lit_mismatch, 6) << "," << num(m->differing, 6) << "," << m->max_abs << ","
               << num(m->rmse, 5) << "," << num(m->psnr, 5);
-        s << "," << (p.pareto ? 1 : 0) << "\n";
+        s << "," << (p.pareto ? 1 : 0) << "," << to_string(p.reference) << "," << num(p.lighting_min_ms, 5) << ","
+          << num(p.lighting_max_ms, 5) << "," << num(p.app_cpu_ms, 5) << "," << num(p.cpu_only_ms, 5);
+        for (const AreaErrors* m : {&p.floor, &p.sprite, &p.area})
+            s << "," << num(m->lit_mismatch, 6) << "," << num(m->rmse, 5) << "," << m->pixels;
+        s << "\n";
     }
     return s.str();
 }
 
 std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points,
                       const std::string& title) {
-    const double W = 760, H = 460, L = 70, R = 20, T = 40, B = 60;
+    // The chart on the left, a table of every point on the right.
+    const double CW = 760, H = std::max(480.0, 90 + 15.0 * double(points.size())), L = 70, R = 20, T = 64, B = 60;
+    const double TW = 700, W = CW + TW;
     double tmin = 1e300, tmax = 0, emax = 0;
     for (const SweepPoint& p : points) {
-        tmin = std::min(tmin, p.lighting_ms);
-        tmax = std::max(tmax, p.lighting_ms);
+        tmin = std::min(tmin, std::max(1e-4, p.lighting_min_ms));
+        tmax = std::max(tmax, p.lighting_max_ms);
         emax = std::max(emax, p.final.rmse);
     }
     if (points.empty()) tmin = 0, tmax = 1;
     const bool log_x = tmin > 0 && tmax / tmin > 8;
     auto fx = [&](double t) {
-        double u = log_x ? (std::log(t) - std::log(tmin)) / std::max(1e-12, std::log(tmax) - std::log(tmin))
+        double u = log_x ? (std::log(std::max(t, 1e-4)) - std::log(tmin)) / std::max(1e-12, std::log(tmax) - std::log(tmin))
                          : (t - 0) / std::max(1e-12, tmax);
-        return L + u * (W - L - R);
+        return L + u * (CW - L - R);
     };
     emax = emax > 0 ? emax * 1.1 : 1;
     auto fy = [&](double e) { return H - B - e / emax * (H - T - B); };
+    static const char* colours[] = {"#e07020", "#2a9d3a", "#8040c0", "#c02050"};
     std::ostringstream s;
     s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << W / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << title << "</text>\n"
-      << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << W - R << "\" y2=\"" << H - B << "\" stroke=\"black\"/>\n"
+      << [&] {
+             // The title, one <text> per line.
+             std::ostringstream t;
+             double y = 18;
+             for (std::size_t pos = 0; pos <= title.size();) {
+                 const std::size_t end = std::min(title.find('\n', pos), title.size());
+                 t << "<text x=\"10\" y=\"" << y << "\" font-size=\"" << (y < 20 ? 14 : 11) << "\">"
+                   << xml(title.substr(pos, end - pos)) << "</text>\n";
+                 y += 16;
+                 pos = end + 1;
+             }
+             return t.str();
+         }()
+      << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << CW - R << "\" y2=\"" << H - B << "\" stroke=\"black\"/>\n"
       << "<line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L << "\" y2=\"" << H - B << "\" stroke=\"black\"/>\n";
     for (int i = 0; i <= 4; ++i) {
         const double t = log_x ? tmin * std::pow(tmax / tmin, i / 4.0) : tmax * i / 4.0;
@@ -272,27 +413,49 @@ std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<Swee
         s << "<text x=\"" << fx(t) << "\" y=\"" << H - B + 16 << "\" text-anchor=\"middle\">" << num(t, 3) << "</text>\n"
           << "<text x=\"" << L - 6 << "\" y=\"" << fy(e) + 4 << "\" text-anchor=\"end\">" << num(e, 3) << "</text>\n";
     }
-    s << "<text x=\"" << (L + W - R) / 2 << "\" y=\"" << H - 18 << "\" text-anchor=\"middle\">lighting time per frame (median), ms"
+    s << "<text x=\"" << (L + CW - R) / 2 << "\" y=\"" << H - 18
+      << "\" text-anchor=\"middle\">lighting time per frame on the CPU (median of repeats; bar: min to max), ms"
       << (log_x ? " (log scale)" : "") << "</text>\n"
       << "<text transform=\"translate(16," << (T + H - B) / 2
-      << ") rotate(-90)\" text-anchor=\"middle\">final frame RMSE vs reference (0-255)</text>\n";
+      << ") rotate(-90)\" text-anchor=\"middle\">final frame RMSE vs the reference (0-255)</text>\n";
+    // One front per reference, never joined across references.
     const std::vector<const SweepPoint*> front = pareto_front(points);
-    if (front.size() > 1) {
-        s << "<polyline fill=\"none\" stroke=\"#e07020\" stroke-width=\"1.5\" points=\"";
-        for (const SweepPoint* p : front) s << fx(p->lighting_ms) << "," << fy(p->final.rmse) << " ";
+    for (std::size_t i = 0; i < front.size();) {
+        std::size_t j = i;
+        s << "<polyline fill=\"none\" stroke=\"" << colours[int(front[i]->reference) % 4]
+          << "\" stroke-width=\"1.5\" points=\"";
+        for (; j < front.size() && front[j]->reference == front[i]->reference; ++j)
+            s << fx(front[j]->lighting_ms) << "," << fy(front[j]->final.rmse) << " ";
         s << "\"/>\n";
+        i = j;
     }
-    for (const SweepPoint& p : points) {
-        std::string label;
-        for (std::size_t i = 0; i < axes.size(); ++i) label += (i ? " " : "") + axes[i].name + "=" + p.values[i];
-        s << "<g><title>" << label << ": " << num(p.lighting_ms, 4) << " ms, RMSE " << num(p.final.rmse, 4)
-          << "</title><circle cx=\"" << fx(p.lighting_ms) << "\" cy=\"" << fy(p.final.rmse) << "\" r=\""
-          << (p.pareto ? 5 : 3.5) << "\" fill=\"" << (p.pareto ? "#e07020" : "#4070c0") << "\"/></g>\n";
-        if (p.pareto)
-            s << "<text x=\"" << fx(p.lighting_ms) + 7 << "\" y=\"" << fy(p.final.rmse) - 6 << "\" font-size=\"10\">" << label
-              << "</text>\n";
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const SweepPoint& p = points[k];
+        const char* colour = colours[int(p.reference) % 4];
+        const double y = fy(p.final.rmse);
+        s << "<line x1=\"" << fx(p.lighting_min_ms) << "\" y1=\"" << y << "\" x2=\"" << fx(p.lighting_max_ms) << "\" y2=\""
+          << y << "\" stroke=\"#999\"/>\n"
+          << "<circle cx=\"" << fx(p.lighting_ms) << "\" cy=\"" << y << "\" r=\"" << (p.pareto ? 4.5 : 3) << "\" fill=\""
+          << (p.pareto ? colour : "#4070c0") << "\"/>\n"
+          << "<text x=\"" << fx(p.lighting_ms) + 5 << "\" y=\"" << y - 5 << "\" font-size=\"9\">" << k + 1 << "</text>\n";
     }
-    s << "<text x=\"" << W - R << "\" y=\"" << T << "\" text-anchor=\"end\" fill=\"#e07020\">orange: Pareto front (least error for the time)</text>\n";
+    // The table: every point, numbered as on the chart.
+    double ty = T;
+    s << "<text x=\"" << CW + 10 << "\" y=\"" << ty << "\" font-weight=\"bold\">#  reference  ";
+    for (const SweepAxis& a : axes) s << xml(a.name) << " ";
+    s << " ms (min-max)  final RMSE  area RMSE floor/sprite</text>\n";
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const SweepPoint& p = points[k];
+        ty += 15;
+        s << "<text x=\"" << CW + 10 << "\" y=\"" << ty << "\" font-size=\"11\" fill=\""
+          << (p.pareto ? colours[int(p.reference) % 4] : "black") << "\">" << k + 1 << "  " << to_string(p.reference) << "  ";
+        for (const std::string& v : p.values) s << xml(v) << " ";
+        s << " " << num(p.lighting_ms, 3) << " (" << num(p.lighting_min_ms, 3) << "-" << num(p.lighting_max_ms, 3) << ")  "
+          << num(p.final.rmse, 3) << "  " << num(p.floor.rmse, 3) << "/" << num(p.sprite.rmse, 3) << "</text>\n";
+    }
+    s << "<text x=\"" << CW - R << "\" y=\"" << T - 14
+      << "\" text-anchor=\"end\" font-size=\"11\">coloured: the Pareto front of each reference (least error for the "
+         "time)</text>\n";
     s << "</svg>\n";
     return s.str();
 }

@@ -1,6 +1,6 @@
-// Accuracy against time: error metrics against the reference, and parameter
-// sweeps that time every stage. The reference is the every-pixel tracing
-// mode (the paper's 4ab rays), no ray skip, no blur, a fresh trace every frame.
+// Accuracy against time: error metrics against a reference (truth.hpp: the
+// model's every-pixel rays, the exact 2D line, or the true 3D shapes), and
+// parameter sweeps that time every stage.
 #pragma once
 #include <atomic>
 #include <functional>
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "isolux/frame.hpp"
+#include "isolux/truth.hpp"
 
 namespace isolux {
 
@@ -39,22 +40,42 @@ struct SweepAxis {
 // axis fails before any work); throws Error naming `source`.
 SweepAxis parse_sweep_axis(std::string_view text, const Params& base, std::string_view source);
 
+// Errors inside the lights' areas on one kind of pixel (the ground, or
+// overlay sprites), the model's view light texture against the reference's.
+struct AreaErrors {
+    double lit_mismatch = 0;  // share of the pixels lit (> 0) in one and not the other
+    double rmse = 0;          // 0..255 units
+    long pixels = 0;          // pixels counted (per frame, mean)
+};
+
+// Splits the comparison of two light textures over `surface.rect` by pixel
+// kind, counting only pixels inside one of `areas`.
+void compare_in_areas(const LightTexture& model, const LightTexture& ref, const Surface& surface,
+                      const std::vector<Rect>& areas, AreaErrors& floor, AreaErrors& sprite, AreaErrors& all);
+
 struct SweepOptions {
     int frames = 8;       // frames per run; the camera moves along its path
     int repeats = 3;      // runs per combination; times are medians over runs
     double step_x = 24, step_y = 12;  // camera movement per frame, world pixels
     bool carry_light = true;  // a light at the view's centre moves with the camera
+    // Each combination is measured against each reference (one CSV row each).
+    std::vector<Reference> references = {Reference::every_pixel};
 };
 
 struct SweepPoint {
     Params params;
     std::vector<std::string> values;    // one per axis, as given
+    Reference reference = Reference::every_pixel;
     std::array<double, stage_count> ms{};  // median time per frame of each stage
     double total_ms = 0;                 // every stage
     double lighting_ms = 0;              // the lighting's own stages: all but sprites and composite
                                          // (the same for every setting; on the GPU in the app)
-    ErrorMetrics light, final;           // means over frames (max_abs: the max)
-    bool pareto = false;                 // least final RMSE for its lighting time
+    double lighting_min_ms = 0, lighting_max_ms = 0;  // its spread over the repeats
+    double app_cpu_ms = 0;    // what the app runs on the CPU: obstacle map, trace, opacity correction
+    double cpu_only_ms = 0;   // what only the CPU renderer runs (the app's GPU does it): blur, shift, composite
+    ErrorMetrics light, final;           // means over frames over the whole view (max_abs: the max)
+    AreaErrors floor, sprite, area;      // inside the lights' areas: ground, sprites, both
+    bool pareto = false;                 // least final RMSE for its lighting time, among its reference's points
 };
 
 // Runs every combination of the axes' values over `scene` (its camera as the
@@ -66,7 +87,8 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
                                   const std::function<void(int, int)>& progress = {},
                                   const std::atomic<bool>* cancel = nullptr);
 
-// Marks the points on the Pareto front of (lighting_ms, final RMSE).
+// Marks the points on the Pareto front of (lighting_ms, final RMSE), one front
+// per reference.
 void mark_pareto(std::vector<SweepPoint>& points);
 // The marked points, fastest first (a chart's line, a report's list).
 std::vector<const SweepPoint*> pareto_front(const std::vector<SweepPoint>& points);
