@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "gui/app.hpp"
+#include "isolux/composite.hpp"
 #include "isolux/error.hpp"
 
 namespace isolux::app {
@@ -16,13 +17,18 @@ AccuracyPanel::~AccuracyPanel() {
     if (worker.joinable()) worker.join();
 }
 
-OverlayImage error_heatmap(const World& world, const Scene& scene, Rect view, ErrorMetrics* metrics) {
+OverlayImage error_heatmap(const World& world, const Scene& scene, Rect view, Reference reference,
+                           ErrorMetrics* metrics) {
     const Camera cam{double(view.x), double(view.y), view.w, view.h};
-    FrameState test, ref;
+    FrameState test;
     render_frame(test, world, scene, cam, 0);
+    const Params rp = reference_params(scene.params);
     Scene rs = scene;
-    rs.params = reference_params(scene.params);
-    render_frame(ref, world, rs, cam, 0);
+    rs.params = rp;
+    struct {
+        Image final;
+    } ref{composite(render_sprites(world.tileset, world.placed, view), view,
+                    reference_texture(world, rs, view, reference), rp)};
     if (metrics) *metrics = compare_images(test.final, ref.final);
     OverlayImage out;
     out.rect = view;
@@ -68,6 +74,7 @@ bool start_sweep(App& app, AccuracyPanel& panel) {
     SweepOptions opt;
     opt.frames = panel.frames;
     opt.repeats = panel.repeats;
+    opt.references = {panel.reference};
     panel.worker = std::thread([&panel, world, scene, axes, opt] {
         std::vector<SweepPoint> points;
         std::string error;
@@ -114,8 +121,18 @@ void accuracy_panel(App& app, AccuracyPanel& panel) {
     if (!panel.open) return;
     ImGui::SetNextWindowSize(ImVec2(520, 560), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Accuracy", &panel.open)) return ImGui::End();
-    ImGui::TextWrapped("Time and error of parameter combinations against the reference (a ray to every pixel, "
-                       "no skip, no blur, traced every frame), over the current view with the camera moving.");
+    ImGui::TextWrapped("Time and error of parameter combinations against a reference, over the current view "
+                       "with the camera moving. 3d: the sprites' true shapes, lights at their height; every_pixel: "
+                       "the model's own 4ab rays; exact_line: each pixel's own Bresenham line.");
+    {
+        static const char* names[] = {"every_pixel", "exact_line", "3d", "3d_facing"};
+        int r = int(panel.reference);
+        ImGui::SetNextItemWidth(160);
+        if (ImGui::Combo("reference", &r, names, 4)) {
+            panel.reference = Reference(r);
+            panel.heatmap_stale = true;
+        }
+    }
     for (int i = 0; i < 4; ++i) {
         ImGui::SetNextItemWidth(300);
         ImGui::InputText(("axis " + std::to_string(i + 1)).c_str(), &panel.axes[i]);
@@ -158,7 +175,7 @@ void accuracy_panel(App& app, AccuracyPanel& panel) {
             return p0.x + 30 + float(u) * (size.x - 50);
         };
         auto fy = [&](double e) { return p0.y + size.y - 20 - float(e / emax) * (size.y - 35); };
-        const std::vector<const SweepPoint*> front = pareto_front(pts);
+        const std::vector<const SweepPoint*> front = pareto_front(pts);  // one reference per sweep here
         for (std::size_t i = 1; i < front.size(); ++i)
             dl->AddLine(ImVec2(fx(front[i - 1]->lighting_ms), fy(front[i - 1]->final.rmse)),
                         ImVec2(fx(front[i]->lighting_ms), fy(front[i]->final.rmse)), IM_COL32(224, 112, 32, 255), 1.5f);
@@ -180,6 +197,10 @@ void accuracy_panel(App& app, AccuracyPanel& panel) {
             ImGui::Text("%.3f ms lighting, %.3f ms in all", nearest->lighting_ms, nearest->total_ms);
             ImGui::Text("final: RMSE %.3f, PSNR %.1f dB, max %d, lit mismatch %.2f%%", nearest->final.rmse,
                         nearest->final.psnr, nearest->final.max_abs, nearest->light.lit_mismatch * 100);
+            ImGui::Text("in the lights' areas, lit mismatch: ground %.1f%%, sprites %.1f%%",
+                        nearest->floor.lit_mismatch * 100, nearest->sprite.lit_mismatch * 100);
+            ImGui::Text("CPU in the app %.3f ms; CPU renderer only (blur, shift, composite) %.3f ms",
+                        nearest->app_cpu_ms, nearest->cpu_only_ms);
             ImGui::TextDisabled("click to apply these parameters");
             ImGui::EndTooltip();
             if (ImGui::IsMouseClicked(0)) apply_sweep_point(app, panel, std::size_t(nearest - pts.data()));

@@ -20,6 +20,7 @@ struct AccuracyPanel {
     bool open = false;
     std::string axes[4] = {"ray_skip=1,2,4,8", "blur_radius=0,1,2", "trace_every=1,2,4", ""};
     int frames = 6, repeats = 2;
+    Reference reference = Reference::three_d;  // what the sweep and the heat map measure against
 
     // The running sweep: its thread writes these, the UI reads them.
     std::thread worker;
@@ -45,7 +46,9 @@ void accuracy_panel(App& app, AccuracyPanel& panel);
 bool start_sweep(App& app, AccuracyPanel& panel);                  // false (and panel.error) on a bad axis
 bool apply_sweep_point(App& app, AccuracyPanel& panel, std::size_t index);  // one undo step
 
-// The heat map for the app's current view and settings (CPU, both frames fresh).
-OverlayImage error_heatmap(const World& world, const Scene& scene, Rect view, ErrorMetrics* metrics);
+// The heat map for the app's current view and settings against `reference`
+// (CPU, both frames fresh).
+OverlayImage error_heatmap(const World& world, const Scene& scene, Rect view, Reference reference,
+                           ErrorMetrics* metrics);
 
 }  // namespace isolux::app

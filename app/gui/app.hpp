@@ -45,6 +45,17 @@ struct App {
     Ui ui;
     Stats stats;
     FrameState flat_frame;  // flat lighting for the split view
+    // The 3D reference over the view, for the truth overlays and the 2.5D | 3D
+    // split: recomputed only when what it shows changed.
+    struct Truth {
+        bool valid = false;
+        Params params;
+        std::vector<Light> lights;
+        Rect view;
+        std::uint64_t revision = 0;
+        LightTexture texture;
+    } truth;
+    int split_texture_holds = 0;  // what the renderer's second light texture holds: 0 nothing, 1 flat, 2 truth
     AccuracyPanel accuracy;
     std::optional<Script> script;
     double now = 0;        // seconds since start

@@ -23,8 +23,12 @@ struct Overlays {
     bool light_areas = true;     // the a x b rectangles
     float light_areas_opacity = 0.6f;
     bool raw_light = false;      // the light texture instead of the final frame
-    bool split_view = false;     // paper lighting left, flat lighting right (Figure 10)
+    bool split_view = false;     // paper lighting left, flat (Figure 10) or 3D lighting right
+    bool split_with_3d = false;  // the right side: the 3D reference instead of flat lighting
     float split = 0.5f;
+    bool truth_light = false;       // the 3D reference's light texture instead of the final frame
+    bool truth_difference = false;  // magenta: lit in 2.5D, dark in 3D; cyan: the reverse
+    float truth_difference_opacity = 0.8f;
     friend bool operator==(const Overlays&, const Overlays&) = default;
 };
 

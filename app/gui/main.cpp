@@ -18,6 +18,7 @@
 #include "gui/window.hpp"
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
+#include "isolux/truth.hpp"
 
 using namespace isolux;
 using namespace isolux::app;
@@ -137,6 +138,9 @@ void run_script_step(App& app) {
         else if (n == "light_areas") o.light_areas = on;
         else if (n == "raw_light") o.raw_light = on;
         else if (n == "split_view") o.split_view = on;
+        else if (n == "split_with_3d") o.split_with_3d = on;
+        else if (n == "truth_light") o.truth_light = on;
+        else if (n == "truth_difference") o.truth_difference = on;
         else if (n == "heatmap") app.accuracy.heatmap = on, app.accuracy.heatmap_stale = true;
     } else if (step.op == "sweep") {
         AccuracyPanel& a = app.accuracy;
@@ -175,6 +179,33 @@ void push_stats(App& app, const FrameReport& rep, double frame_ms, double dt) {
     if (dt > 0) s.fps = s.fps * 0.9f + float(1.0 / dt) * 0.1f;
 }
 
+// The 3D reference over the view (truth.hpp), kept while the scene's
+// parameters, lights, view and world are the same. Null (and the status
+// says why) when it cannot be made, e.g. a tileset without shapes.
+const LightTexture* update_truth(App& app, const Scene& scene) {
+    App::Truth& t = app.truth;
+    const Editor& e = app.editor;
+    if (t.valid && t.params == scene.params && t.lights == scene.lights && t.view == app.view &&
+        t.revision == e.world.revision)
+        return &t.texture;
+    try {
+        t.texture = reference_texture(e.world, scene, app.view, Reference::three_d);
+    } catch (const Error& err) {
+        set_status(app.editor, err.what(), true);
+        app.editor.overlays.truth_light = app.editor.overlays.truth_difference = false;
+        app.editor.overlays.split_with_3d = false;
+        t.valid = false;
+        return nullptr;
+    }
+    t.valid = true;
+    t.params = scene.params;
+    t.lights = scene.lights;
+    t.view = app.view;
+    t.revision = e.world.revision;
+    app.split_texture_holds = 0;  // upload it again
+    return &t.texture;
+}
+
 // One frame of the pipeline: core traces (CPU), the renderer does the rest.
 FrameReport render(App& app, bool screenshot_mode) {
     Editor& e = app.editor;
@@ -196,17 +227,35 @@ FrameReport render(App& app, bool screenshot_mode) {
     if (rep.retraced) renderer_upload_light(app.renderer, e.frame.traced, rep.dirty);  // only what changed
     CompositeOptions opts;
     opts.show_light = e.overlays.raw_light;
-    if (e.overlays.split_view) {
+    const Overlays& ov = e.overlays;
+    const bool want_truth = ov.truth_light || ov.truth_difference || (ov.split_view && ov.split_with_3d);
+    const LightTexture* truth = want_truth ? update_truth(app, scene) : nullptr;
+    // The renderer's second light texture: the 3D reference, or flat lighting.
+    auto hold_truth = [&] {
+        if (app.split_texture_holds != 2) renderer_upload_flat_light(app.renderer, *truth);
+        app.split_texture_holds = 2;
+    };
+    if (truth && ov.truth_light) {
+        hold_truth();
+        opts.show_light = true;
+        opts.split = 0;  // all of the view reads the second texture
+    } else if (ov.split_view && truth && ov.split_with_3d) {
+        hold_truth();
+        opts.split = int(app.view.w * ov.split);
+    } else if (ov.split_view) {
         Scene flat = scene;
         flat.params.mode = Mode::flat;
         app.flat_frame.options = e.frame.options;
+        if (app.split_texture_holds != 1) app.flat_frame = FrameState{e.frame.options};  // retrace into it
         FrameReport fr = render_frame(app.flat_frame, e.world, flat, cam, e.frame_number);
-        if (fr.retraced) renderer_upload_flat_light(app.renderer, app.flat_frame.traced);
-        opts.split = int(app.view.w * e.overlays.split);
+        if (fr.retraced || app.split_texture_holds != 1) renderer_upload_flat_light(app.renderer, app.flat_frame.traced);
+        app.split_texture_holds = 1;
+        opts.split = int(app.view.w * ov.split);
     }
     // Overlays: rebuilt only when what they show changed.
     const Rect region = {app.view.x - 64, app.view.y - 64, app.view.w + 128, app.view.h + 128};
     const bool overlay_stale = !(app.overlay_key == e.overlays) || !(app.overlay_params == scene.params) ||
+                               (ov.truth_difference && rep.retraced) ||
                                app.overlay_lights != scene.lights || rep.ran_stage(Stage::obstacle_map) ||
                                !(intersect(app.overlay_region, app.view) == app.view) || app.overlay_dirty;
     AccuracyPanel& acc = app.accuracy;
@@ -215,7 +264,7 @@ FrameReport render(App& app, bool screenshot_mode) {
         // The heat map replaces the other overlays while it is on; it is
         // recomputed (two CPU frames) only when the settings or view change.
         if (acc.heatmap_stale || settings_changed || !(acc.heat.rect == app.view)) {
-            acc.heat = error_heatmap(e.world, scene, app.view, &acc.heat_metrics);
+            acc.heat = error_heatmap(e.world, scene, app.view, acc.reference, &acc.heat_metrics);
             acc.heatmap_stale = false;
             renderer_upload_overlay(app.renderer, acc.heat.image, acc.heat.rect);
         }
@@ -223,7 +272,7 @@ FrameReport render(App& app, bool screenshot_mode) {
         app.overlay_lights = scene.lights;
         app.overlay_dirty = true;  // rebuild the others when it is turned off
     } else if (overlay_stale) {
-        OverlayImage o = build_overlays(e.world, e.frame, scene, e.overlays, region);
+        OverlayImage o = build_overlays(e.world, e.frame, scene, e.overlays, region, truth);
         renderer_upload_overlay(app.renderer, o.image, o.rect);
         app.overlay_key = e.overlays;
         app.overlay_params = scene.params;

@@ -6,6 +6,7 @@
 #include "isolux/light_texture.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_correction.hpp"
+#include "isolux/truth.hpp"
 
 namespace isolux::app {
 
@@ -21,9 +22,10 @@ void blend(std::uint8_t* d, int r, int g, int b, float a) {
 }  // namespace
 
 OverlayImage build_overlays(const World& world, const FrameState& frame, const Scene& scene, const Overlays& o,
-                            Rect region) {
+                            Rect region, const LightTexture* truth) {
     OverlayImage out;
-    if (!o.obstacles && !o.opacity_maps && !o.delta_y_bands) return out;
+    const bool difference = o.truth_difference && truth && !truth->rect.empty();
+    if (!o.obstacles && !o.opacity_maps && !o.delta_y_bands && !difference) return out;
     region = intersect(region, world.placed.bounds);
     if (region.empty()) return out;
     out.rect = region;
@@ -76,6 +78,16 @@ OverlayImage build_overlays(const World& world, const FrameState& frame, const S
                                   added ? 80 : 50, o.opacity_maps_opacity);
             }
         }
+    }
+    if (difference) {
+        // The model as traced and corrected (before the blur) against the 3D reference.
+        const Rect r = intersect(truth->rect, region);
+        const Image d = lit_difference(shift_light_texture(frame.traced, r), *truth);
+        for (int y = 0; y < r.h; ++y)
+            for (int x = 0; x < r.w; ++x) {
+                const std::uint8_t* c = d.at(x, y);
+                if (c[3]) blend(out.image.at(r.x + x - region.x, r.y + y - region.y), c[0], c[1], c[2], o.truth_difference_opacity);
+            }
     }
     if (o.obstacles) {
         const Mask& m = frame.obstacles;

@@ -297,8 +297,18 @@ void overlays_panel(App& app) {
         "Blue: the Δy rows Algorithm 1 reads on each sprite; cyan: the run it chose.");
     row("light areas", &o.light_areas, &o.light_areas_opacity, "Each light's (2a+1) x (2b+1) area.");
     row("raw light texture", &o.raw_light, nullptr, "Show the light texture instead of the final frame.");
-    row("split view", &o.split_view, nullptr, "Left: the paper's lighting. Right: flat lighting (Figure 10).");
+    ImGui::TextDisabled("truth (the sprites' 3D shapes, lights at their height)");
+    row("3D light texture", &o.truth_light, nullptr,
+        "The light texture of the 3D reference: a pixel is lit when the segment from its surface point to the "
+        "light clears every solid. Needs shapes in the tileset.");
+    row("2.5D vs 3D", &o.truth_difference, &o.truth_difference_opacity,
+        "Magenta: lit by the paper's model but dark in 3D. Cyan: dark in the model but lit in 3D. Recomputed when "
+        "the scene changes (slow while dragging a light).");
+    row("split view", &o.split_view, nullptr,
+        "Left: the paper's lighting. Right: flat lighting (Figure 10), or the 3D reference.");
     if (o.split_view) {
+        ImGui::SameLine();
+        ImGui::Checkbox("3D on the right", &o.split_with_3d);
         ImGui::SetNextItemWidth(200);
         ImGui::SliderFloat("split", &o.split, 0.0f, 1.0f);
     }
@@ -351,6 +361,21 @@ void lights_panel(App& app) {
         if (ImGui::SliderFloat("intensity", &intensity, 0.0f, 4.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp))
             l.intensity = intensity;
         track_edit(app, before);
+        before = e.scene;
+        bool own_height = l.height.has_value();
+        if (ImGui::Checkbox("own height", &own_height)) {
+            if (own_height) l.height = e.scene.params.light_height;
+            else l.height.reset();
+            commit_edit(e, before, app.now);
+        }
+        help("Off: the preset's light height. The height above the ground in pixels: the paper's model ignores "
+             "it; the 3D reference (Overlays, truth) uses it.");
+        if (own_height) {
+            before = e.scene;
+            float h = float(*l.height);
+            if (ImGui::SliderFloat("height", &h, 0.0f, 256.0f, "%.0f px", ImGuiSliderFlags_AlwaysClamp)) l.height = h;
+            track_edit(app, before);
+        }
         if (ImGui::Button("Remove")) remove_light(e, e.selected, app.now);
     }
     ImGui::Separator();
