@@ -14,6 +14,7 @@
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_correction.hpp"
 #include "isolux/opacity_map.hpp"
+#include "isolux/truth.hpp"
 
 namespace isolux {
 
@@ -118,6 +119,8 @@ bool update_obstacle_map(FrameState& st, const World& world, const Params& p, Re
     // every frame; never more than the map.
     c.obstacle_region = needed.empty() ? needed : intersect(grow(needed, 256), world.placed.bounds);
     st.obstacles = build_obstacle_map(world.tileset, world.placed, p, c.obstacle_region);
+    st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
+                                                : ObstacleHeights{};
     st.opacity.clear();
     for (const Sprite& s : world.tileset.sprites)
         st.opacity.push_back(opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)));
@@ -165,9 +168,11 @@ LightPlan plan_lights(const FrameCache& c, const Scene& scene, Rect tex_rect, Fr
         t.cy = std::int64_t(std::floor(l.y));
         t.a = light_a(l, p);
         t.b = light_b(l, p);
+        t.height = p.rays_over_obstacles ? light_height(l, p) : 0;
         const Rect clip = intersect(light_area(l, p), tex_rect);
         auto same = [&](const TracedLight& old) {
-            return old.cx == t.cx && old.cy == t.cy && old.a == t.a && old.b == t.b && old.mask.clip == clip;
+            return old.cx == t.cx && old.cy == t.cy && old.a == t.a && old.b == t.b && old.height == t.height &&
+                   old.mask.clip == clip;
         };
         // Lights mostly keep their place in the list: look there first.
         const TracedLight* hit = nullptr;
@@ -210,6 +215,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     const int threads_wanted =
         st.options.threads > 0 ? st.options.threads : std::max(1, int(std::thread::hardware_concurrency()));
     const bool correct = st.options.opacity_correction && p.mode != Mode::flat;
+    const bool over = p.rays_over_obstacles && p.mode != Mode::shadow;
     const std::size_t n = plan.todo.size();
     std::vector<double> trace_ms(n, 0), correct_ms(n, 0);
     std::vector<int> touched(n, 0);
@@ -220,8 +226,12 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             TracedLight& tl = plan.traced[plan.todo[k]];
             const auto t0 = Clock::now();
             const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
-            tl.mask = trace_light(st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
-                                  area_is_clear(st.obstacles, area));
+            if (over)  // beyond the paper: rays over low obstacles
+                tl.mask = trace_light_over(st.obstacles, st.obstacle_heights, tl.cx, tl.cy, tl.a, tl.b, tl.height, p,
+                                           tl.mask.clip);
+            else
+                tl.mask = trace_light(st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
+                                      area_is_clear(st.obstacles, area));
             const auto t1 = Clock::now();
             if (correct) touched[k] = correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
             trace_ms[k] = ms_between(t0, t1);

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "isolux/height_rays.hpp"
 #include "isolux/image.hpp"
 #include "isolux/light_texture.hpp"
 #include "isolux/scene.hpp"
@@ -55,6 +56,7 @@ struct FrameCache {
     struct TracedLight {
         std::int64_t cx = 0, cy = 0;
         int a = 0, b = 0;
+        double height = 0;  // read only with rays_over_obstacles
         LightMask mask;
     };
     std::vector<TracedLight> lights;
@@ -83,6 +85,7 @@ struct FrameState {
     // Outputs, valid after render_frame (those of stages an option turns off stay empty).
     Mask obstacles;              // the obstacle map over the region lights need (paper 3.1)
     std::vector<Mask> opacity;   // each tileset sprite's opacity map, by sprite index
+    ObstacleHeights obstacle_heights;  // with rays_over_obstacles: the obstacles' estimated heights
     LightTexture traced;         // the last trace: corrected light texture, world-anchored
     Rect view;                   // what the view shows, world pixels
     Image sprites;               // the view's sprites (cpu_sprites)

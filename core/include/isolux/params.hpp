@@ -48,6 +48,7 @@ struct Params {
     bool dark_unlit = false;       // Algorithm 3 variant: texFactor *= light (paper 4)
     Rays rays = Rays::border;
     double light_height = 32;      // a light's height above the ground, pixels, when it gives none (not in the paper)
+    bool rays_over_obstacles = false;  // rays pass over obstacles lower than the ray (height_rays.hpp; not in the paper)
 
     friend bool operator==(const Params&, const Params&) = default;
 };
