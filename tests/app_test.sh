@@ -102,6 +102,31 @@ timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/map.
 [ "$(json "$tmp/m_regenerated.json" "d['seed'], d['width'], d['height']")" = "('moss-7', 12, 12)" ] && ok || bad "Regenerate after undo built another size than the document's"
 [ "$(python3 -c "import struct;f=open('$tmp/m_window.png','rb');f.read(16);print(*struct.unpack('>II',f.read(8)))")" = "1600 900" ] && ok || bad "window-shot is not the window's size"
 
+# 2d. The truth overlays: the 3D light texture, 2.5D against 3D, the 2.5D | 3D
+# split, each drawn (the window changes) without an error.
+cat >"$tmp/truth.script" <<SCRIPT
+wait 3
+window-shot $tmp/t_plain.png
+overlay truth_difference on
+wait 3
+window-shot $tmp/t_diff.png
+overlay truth_difference off
+overlay split_view on
+overlay split_with_3d on
+wait 3
+overlay split_view off
+overlay truth_light on
+wait 3
+window-shot $tmp/t_light.png
+save-scene $tmp/t_scene.json
+quit
+SCRIPT
+timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/truth.script" >"$tmp/log" 2>&1 || { bad "truth overlays run"; cat "$tmp/log"; }
+[ -f "$tmp/t_scene.json" ] && ok || bad "the truth overlays run did not reach its end"
+for shot in t_diff t_light; do
+  if cmp -s "$tmp/t_plain.png" "$tmp/$shot.png"; then bad "$shot looks like the plain view"; else ok; fi
+done
+
 # 3. A drag moves a light (one undo step), right-click removes one, Delete the selected.
 cat >"$tmp/drag.script" <<SCRIPT
 wait 2

@@ -102,5 +102,20 @@ check blur_new 0 "" -- render --size 4x4 --light 200,100 --blur-radius 3 --out "
 if cmp -s "$tmp/blur_old.png" "$tmp/blur_new.png"; then pass=$((pass + 1)); else echo "FAIL --blur and --blur-radius differ"; fail=$((fail + 1)); fi
 check json_huge_number 2 "malformed JSON" -- render --preset <(echo '{"schema_version": 1, "delta_y": 1e999}') --out "$tmp/x.png"
 
+# The 3D reference: the truth's lit frame and where the model disagrees with it.
+check truth 0 "" -- render --size 6x6 --light 400,250,h=48 --layer truth --out "$tmp/truth.png"
+check difference 0 "" -- render --size 6x6 --light 400,250,h=48 --layer difference --reference 3d_facing --out "$tmp/diff.png"
+check exact_line 0 "" -- render --size 6x6 --light 400,250 --layer truth --reference exact_line --out "$tmp/exact.png"
+if cmp -s "$tmp/truth.png" "$tmp/exact.png"; then echo "FAIL the 3D and exact-line references agree everywhere"; fail=$((fail + 1)); else pass=$((pass + 1)); fi
+check bad_reference 2 "reference" -- render --size 3x3 --layer truth --reference magic --out "$tmp/x.png"
+check bad_light_height 2 "light_height" -- render --size 3x3 --light 10,10,h=-1 --out "$tmp/x.png"
+check truth_needs_shapes 2 "has no shape" -- render --size 5x5 --tileset "$src/tests/data/foreign_tileset/tileset.json" --light 200,100 --layer truth --out "$tmp/x.png"
+cat >"$tmp/sweep.json" <<'JSON'
+{"schema_version": 1, "width": 6, "height": 6, "lights": [{"x": 400, "y": 250, "height": 24}],
+ "camera": {"x": 200, "y": 100, "width": 320, "height": 200}}
+JSON
+check sweep_references 0 "" -- sweep --scene "$tmp/sweep.json" --param ray_skip=1,4 --reference 3d,every_pixel --frames 2 --repeats 1 --out "$tmp/sweep.csv" --chart "$tmp/sweep.svg"
+if [ "$(python3 -c "import csv;print(sorted({r['reference'] for r in csv.DictReader(open('$tmp/sweep.csv'))}))")" = "['3d', 'every_pixel']" ]; then pass=$((pass + 1)); else echo "FAIL the sweep CSV lacks a row per reference"; fail=$((fail + 1)); fi
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

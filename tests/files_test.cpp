@@ -2,10 +2,13 @@
 // clear error naming the file and the entry.
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include <fstream>
 
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
+#include "isolux/opacity_map.hpp"
 #include "isolux/tileset_generator.hpp"
 #include "test_util.hpp"
 
@@ -298,4 +301,68 @@ TEST(Tileset, generatorWritesHeightMapsThatMatchTheShapes) {
     EXPECT_EQ(max_height("grass"), 0);  // the floor's top is the ground plane
     Image h = load_image(d.path / "pine.height.png");
     EXPECT_EQ(h.width, 64);
+}
+
+TEST(Tileset, badShapesNameTheManifestTheEntryAndTheSolid) {
+    TempDir d;
+    write_png(d.path / "floor.png", 64, 48);
+    struct Case {
+        std::string shape, expect;
+    } cases[] = {
+        {R"([{"kind": "pyramid", "base": [0, 0, 0]}])", "pyramid"},
+        {R"([{"kind": "box", "min": [0, 0, 0], "max": [-1, 4, 4]}])", "negative size"},
+        {R"([{"kind": "cylinder", "base": [0, 0, 0], "radius": -2, "height": 5}])", "radius"},
+        {R"([{"kind": "cone", "base": [0, 0, 0], "radius": 2, "height": 1e999}])", "malformed JSON"},
+        {R"([{"kind": "ellipsoid", "center": [0, 0, 0], "radii": [1, -1, 1]}])", "radii"},
+        {R"([{"kind": "ellipsoid", "center": [0, "x", 0], "radii": [1, 1, 1]}])", "center"},
+        {R"({"kind": "box"})", "array"},
+    };
+    for (const Case& c : cases) {
+        const std::string sprite =
+            R"({"name": "odd", "image": "floor.png", "kind": "overlay", "shape": )" + c.shape + "}";
+        fs::path m = d.write("tileset.json", manifest_with(sprite));
+        std::string msg = error_of([&] { load_tileset(m); });
+        EXPECT_MENTIONS(msg, "tileset.json");
+        if (c.expect != "malformed JSON") {
+            EXPECT_MENTIONS(msg, "sprites[1]");
+            EXPECT_MENTIONS(msg, "shape");
+        }
+        EXPECT_MENTIONS(msg, c.expect);
+    }
+    // NaN cannot be written in JSON; a shape is read back exactly as written.
+    fs::path m = d.write("tileset.json", manifest_with(
+        R"({"name": "post", "image": "floor.png", "kind": "overlay", "shape": [{"kind": "cylinder", "base": [1, 2, 0], "radius": 3, "height": 40}]})"));
+    const Tileset t = load_tileset(m);
+    ASSERT_EQ(t.sprites[1].shape.size(), 1u);
+    EXPECT_EQ(t.sprites[1].shape[0], (Solid{SolidKind::cylinder, {1, 2, 0}, {3, 3, 40}}));
+}
+
+TEST(Tileset, theDefaultTilesetCarriesItsShapesAndHeightMaps) {
+    const Tileset t = test::default_tileset();
+    const GeneratedTileset g = generate_default_tileset();
+    for (std::size_t i = 0; i < t.sprites.size(); ++i) {
+        EXPECT_EQ(t.sprites[i].shape, g.tileset.sprites[i].shape) << t.sprites[i].name;
+        EXPECT_EQ(t.sprites[i].height, g.heights[i]) << t.sprites[i].name;
+    }
+}
+
+TEST(Image, sixteenBitAlphaIsComparedAtItsOwnPrecision) {
+    // Alpha 32750 / 65535 = 0.49973: above a threshold of 0.4995, though its
+    // 8-bit rounding (127 / 255 = 0.49804) is below it.
+    TempDir d;
+    auto out = OIIO::ImageOutput::create("png");
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(2, 1, 4, OIIO::TypeDesc::UINT16);
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    const std::uint16_t px[8] = {60000, 60000, 60000, 32750, 60000, 60000, 60000, 32700};
+    ASSERT_TRUE(out->open((d.path / "a16.png").string(), spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, px));
+    ASSERT_TRUE(out->close());
+    const Image im = load_image(d.path / "a16.png");
+    ASSERT_EQ(im.alpha16.size(), 2u);
+    EXPECT_EQ(im.alpha16[0], 32750);
+    EXPECT_EQ(im.at(0, 0)[3], 127);
+    const Mask m = opacity_map(im, 0.4995);
+    EXPECT_TRUE(m.get(0, 0));   // 0.49973 > 0.4995
+    EXPECT_FALSE(m.get(1, 0));  // 32700 / 65535 = 0.49897 < 0.4995
 }
