@@ -12,8 +12,11 @@
 #include <string>
 #include <thread>
 
+#include "isolux/accuracy.hpp"
+#include "isolux/files.hpp"
 #include "isolux/hash.hpp"
 #include "isolux/light_trace.hpp"
+#include "isolux/truth.hpp"
 #include "scenes.hpp"
 
 using namespace isolux;
@@ -278,6 +281,28 @@ struct Collector : benchmark::BenchmarkReporter {
     }
 };
 
+// The truth (truth.hpp): the 3D reference of the default scene (two lights,
+// 257x257 areas, the whole map in view), and a sweep of 48 settings against it.
+// Targets: <= 2 s and <= 3 minutes on one core (docs/accuracy.md).
+void register_truth() {
+    static const Scene scene = load_scene(std::string(ISOLUX_ASSETS_DIR) + "/scenes/default.json");
+    static const World w = make_world(load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/default/tileset.json"), scene);
+    benchmark::RegisterBenchmark("truth/3d/default_scene", [](benchmark::State& st) {
+        const Rect view = camera_view(scene.camera, w);
+        for (auto _ : st) benchmark::DoNotOptimize(reference_texture(w, scene, view, Reference::three_d));
+    })->Unit(benchmark::kMillisecond)->Iterations(3);
+    benchmark::RegisterBenchmark("truth/sweep48/default_scene", [](benchmark::State& st) {
+        std::vector<SweepAxis> axes = {{"ray_skip", {"1", "2", "4", "8"}},
+                                       {"blur_radius", {"0", "2", "4"}},
+                                       {"light_height", {"8", "16", "32", "64"}}};
+        SweepOptions opt;
+        opt.frames = 2;
+        opt.repeats = 1;
+        opt.references = {Reference::three_d};
+        for (auto _ : st) benchmark::DoNotOptimize(run_sweep(w, scene, axes, opt));
+    })->Unit(benchmark::kMillisecond)->Iterations(1);
+}
+
 int ratios(int argc, char** argv) {
     const char* ratio_scene = "default";
     const int a = 128;
@@ -353,6 +378,7 @@ int ratios(int argc, char** argv) {
 int main(int argc, char** argv) {
     register_tracers();
     register_frames();
+    register_truth();
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--ratios") == 0) return ratios(argc, argv);
     benchmark::Initialize(&argc, argv);

@@ -303,6 +303,7 @@ struct SweepArgs {
     std::string step = "24,12";
     std::string references = "every_pixel";
     bool no_carry = false;
+    bool no_opacity_correction = false;
 };
 
 int run_sweep_command(const SweepArgs& a) {
@@ -319,6 +320,7 @@ int run_sweep_command(const SweepArgs& a) {
     opt.step_x = step[0];
     opt.step_y = step[1];
     opt.carry_light = !a.no_carry;
+    opt.opacity_correction = !a.no_opacity_correction;
     opt.references.clear();
     for (std::size_t pos = 0;;) {
         const std::size_t end = a.references.find(',', pos);
@@ -415,6 +417,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 100));
     sweep->add_option("--step", sa.step, "Camera movement per frame DX,DY (default 24,12)");
     sweep->add_flag("--no-carried-light", sa.no_carry, "No light moving with the camera");
+    sweep->add_flag("--no-opacity-correction", sa.no_opacity_correction,
+                    "Measure the model without its opacity correction (the paper's Figure 6)");
     sweep->add_option("--reference", sa.references,
                       "What the error is measured against: every_pixel (default; the model's own 4ab rays), "
                       "exact_line, 3d (the sprites' true shapes) or 3d_facing; a comma list measures each");

@@ -253,7 +253,7 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
     std::map<std::string, std::vector<ReferenceFrame>> refs;
     auto reference = [&](const Params& p, Reference which) -> const std::vector<ReferenceFrame>& {
         const Params rp = reference_params(p);
-        const std::string key = std::string(to_string(which)) + ":" + params_key(rp);
+        const std::string key = std::string(to_string(which)) + (opt.opacity_correction ? ":" : ":raw:") + params_key(rp);
         auto it = refs.find(key);
         if (it != refs.end()) return it->second;
         std::vector<ReferenceFrame> frames;
@@ -261,7 +261,7 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
             const Scene s = scene_at(rp, f);
             const Rect view = camera_view(camera_at(f), world);
             ReferenceFrame r;
-            r.light = reference_texture(world, s, view, which);
+            r.light = reference_texture(world, s, view, which, opt.opacity_correction);
             r.final = composite(render_sprites(world.tileset, world.placed, view), view, r.light, rp);
             r.surface = build_surface(world, view, rp.opacity_threshold);
             for (const Light& l : s.lights) r.areas.push_back(light_area(l, rp));
@@ -280,6 +280,7 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
         std::vector<Image> finals;
         for (int rep = 0; rep < std::max(1, opt.repeats); ++rep) {
             FrameState st;
+            st.options.opacity_correction = opt.opacity_correction;
             std::array<double, stage_count> sum{};
             for (int f = 0; f < opt.frames; ++f) {
                 const FrameReport r = render_frame(st, world, scene_at(params[c], f), camera_at(f), f);

@@ -203,12 +203,14 @@ Image lit_difference(const LightTexture& model, const LightTexture& reference) {
     return out;
 }
 
-LightTexture reference_texture(const World& world, const Scene& scene, Rect rect, Reference ref) {
+LightTexture reference_texture(const World& world, const Scene& scene, Rect rect, Reference ref,
+                               bool opacity_correction) {
     Params p = scene.params;
     p.mode = p.mode == Mode::flat ? Mode::flat : Mode::light;
     if (ref == Reference::every_pixel) {
         FrameState st;
         st.options.margin = 0;
+        st.options.opacity_correction = opacity_correction;
         st.options.cpu_sprites = false;
         st.options.cpu_blur_and_composite = false;
         Scene s = scene;

@@ -58,6 +58,7 @@ struct SweepOptions {
     int repeats = 3;      // runs per combination; times are medians over runs
     double step_x = 24, step_y = 12;  // camera movement per frame, world pixels
     bool carry_light = true;  // a light at the view's centre moves with the camera
+    bool opacity_correction = true;  // off: the paper's Figure 6, measured (FrameOptions::opacity_correction)
     // Each combination is measured against each reference (one CSV row each).
     std::vector<Reference> references = {Reference::every_pixel};
 };

@@ -60,8 +60,10 @@ LightMask exact_line_light(const Mask& obstacles, std::int64_t cx, std::int64_t 
 
 // The scene's light texture over `rect` by the reference: every light that
 // meets `rect`, accumulated as the model does (colour, intensity), light mode,
-// no blur, no opacity correction except in every_pixel (the model's own).
-LightTexture reference_texture(const World& world, const Scene& scene, Rect rect, Reference ref);
+// no blur. Only every_pixel (the model's own rays) has an opacity correction,
+// and only when `opacity_correction` (so that it matches the model measured).
+LightTexture reference_texture(const World& world, const Scene& scene, Rect rect, Reference ref,
+                               bool opacity_correction = true);
 
 // Where the model and a reference disagree about lit (> 0 in any channel),
 // over the model's rectangle: magenta where the model lights what the

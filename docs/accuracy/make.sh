@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Re-makes docs/accuracy.md: runs every sweep it reports (CSV and charts into
+# docs/accuracy/ and docs/images/), then writes the page from them.
+# Usage: bash docs/accuracy/make.sh [PATH/TO/isolux-cli]   (a few minutes on 2 cores)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+cli=${1:-build/release/app/isolux-cli}
+out=docs/accuracy
+sweep() { "$cli" sweep "$@" 2>/dev/null >/dev/null; }
+for scene in default forest; do
+  s=assets/scenes/$scene.json
+  # The paper's model against every reference, by light height, with and without its opacity correction.
+  sweep --scene "$s" --param light_height=4,16,32,64 --reference 3d,3d_facing,exact_line,every_pixel \
+    --frames 8 --repeats 1 --out $out/${scene}_truth.csv
+  sweep --scene "$s" --param light_height=4,16,32,64 --reference 3d,3d_facing,exact_line,every_pixel \
+    --frames 8 --repeats 1 --no-opacity-correction --out $out/${scene}_truth_nocorr.csv
+  # Beyond the paper: rays over low obstacles.
+  sweep --scene "$s" --param rays_over_obstacles=false,true --param light_height=4,16,32,64 --reference 3d \
+    --frames 8 --repeats 1 --out $out/${scene}_height_rays.csv
+  # Each speed knob alone, against the truth and against the model's own best.
+  sweep --scene "$s" --param ray_skip=1,2,4,8 --reference 3d,every_pixel --frames 8 --repeats 3 \
+    --out $out/${scene}_ray_skip.csv --chart docs/images/accuracy_${scene}_ray_skip.svg
+  sweep --scene "$s" --param trace_every=1,2,4,8 --reference 3d,every_pixel --frames 8 --repeats 3 \
+    --out $out/${scene}_trace_every.csv --chart docs/images/accuracy_${scene}_trace_every.svg
+  sweep --scene "$s" --param blur_radius=0,1,2,4 --reference 3d,every_pixel --frames 8 --repeats 3 \
+    --out $out/${scene}_blur.csv --chart docs/images/accuracy_${scene}_blur.svg
+  sweep --scene "$s" --param area_a=64,128,254 --param rays=border,every_pixel --reference 3d,every_pixel \
+    --frames 8 --repeats 3 --out $out/${scene}_area.csv --chart docs/images/accuracy_${scene}_area.svg
+done
+# What the truth costs: the 3D reference of the default scene, and a 48-setting sweep against it.
+"$(dirname "$cli")/../bench/isolux-bench" --benchmark_filter='^truth/' --benchmark_format=csv 2>/dev/null > $out/bench_truth.csv
+python3 $out/report.py > docs/accuracy.md
+echo "wrote docs/accuracy.md"
