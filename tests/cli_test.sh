@@ -117,5 +117,22 @@ JSON
 check sweep_references 0 "" -- sweep --scene "$tmp/sweep.json" --param ray_skip=1,4 --reference 3d,every_pixel --frames 2 --repeats 1 --out "$tmp/sweep.csv" --chart "$tmp/sweep.svg"
 if [ "$(python3 -c "import csv;print(sorted({r['reference'] for r in csv.DictReader(open('$tmp/sweep.csv'))}))")" = "['3d', 'every_pixel']" ]; then pass=$((pass + 1)); else echo "FAIL the sweep CSV lacks a row per reference"; fail=$((fail + 1)); fi
 
+# check-tileset: every overlay's obstacle against its anchor, as text, JSON and a contact sheet.
+check check_tileset 0 "" -- check-tileset "$src/assets/default/tileset.json" --sheet "$tmp/sheet.png"
+check check_tileset_json 0 "" -- check-tileset "$src/tests/data/foreign_tileset/tileset.json" --json --footprint paper
+cp "$tmp/out" "$tmp/check.json"
+if python3 - "$tmp/check.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert set(d) == {"sprites"} and d["sprites"], d
+for s in d["sprites"]:
+    assert set(s) == {"name", "obstacle_center", "obstacle_rect", "anchor", "distance", "detected", "warning"}, s
+    assert s["obstacle_center"] is None or len(s["obstacle_center"]) == 2
+    assert s["obstacle_rect"] is None or len(s["obstacle_rect"]) == 4
+PY
+then pass=$((pass + 1)); else echo "FAIL check-tileset --json is not the documented shape"; fail=$((fail + 1)); fi
+[ -s "$tmp/sheet.png" ] && pass=$((pass + 1)) || { echo "FAIL no contact sheet"; fail=$((fail + 1)); }
+check check_tileset_bad 2 "tileset.json" -- check-tileset "$tmp/nowhere/tileset.json"
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

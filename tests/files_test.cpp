@@ -366,3 +366,23 @@ TEST(Image, sixteenBitAlphaIsComparedAtItsOwnPrecision) {
     EXPECT_TRUE(m.get(0, 0));   // 0.49973 > 0.4995
     EXPECT_FALSE(m.get(1, 0));  // 32700 / 65535 = 0.49897 < 0.4995
 }
+
+TEST(Tileset, footprintsAreReadAndBadOnesNameTheEntry) {
+    TempDir d;
+    write_png(d.path / "floor.png", 64, 48);
+    fs::path m = d.write("tileset.json", manifest_with(
+        R"({"name": "post", "image": "floor.png", "kind": "overlay", "footprint": {"run": [3, 40, 10], "shadow_alpha": 0.8}})"));
+    const Tileset t = load_tileset(m);
+    EXPECT_EQ(t.sprites[1].footprint.mode, FootprintMode::run);
+    EXPECT_EQ(t.sprites[1].footprint.run_length, 10);
+    EXPECT_EQ(t.sprites[1].footprint.shadow_alpha, 0.8);
+    for (const auto& [fp, expect] : std::vector<std::pair<std::string, std::string>>{
+             {R"("sideways")", "sideways"}, {R"("run")", "run"}, {R"({"run": [1, 2]})", "run"},
+             {R"({"polygon": [[0, 0], [1, 1]]})", "polygon"}, {R"({"shadow_alpha": 2})", "shadow_alpha"}}) {
+        m = d.write("tileset.json", manifest_with(R"({"name": "odd", "image": "floor.png", "kind": "overlay", "footprint": )" + fp + "}"));
+        std::string msg = error_of([&] { load_tileset(m); });
+        EXPECT_MENTIONS(msg, "sprites[1]");
+        EXPECT_MENTIONS(msg, "footprint");
+        EXPECT_MENTIONS(msg, expect);
+    }
+}

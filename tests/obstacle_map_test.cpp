@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "isolux/hash.hpp"
+#include "isolux/footprint.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_map.hpp"
 #include "test_util.hpp"
@@ -179,4 +180,60 @@ TEST(ObstacleMap, floorsNeverObstruct) {
     for (Tile& t : m.tiles) t.overlay_count = 0;
     PlacedMap p = place_sprites(m, ts);
     EXPECT_EQ(build_obstacle_map(ts, p, Params{}, p.bounds).count(), 0);
+}
+
+// ---------------------------------------------------------------- footprints (not in the paper)
+
+TEST(Footprint, autoIsThePapersAlgorithmOnTheDefaultTileset) {
+    // Its sprites carry neither a baked ground nor a baked shadow: the
+    // default footprint changes nothing the paper's estimate gives them.
+    const Tileset t = test::default_tileset();
+    Params paper, automatic;
+    paper.footprint = Footprint::paper;
+    for (const Sprite& s : t.sprites) {
+        if (s.kind != SpriteKind::overlay) continue;
+        FootprintReport r;
+        EXPECT_EQ(tileset_footprint(t, s, automatic, &r).bits, tileset_footprint(t, s, paper).bits) << s.name;
+        EXPECT_FALSE(r.baked_ground) << s.name;
+        EXPECT_FALSE(r.baked_shadow) << s.name;
+    }
+}
+
+TEST(Footprint, aBakedGroundDiamondIsTakenOutAndTheObjectsFootKept) {
+    // A 64x48 sprite: a green diamond (64x32, centre 32,32) and a brown post
+    // 4 px wide standing at x = 20..23 from y = 0 down to y = 30, inside it.
+    Image im(64, 48);
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) {
+            std::uint8_t* p = im.at(x, y);
+            if (std::abs(x + 0.5 - 32) / 32 + std::abs(y + 0.5 - 32) / 16 <= 1) p[0] = 60, p[1] = 160, p[2] = 50, p[3] = 255;
+            if (x >= 20 && x < 24 && y <= 30) p[0] = 110, p[1] = 70, p[2] = 40, p[3] = 255;
+        }
+    const Mask op = opacity_map(im, 0.5);
+    FootprintReport r;
+    FootprintSpec spec;
+    const Mask fp = sprite_footprint(im, op, 32, 32, 64, 32, 25, FootprintMode::automatic, spec, &r);
+    EXPECT_TRUE(r.baked_ground);
+    double cx = 0, cy = 0;
+    Rect box;
+    ASSERT_TRUE(mask_centre(fp, cx, cy, box));
+    EXPECT_NEAR(cx, 22, 1.5);  // the post's foot, not the diamond's middle
+    EXPECT_NEAR(cy, 30, 2.5);
+    const Mask paper = sprite_footprint(im, op, 32, 32, 64, 32, 25, FootprintMode::paper, spec);
+    ASSERT_TRUE(mask_centre(paper, cx, cy, box));
+    EXPECT_GT(std::abs(cx - 22), 6);  // the paper's run lies on the diamond
+}
+
+TEST(Footprint, explicitRunsPolygonsAndNoneAreTaken) {
+    Image im(32, 32);
+    const Mask op = opacity_map(im, 0.5);
+    FootprintSpec spec;
+    spec.run_x = 4, spec.run_y = 20, spec.run_length = 8;
+    const Mask run = sprite_footprint(im, op, 16, 31, 64, 32, 25, FootprintMode::run, spec);
+    EXPECT_TRUE(run.get(4, 20) && run.get(11, 20) && !run.get(12, 20));
+    EXPECT_TRUE(run.get(8, 18) && run.get(8, 22) && !run.get(8, 23));  // arms of length / 4 = 2
+    spec.polygon = {{2, 2}, {10, 2}, {10, 6}, {2, 6}};
+    const Mask poly = sprite_footprint(im, op, 16, 31, 64, 32, 25, FootprintMode::polygon, spec);
+    EXPECT_EQ(poly.count(), 8 * 4);
+    EXPECT_EQ(sprite_footprint(im, op, 16, 31, 64, 32, 25, FootprintMode::none, spec).count(), 0);
 }

@@ -16,7 +16,10 @@
 #include "isolux/frame.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_map.hpp"
+#include <nlohmann/json.hpp>
+
 #include "isolux/composite.hpp"
+#include "isolux/footprint.hpp"
 #include "isolux/tileset_generator.hpp"
 #include "isolux/truth.hpp"
 
@@ -201,6 +204,101 @@ Rect view_from_args(const RenderArgs& a, const Scene& s, const World& w) {
         throw Error("the view is " + std::to_string(view.w) + "x" + std::to_string(view.h) +
                     " pixels, over the 256-megapixel limit: render part of the map with --view X,Y,W,H");
     return view;
+}
+
+// check-tileset: where each overlay's obstacle lands against its anchor.
+struct CheckArgs {
+    std::string manifest, sheet;
+    bool json = false;
+    ParamArgs params;
+};
+
+int run_check_tileset(const CheckArgs& a) {
+    const Tileset ts = load_tileset(a.manifest);
+    const Params p = params_from_args(a.params, Params{});
+    nlohmann::json report = {{"sprites", nlohmann::json::array()}};
+    std::vector<std::pair<const Sprite*, Mask>> drawn;
+    int warnings = 0;
+    for (const Sprite& s : ts.sprites) {
+        if (s.kind != SpriteKind::overlay) continue;
+        FootprintReport fr;
+        Mask fp = tileset_footprint(ts, s, p, &fr);
+        double cx = 0, cy = 0;
+        Rect box;
+        const bool any = mask_centre(fp, cx, cy, box);
+        nlohmann::json detected = nlohmann::json::array();
+        if (fr.baked_ground) detected.push_back("baked_ground");
+        if (fr.baked_shadow) detected.push_back("baked_shadow");
+        nlohmann::json e = {{"name", s.name}, {"anchor", {s.anchor_x, s.anchor_y}}, {"detected", detected}};
+        std::string warning;
+        if (any) {
+            const double d = std::hypot(cx - (s.anchor_x + 0.5), cy - (s.anchor_y + 0.5));
+            e["obstacle_center"] = {std::round(cx * 10) / 10, std::round(cy * 10) / 10};
+            e["obstacle_rect"] = {box.x, box.y, box.w, box.h};
+            e["distance"] = std::round(d * 10) / 10;
+            if (d > ts.tile_width / 4.0)
+                warning = "the obstacle's centre is " + std::to_string(int(std::lround(d))) +
+                          " px from the anchor, over a quarter of the tile width (" + std::to_string(ts.tile_width / 4) +
+                          "): check the footprint";
+        } else {
+            e["obstacle_center"] = nullptr;
+            e["obstacle_rect"] = nullptr;
+            e["distance"] = nullptr;
+            if (s.footprint.mode != FootprintMode::none) warning = "no obstacle: light passes through this sprite";
+        }
+        e["warning"] = warning.empty() ? nlohmann::json(nullptr) : nlohmann::json(warning);
+        warnings += !warning.empty();
+        report["sprites"].push_back(e);
+        drawn.push_back({&s, std::move(fp)});
+    }
+    if (a.json) {
+        std::cout << report.dump(2) << "\n";
+    } else {
+        std::cout << "sprite                obstacle centre     anchor        distance  detected\n";
+        for (const auto& e : report["sprites"]) {
+            char line[256];
+            const auto& c = e["obstacle_center"];
+            std::snprintf(line, sizeof line, "%-20s  %-18s  %-12s  %-8s  %s", e["name"].get<std::string>().c_str(),
+                          c.is_null() ? "none" : (std::to_string(int(c[0].get<double>())) + ", " + std::to_string(int(c[1].get<double>()))).c_str(),
+                          (std::to_string(e["anchor"][0].get<int>()) + ", " + std::to_string(e["anchor"][1].get<int>())).c_str(),
+                          e["distance"].is_null() ? "-" : std::to_string(int(std::lround(e["distance"].get<double>()))).c_str(),
+                          e["detected"].dump().c_str());
+            std::cout << line << "\n";
+            if (!e["warning"].is_null()) std::cout << "  warning: " << e["warning"].get<std::string>() << "\n";
+        }
+        std::cout << warnings << " warning" << (warnings == 1 ? "" : "s") << "\n";
+    }
+    if (!a.sheet.empty()) {
+        // A contact sheet: each sprite with its obstacle (red) and anchor (cyan cross).
+        int cell_w = 1, cell_h = 1;
+        for (const auto& [s, fp] : drawn) cell_w = std::max(cell_w, s->image.width + 8), cell_h = std::max(cell_h, s->image.height + 8);
+        const int cols = std::max(1, std::min(int(drawn.size()), 2048 / cell_w));
+        const int rows = std::max(1, int((drawn.size() + std::size_t(cols) - 1) / std::size_t(cols)));
+        if (std::int64_t(cols) * cell_w * std::int64_t(rows) * cell_h > (1LL << 26))
+            throw Error("--sheet: " + std::to_string(drawn.size()) + " sprites of up to " + std::to_string(cell_w) + "x" +
+                        std::to_string(cell_h) + " make too large a sheet");
+        Image sheet(cols * cell_w, rows * cell_h);
+        for (std::size_t i = 3; i < sheet.rgba.size(); i += 4) sheet.rgba[i] = 255;
+        for (std::size_t k = 0; k < drawn.size(); ++k) {
+            const Sprite& s = *drawn[k].first;
+            const int ox = int(k % std::size_t(cols)) * cell_w + 4, oy = int(k / std::size_t(cols)) * cell_h + 4;
+            for (int y = 0; y < s.image.height; ++y)
+                for (int x = 0; x < s.image.width; ++x) {
+                    const std::uint8_t* src = s.image.at(x, y);
+                    std::uint8_t* d = sheet.at(ox + x, oy + y);
+                    for (int c = 0; c < 3; ++c) d[c] = std::uint8_t((src[c] * src[3] + 40 * (255 - src[3])) / 255);
+                }
+            static constexpr std::uint8_t red[4] = {255, 40, 40, 255}, cyan[4] = {0, 255, 255, 255};
+            paint_mask(sheet, Rect{-ox, -oy, sheet.width, sheet.height}, drawn[k].second, 0, 0, red);
+            for (int d = -5; d <= 5; ++d) {
+                for (auto [x, y] : {std::pair{s.anchor_x + d, s.anchor_y}, std::pair{s.anchor_x, s.anchor_y + d}})
+                    if (x >= 0 && y >= 0 && x < cell_w - 8 && y < cell_h - 8) std::copy_n(cyan, 4, sheet.at(ox + x, oy + y));
+            }
+        }
+        save_image(a.sheet, sheet);
+        if (!a.json) std::cout << "wrote " << a.sheet << "\n";
+    }
+    return 0;
 }
 
 // One line a row of the parameter table, tab-separated, with a header.
@@ -397,6 +495,15 @@ int main(int argc, char** argv) {
     add_param_flags(*preset, pa);
     preset->add_option("--out", preset_out, "Preset JSON to write (atomically)")->required();
 
+    CheckArgs ca;
+    CLI::App* check = app.add_subcommand("check-tileset",
+                                         "For every overlay sprite: where its obstacle lands against its anchor, and "
+                                         "what the footprint estimate detected (baked ground, baked shadow)");
+    check->add_option("manifest", ca.manifest, "Tileset manifest")->required();
+    check->add_flag("--json", ca.json, "Print one JSON object: {\"sprites\": [{\"name\", \"obstacle_center\", ...}]}");
+    check->add_option("--sheet", ca.sheet, "Write a contact sheet: every sprite with its obstacle (red) and anchor (cyan)");
+    add_param_flags(*check, ca.params);
+
     CLI::App* params = app.add_subcommand("params", "List the parameters: field, flag, type, range, default, what a change re-runs");
 
     std::string tileset_out;
@@ -436,6 +543,7 @@ int main(int argc, char** argv) {
     try {
         if (*render) return run_render(ra);
         if (*sweep) return run_sweep_command(sa);
+        if (*check) return run_check_tileset(ca);
         if (*preset) {
             save_preset(preset_out, params_from_args(pa, Params{}));
             std::cout << "wrote " << preset_out << "\n";

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "isolux/error.hpp"
+#include "isolux/footprint.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -335,6 +336,63 @@ std::vector<Solid> shape_from(const json& arr, const std::string& where) {
     return out;
 }
 
+// "auto" | "paper" | "none" | {"mode": ..., "run": [x, y, length],
+// "polygon": [[x, y], ...], "shadow_alpha": a, "shadow_luminance": l,
+// "ground_tolerance": t}; a run or polygon without a mode sets it.
+FootprintSpec footprint_from(const json& j, const std::string& where) {
+    FootprintSpec spec;
+    auto mode_of = [&](const std::string& m) {
+        for (FootprintMode k : {FootprintMode::automatic, FootprintMode::paper, FootprintMode::none, FootprintMode::run,
+                                FootprintMode::polygon})
+            if (m == to_string(k)) return k;
+        throw Error(where + ": \"" + m + "\" is not one of auto, paper, none, run, polygon");
+    };
+    if (j.is_string()) {
+        spec.mode = mode_of(j.get<std::string>());
+        if (spec.mode == FootprintMode::run || spec.mode == FootprintMode::polygon)
+            throw Error(where + ": " + j.get<std::string>() + " needs an object with its \"" + j.get<std::string>() + "\"");
+        return spec;
+    }
+    check_object(j, where);
+    Fields f{j, where};
+    if (f.has("mode")) spec.mode = mode_of(f.text("mode"));
+    auto unit = [&](const char* k, double& v) {
+        if (!f.has(k)) return;
+        v = f.real(k);
+        if (v < 0 || v > 1) f.fail(k, "must be in [0, 1]");
+    };
+    unit("shadow_alpha", spec.shadow_alpha);
+    unit("shadow_luminance", spec.shadow_luminance);
+    unit("ground_tolerance", spec.ground_tolerance);
+    auto coord = [&](const json& v, const char* k) {
+        if (!v.is_number_integer()) f.fail(k, "must hold integers");
+        const long long x = v.get<long long>();
+        if (x < -100000 || x > 100000) f.fail(k, "holds a coordinate beyond ±100000");
+        return int(x);
+    };
+    if (f.has("run")) {
+        const json& r = j["run"];
+        if (!r.is_array() || r.size() != 3) f.fail("run", "must be [x, y, length]");
+        spec.run_x = coord(r[0], "run");
+        spec.run_y = coord(r[1], "run");
+        spec.run_length = coord(r[2], "run");
+        if (spec.run_length < 1) f.fail("run", "length must be at least 1");
+        if (!spec.mode) spec.mode = FootprintMode::run;
+    }
+    if (f.has("polygon")) {
+        const json& poly = j["polygon"];
+        if (!poly.is_array() || poly.size() < 3 || poly.size() > 1000) f.fail("polygon", "must be 3 to 1000 [x, y] points");
+        for (const json& pt : poly) {
+            if (!pt.is_array() || pt.size() != 2) f.fail("polygon", "must be [x, y] points");
+            spec.polygon.push_back({coord(pt[0], "polygon"), coord(pt[1], "polygon")});
+        }
+        if (!spec.mode) spec.mode = FootprintMode::polygon;
+    }
+    if (spec.mode == FootprintMode::run && spec.run_length < 1) f.fail("run", "is required for mode run");
+    if (spec.mode == FootprintMode::polygon && spec.polygon.empty()) f.fail("polygon", "is required for mode polygon");
+    return spec;
+}
+
 json shape_json(const std::vector<Solid>& shape) {
     json arr = json::array();
     auto v = [](Vec3 p) { return json::array({p.x, p.y, p.z}); };
@@ -618,6 +676,7 @@ Tileset load_tileset(const fs::path& manifest) {
             }
         }
         if (sf.has("shape")) s.shape = shape_from(arr[i]["shape"], where + ": shape");
+        if (sf.has("footprint")) s.footprint = footprint_from(arr[i]["footprint"], where + ": footprint");
         ts.sprites.push_back(std::move(s));
     }
     validate(ts);

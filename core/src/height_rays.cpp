@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "isolux/footprint.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_map.hpp"
 
@@ -41,10 +42,9 @@ ObstacleHeights build_obstacle_heights(const Tileset& ts, const PlacedMap& place
         const SpriteInstance& in = placed.instances[i];
         const Sprite& s = ts.sprites[std::size_t(in.sprite)];
         if (tall[std::size_t(in.sprite)] < 0) {
-            const Mask op = opacity_map(s.image, sprite_threshold(s, p.opacity_threshold));
-            SpriteObstacleTrace trace;
-            footprint[std::size_t(in.sprite)] = sprite_obstacle(op, p.delta_y, &trace);
-            tall[std::size_t(in.sprite)] = std::min(65535, estimated_height(op, trace.run_length));
+            FootprintReport report;
+            footprint[std::size_t(in.sprite)] = tileset_footprint(ts, s, p, &report);
+            tall[std::size_t(in.sprite)] = std::min(65535, estimated_height(report.estimate, report.trace.run_length));
         }
         const Mask& m = footprint[std::size_t(in.sprite)];
         const auto h = std::uint16_t(tall[std::size_t(in.sprite)]);

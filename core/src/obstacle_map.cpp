@@ -3,6 +3,8 @@
 // tiny obstacles.
 #include "isolux/obstacle_map.hpp"
 
+#include "isolux/footprint.hpp"
+
 #include <cassert>
 #include <algorithm>
 #include <cmath>
@@ -113,8 +115,7 @@ Mask build_obstacle_map(const Tileset& ts, const PlacedMap& placed, const Params
         const SpriteInstance& in = placed.instances[i];
         const Sprite& s = ts.sprites[in.sprite];
         if (!done[in.sprite]) {
-            per_sprite[in.sprite] =
-                sprite_obstacle(opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)), p.delta_y);
+            per_sprite[in.sprite] = tileset_footprint(ts, s, p);
             done[in.sprite] = 1;
         }
         const Mask& m = per_sprite[in.sprite];

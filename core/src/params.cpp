@@ -38,6 +38,10 @@ const ParamInfo table[] = {
     {"opacity_threshold", "--opacity-threshold", nullptr, "opacity threshold", "", obstacle_group, ParamType::real, 0,
      1, false, 0, 1, false, {}, "Alpha above this is opaque, for the opacity maps and Algorithm 1.", obstacle_map,
      ISOLUX_FIELD(opacity_threshold)},
+    {"footprint", "--footprint", nullptr, "footprint", "", obstacle_group, ParamType::choice, 0, 1, false, 0, 1,
+     false, {"auto", "paper"}, "Where sprites meet the ground, for sprites whose manifest sets none. auto: "
+     "Algorithm 1 after taking out a baked ground diamond and baked shadows; paper: Algorithm 1 as written.",
+     obstacle_map, ISOLUX_FIELD(footprint)},
     {"area_a", "--area-a", nullptr, "area a", "a", trace_group, ParamType::integer, 0, max_area, false, 0, 512, false,
      {}, "A light's half-width in pixels; its area is (2a+1) x (2b+1) (paper 3.2).", trace, ISOLUX_FIELD(area_a)},
     {"area_b", "--area-b", nullptr, "area b", "b", trace_group, ParamType::integer, 0, max_area, false, 0, 512, false,

@@ -26,6 +26,12 @@ enum class Mode {
     flat,    // no interaction, falloff only (the paper's Figure 10b)
 };
 
+// Where sprites meet the ground, for sprites whose manifest gives no footprint.
+enum class Footprint {
+    automatic,  // Algorithm 1 after taking out baked ground diamonds and baked shadows (footprint.hpp)
+    paper,      // Algorithm 1 as the paper writes it
+};
+
 // Which pixels rays are traced to.
 enum class Rays {
     border,       // every pixel of the area's border (paper 3.2, Algorithm 2)
@@ -48,7 +54,8 @@ struct Params {
     bool dark_unlit = false;       // Algorithm 3 variant: texFactor *= light (paper 4)
     Rays rays = Rays::border;
     double light_height = 32;      // a light's height above the ground, pixels, when it gives none (not in the paper)
-    bool rays_over_obstacles = false;  // rays pass over obstacles lower than the ray (height_rays.hpp; not in the paper)
+    bool rays_over_obstacles = false;
+    Footprint footprint = Footprint::automatic;  // sprites without their own footprint (not in the paper)  // rays pass over obstacles lower than the ray (height_rays.hpp; not in the paper)
 
     friend bool operator==(const Params&, const Params&) = default;
 };

@@ -1,6 +1,8 @@
 // A tileset: floor blocks and overlay sprites (paper section 3, Figure 2).
 #pragma once
 #include <optional>
+#include <string_view>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,26 @@
 namespace isolux {
 
 enum class SpriteKind { floor, overlay };
+
+enum class FootprintMode {
+    automatic,  // "auto": Algorithm 1 after removing a baked ground diamond and baked shadows
+    paper,      // Algorithm 1 exactly as the paper writes it
+    none,       // no obstacle
+    run,        // a given run (Algorithm 1's s), with the paper's arms
+    polygon,    // a given polygon
+};
+std::string_view to_string(FootprintMode m);
+
+// A sprite's footprint settings (the manifest's "footprint" and thresholds).
+struct FootprintSpec {
+    std::optional<FootprintMode> mode;              // unset: the preset's `footprint`
+    int run_x = 0, run_y = 0, run_length = 0;      // run: its left pixel and length, sprite pixels
+    std::vector<std::pair<int, int>> polygon;       // polygon: its corners, sprite pixels
+    double shadow_alpha = 0.9;       // auto: a pixel under this alpha...
+    double shadow_luminance = 0.08;  // ...and darker than this (0..1) is a baked shadow
+    double ground_tolerance = 0.16;  // auto: colour distance (0..1) within which a diamond pixel is ground
+    friend bool operator==(const FootprintSpec&, const FootprintSpec&) = default;
+};
 
 struct Sprite {
     std::string name;
@@ -25,6 +47,8 @@ struct Sprite {
     // The true visible surface height above the ground per pixel, pixels
     // (optional: empty, or width x height values from the manifest's height_map).
     std::vector<std::uint16_t> height;
+    // Where it meets the ground (footprint.hpp): the manifest's "footprint".
+    FootprintSpec footprint;
 
     bool has_tag(std::string_view t) const;
 };

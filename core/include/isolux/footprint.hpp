@@ -1,0 +1,41 @@
+// Where a sprite meets the ground, on real art: Algorithm 1 (paper 3.1) run on
+// what is left of the sprite once a baked ground diamond and baked shadows are
+// taken out, or a footprint the manifest gives. Not in the paper, which draws
+// its own sprites with neither (docs/method.md has the evidence for the
+// default).
+#pragma once
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "isolux/image.hpp"
+#include "isolux/obstacle_map.hpp"
+#include "isolux/tileset.hpp"
+
+namespace isolux {
+
+// What the estimate saw, for check-tileset and the inspector.
+struct FootprintReport {
+    bool baked_ground = false;  // the tile's floor diamond around the anchor was mostly opaque ground
+    bool baked_shadow = false;  // translucent dark pixels were left out
+    Mask estimate;              // the pixels Algorithm 1 read (sprite pixels)
+    SpriteObstacleTrace trace;  // Algorithm 1's lines and run
+};
+
+// The footprint of a sprite whose opacity map is `opacity`, anchored at
+// (anchor_x, anchor_y) on a tile_w x tile_h floor diamond, by `mode`, as an
+// obstacle mask in sprite pixels (it may reach outside the sprite, as
+// Algorithm 1's does).
+Mask sprite_footprint(const Image& sprite, const Mask& opacity, int anchor_x, int anchor_y, int tile_w, int tile_h,
+                      int delta_y, FootprintMode mode, const FootprintSpec& spec, FootprintReport* report = nullptr);
+
+// The footprint of tileset sprite `s` under the preset `p` (its own mode, else
+// the preset's footprint), as build_obstacle_map stamps it.
+Mask tileset_footprint(const Tileset& tileset, const Sprite& s, const Params& p, FootprintReport* report = nullptr);
+
+// The centre (mean of its pixels) and bounding box of a mask; false when empty.
+bool mask_centre(const Mask& m, double& x, double& y, Rect& box);
+
+}  // namespace isolux

@@ -1,0 +1,194 @@
+// Footprints on real art (footprint.hpp). Built on Algorithm 1
+// (sprite_obstacle), which `paper` runs unchanged.
+#include "isolux/footprint.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+
+#include "isolux/opacity_map.hpp"
+
+namespace isolux {
+
+namespace {
+
+double luminance(const std::uint8_t* p) { return (0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2]) / 255.0; }
+
+// Whether sprite pixel (x, y) lies inside the floor diamond centred on the anchor.
+bool in_diamond(int x, int y, int ax, int ay, int tw, int th, double scale = 1.0) {
+    const double u = std::abs(x + 0.5 - ax) / (tw / 2.0), v = std::abs(y + 0.5 - ay) / (th / 2.0);
+    return u + v <= scale;
+}
+
+// Algorithm 1's marking for a given run s: s itself, and run/4 pixels above
+// and below its centre pixel (paper 3.1, steps 3 and 4).
+Mask mark_run(int w, int h, int x0, int y, int length) {
+    const int arm = length / 4;
+    Mask out(Rect{0, -arm, w, h + 2 * arm});
+    for (int x = x0; x < x0 + length; ++x) out.set(x, y);
+    const int cx = x0 + length / 2;
+    for (int d = -arm; d <= arm; ++d) out.set(cx, y + d);
+    return out;
+}
+
+Mask fill_polygon(int w, int h, const std::vector<std::pair<int, int>>& poly) {
+    Mask m(Rect{0, 0, w, h});
+    if (poly.size() < 3) return m;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            // Even-odd rule at the pixel's centre.
+            bool inside = false;
+            const double px = x + 0.5, py = y + 0.5;
+            for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+                const double xi = poly[i].first, yi = poly[i].second, xj = poly[j].first, yj = poly[j].second;
+                if ((yi > py) != (yj > py) && px < (xj - xi) * (py - yi) / (yj - yi) + xi) inside = !inside;
+            }
+            if (inside) m.set(x, y);
+        }
+    return m;
+}
+
+}  // namespace
+
+std::string_view to_string(FootprintMode m) {
+    switch (m) {
+        case FootprintMode::automatic: return "auto";
+        case FootprintMode::paper: return "paper";
+        case FootprintMode::none: return "none";
+        case FootprintMode::run: return "run";
+        case FootprintMode::polygon: return "polygon";
+    }
+    return "auto";
+}
+
+Mask sprite_footprint(const Image& sprite, const Mask& opacity, int ax, int ay, int tw, int th, int delta_y,
+                      FootprintMode mode, const FootprintSpec& spec, FootprintReport* report) {
+    FootprintReport local;
+    FootprintReport& rep = report ? *report : local;
+    rep = FootprintReport{};
+    const int w = opacity.width, h = opacity.height;
+    switch (mode) {
+        case FootprintMode::none: rep.estimate = Mask(Rect{0, 0, w, h}); return Mask(Rect{0, 0, w, h});
+        case FootprintMode::run: rep.estimate = opacity; return mark_run(w, h, spec.run_x, spec.run_y, spec.run_length);
+        case FootprintMode::polygon: rep.estimate = opacity; return fill_polygon(w, h, spec.polygon);
+        case FootprintMode::paper: rep.estimate = opacity; return sprite_obstacle(opacity, delta_y, &rep.trace);
+        case FootprintMode::automatic: break;
+    }
+    Mask est = opacity;
+    // 1. Baked shadows: translucent dark pixels belong to no object. Only
+    // when there are enough of them to be a shadow (1% of the opaque pixels),
+    // not the antialiased edge of a dark trunk.
+    long shadow = 0, solid = 0;
+    auto is_shadow = [&](int x, int y) {
+        const std::uint8_t* p = sprite.at(x, y);
+        return p[3] / 255.0 < spec.shadow_alpha && luminance(p) < spec.shadow_luminance;
+    };
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (est.get(x, y)) {
+                ++solid;
+                shadow += is_shadow(x, y);
+            }
+    if (shadow > 0 && shadow * 100 >= solid) {
+        rep.baked_shadow = true;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                if (est.get(x, y) && is_shadow(x, y)) est.set(x, y, false);
+    }
+    // 2. A baked ground diamond: the floor diamond's half below the anchor,
+    // where an object standing on the anchor rarely reaches, is mostly opaque,
+    // and the band just outside its lower edges mostly transparent (a diamond,
+    // not roots or a wide base spreading past it). Its colour is the median of
+    // the diamond's outer ring.
+    long below = 0, opaque = 0, band = 0, band_opaque = 0;
+    std::array<std::vector<int>, 3> ring;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!in_diamond(x, y, ax, ay, tw, th)) {
+                if (y >= ay && in_diamond(x, y, ax, ay, tw, th, 1.2)) {
+                    ++band;
+                    band_opaque += est.get(x, y);
+                }
+                continue;
+            }
+            if (y >= ay) {
+                ++below;
+                opaque += est.get(x, y);
+            }
+            if (est.get(x, y) && !in_diamond(x, y, ax, ay, tw, th, 0.8))
+                for (int k = 0; k < 3; ++k) ring[std::size_t(k)].push_back(sprite.at(x, y)[k]);
+        }
+    const bool diamond_shaped = band == 0 || band_opaque * 10 <= band * 3;
+    if (below > 0 && opaque * 10 >= below * 7 && diamond_shaped && !ring[0].empty()) {
+        rep.baked_ground = true;
+        int ground[3];
+        for (int k = 0; k < 3; ++k) {
+            auto& v = ring[std::size_t(k)];
+            std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+            ground[k] = v[v.size() / 2];
+        }
+        // Ground-coloured pixels of the diamond are the ground, and so is
+        // whatever of the diamond the object does not reach: keep the diamond
+        // pixels connected to the object above it through non-ground pixels.
+        Mask object(Rect{0, 0, w, h});
+        std::vector<std::pair<int, int>> stack;
+        auto is_ground = [&](int x, int y) {
+            const std::uint8_t* p = sprite.at(x, y);
+            double d = 0;
+            for (int k = 0; k < 3; ++k) d += double(p[k] - ground[k]) * double(p[k] - ground[k]);
+            return std::sqrt(d / 3) / 255.0 <= spec.ground_tolerance;
+        };
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                if (est.get(x, y) && !in_diamond(x, y, ax, ay, tw, th)) {
+                    object.set(x, y);
+                    stack.push_back({x, y});
+                }
+        while (!stack.empty()) {
+            const auto [x, y] = stack.back();
+            stack.pop_back();
+            for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+                const int nx = x + dx, ny = y + dy;
+                if (!est.get(nx, ny) || object.get(nx, ny) || !in_diamond(nx, ny, ax, ay, tw, th) || is_ground(nx, ny))
+                    continue;
+                object.set(nx, ny);
+                stack.push_back({nx, ny});
+            }
+        }
+        est = object;
+    }
+    rep.estimate = est;
+    // 3. Algorithm 1 on what is left, its Δy scaled with the tile (the paper's
+    // 25 lines are for 128-pixel tiles).
+    const int lines = std::max(1, int(std::lround(delta_y * tw / 128.0)));
+    return sprite_obstacle(est, lines, &rep.trace);
+}
+
+Mask tileset_footprint(const Tileset& ts, const Sprite& s, const Params& p, FootprintReport* report) {
+    const Mask op = opacity_map(s.image, sprite_threshold(s, p.opacity_threshold));
+    const FootprintMode mode = s.footprint.mode.value_or(p.footprint == Footprint::paper ? FootprintMode::paper
+                                                                                         : FootprintMode::automatic);
+    return sprite_footprint(s.image, op, s.anchor_x, s.anchor_y, ts.tile_width, ts.tile_height, p.delta_y, mode,
+                            s.footprint, report);
+}
+
+bool mask_centre(const Mask& m, double& x, double& y, Rect& box) {
+    long n = 0;
+    double sx = 0, sy = 0;
+    int x0 = 1 << 30, y0 = 1 << 30, x1 = -(1 << 30), y1 = -(1 << 30);
+    for (int j = 0; j < m.height; ++j)
+        for (int i = 0; i < m.width; ++i)
+            if (m.bits[std::size_t(j) * m.width + i]) {
+                const int px = m.x0 + i, py = m.y0 + j;
+                ++n, sx += px + 0.5, sy += py + 0.5;
+                x0 = std::min(x0, px), y0 = std::min(y0, py), x1 = std::max(x1, px), y1 = std::max(y1, py);
+            }
+    if (n == 0) return false;
+    x = sx / double(n);
+    y = sy / double(n);
+    box = {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+    return true;
+}
+
+}  // namespace isolux

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Fetches isometric art from Debian packages of open games that nobody on
+# this project drew, for the real-art tests: freedroidrpg-data (trees with
+# their shadows apart), lincity-ng-data (trees on a baked ground diamond) and
+# widelands-data (trees with baked drop shadows). Their files are GPL-2+: they
+# are unpacked into a cache outside the repository, never committed.
+# Usage: fetch.sh [CACHE]   (default: $ISOLUX_REALART_CACHE, else ~/.cache/isolux-realart)
+set -euo pipefail
+cache=${1:-${ISOLUX_REALART_CACHE:-$HOME/.cache/isolux-realart}}
+mkdir -p "$cache"
+cd "$cache"
+for pkg in freedroidrpg-data lincity-ng-data widelands-data; do
+  if [ -f "$pkg/.unpacked" ]; then continue; fi
+  rm -rf "$pkg" "$pkg"_*.deb
+  if ! apt-get download "$pkg" >/dev/null 2>download.log; then
+    if [ "$(id -u)" -eq 0 ] || ! command -v sudo >/dev/null; then apt-get update -qq >/dev/null 2>&1 || true;
+    else sudo apt-get update -qq >/dev/null 2>&1 || true; fi
+    if ! apt-get download "$pkg" >/dev/null 2>download.log; then
+      echo "realart: could not download $pkg from Debian's archive (apt-get download $pkg):" >&2
+      cat download.log >&2
+      exit 1
+    fi
+  fi
+  dpkg -x "$pkg"_*.deb "$pkg"
+  rm -f "$pkg"_*.deb
+  touch "$pkg/.unpacked"
+done
+echo "realart: art unpacked in $cache"
