@@ -12,6 +12,7 @@
 //   float u_ambient          ambient clarity in [0, 1]
 //   int u_dark_unlit         1: texture factor times the light
 //   int u_shadow             1: the texture holds shadow (subtract)
+//   int u_light_mix          0: Algorithm 3's luminance x light; 1: colour x light (Params::light_mix)
 //   int u_show               0 final, 1 the light texture alone
 //   int u_split              >= 0: texels with x >= u_split use u_light_flat (Figure 10)
 #version 330 core
@@ -24,6 +25,7 @@ uniform ivec2 u_flat_origin;
 uniform float u_ambient;
 uniform int u_dark_unlit;
 uniform int u_shadow;
+uniform int u_light_mix;
 uniform int u_show;
 uniform int u_split;
 out vec4 o_color;
@@ -51,9 +53,16 @@ void main() {
     }
     vec3 color = c.rgb / c.a;  // straight colour, as the CPU reference works
     float luminance = color.r * 0.349 + color.g * 0.114 + color.b * 0.537;
-    vec3 lightFactor = luminance * L / (u_ambient * u_ambient + 0.1);
+    // u_light_mix 1 (not in the paper): the sprite's own colour takes the light.
+    vec3 mixed = u_light_mix == 1 ? color : vec3(luminance);
+    vec3 lightFactor = mixed * L / (u_ambient * u_ambient + 0.1);
     vec3 texFactor = color * sqrt(u_ambient);
     bool shadow = u_shadow == 1 && !flat_side;
+    if (u_light_mix == 1 && shadow) {
+        // A shadow darkens by up to three quarters instead of subtracting.
+        o_color = vec4(clamp(texFactor * (vec3(1.0) - 0.75 * L), 0.0, 1.0), c.a);
+        return;
+    }
     if (u_dark_unlit == 1) texFactor *= shadow ? (vec3(1.0) - L) : L;
     vec3 result = clamp(shadow ? texFactor - lightFactor : texFactor + lightFactor, 0.0, 1.0);
     o_color = vec4(result, c.a);

@@ -65,6 +65,9 @@ const Case cases[] = {
     {"blur larger than the texture", [](Scene& s) { s.params.blur_radius = 200; }},
     {"ambient 0", [](Scene& s) { s.params.ambient_clarity = 0; }},
     {"ambient 1", [](Scene& s) { s.params.ambient_clarity = 1; }},
+    {"light mix surface", [](Scene& s) { s.params.light_mix = LightMix::surface; }},
+    {"light mix surface, shadow", [](Scene& s) { s.params.light_mix = LightMix::surface, s.params.mode = Mode::shadow; }},
+    {"game preset", [](Scene& s) { s.params = builtin_preset("game"); }},
     {"dark unlit", [](Scene& s) { s.params.dark_unlit = true; }},
     {"shadow mode", [](Scene& s) { s.params.mode = Mode::shadow; }},
     {"coloured lights", [](Scene& s) {

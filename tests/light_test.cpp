@@ -476,3 +476,51 @@ TEST(Frame, noLightsMeansNoTracingAndNoUpload) {
     r = render_frame(st, test_world(), s, Camera{}, 4);
     EXPECT_FALSE(r.retraced);
 }
+
+// ---------------------------------------------------------------- lights that look right (not in the paper)
+
+TEST(LightLook, euclideanFalloffMakesRoundLightsAndEdgeFadeReachesZeroAtTheBorder) {
+    Params p;
+    p.falloff_scale = 8;
+    const Mask clear(Rect{-40, -40, 81, 81});
+    const Rect area{-20, -20, 41, 41};
+    p.falloff_shape = FalloffShape::euclidean;
+    LightMask m = trace_light(clear, 0, 0, 20, 20, p, area, true);
+    shape_light(m, p);
+    auto at = [&](const LightMask& l, int x, int y) { return int(l.value[std::size_t(y + 20) * 41 + (x + 20)]); };
+    EXPECT_EQ(at(m, 0, 0), 255);
+    EXPECT_EQ(at(m, 10, 10), int(255.0 / (1.0 + std::sqrt(200.0) / 8)));  // round: by the straight-line distance
+    EXPECT_EQ(at(m, 14, 0), int(255.0 / (1.0 + 14.0 / 8)));
+    EXPECT_LT(at(m, 10, 10), at(m, 10, 0));  // round: the diagonal is further
+    Params square;
+    square.falloff_scale = 8;
+    const LightMask sq = trace_light(clear, 0, 0, 20, 20, square, area, true);
+    EXPECT_EQ(at(sq, 10, 10), at(sq, 10, 0));  // the paper's square lights: the same
+    p.edge_fade = true;
+    LightMask f = trace_light(clear, 0, 0, 20, 20, p, area, true);
+    shape_light(f, p);
+    EXPECT_EQ(at(f, 0, 0), 255);
+    EXPECT_LE(at(f, 20, 0), 255.0 / (1 + 20.0 / 8) / 21 + 1);  // 1/21 of the way left at the border
+    EXPECT_EQ(at(f, 20, 20), 0);                               // the corner lies outside the ellipse
+    // The paper's settings leave the traced values as they are.
+    Params paper;
+    LightMask q = trace_light(clear, 0, 0, 20, 20, paper, area, true), q2 = q;
+    shape_light(q2, paper);
+    EXPECT_EQ(q.value, q2.value);
+}
+
+TEST(LightLook, surfaceLightMixKeepsTheSpritesHue) {
+    const double red[3] = {0.8, 0.0, 0.0}, white[3] = {1, 1, 1};
+    double lum[3], surf[3];
+    Params p;
+    composite_pixel(red, white, p, lum);
+    p.light_mix = LightMix::surface;
+    composite_pixel(red, white, p, surf);
+    EXPECT_GT(lum[1], 0.1);   // Algorithm 3 adds the light's white over a red sprite
+    EXPECT_EQ(surf[1], 0.0);  // the sprite's own colour takes the light
+    EXPECT_GT(surf[0], red[0] * std::sqrt(p.ambient_clarity));
+    // In shadow mode a full shadow darkens by three quarters, never to black.
+    p.mode = Mode::shadow;
+    composite_pixel(red, white, p, surf);
+    EXPECT_NEAR(surf[0], 0.8 * std::sqrt(p.ambient_clarity) * 0.25, 1e-12);
+}

@@ -63,7 +63,10 @@ void menu_bar(App& app) {
         if (ImGui::MenuItem("Export preset...")) open_file_popup(app, "save-preset", "preset.json");
         if (ImGui::BeginMenu("Built-in preset")) {
             for (const std::string& name : builtin_preset_names())
-                if (ImGui::MenuItem(name.c_str())) set_params(e, builtin_preset(name), app.now);
+                if (ImGui::MenuItem(name.c_str())) {
+                    set_params(e, builtin_preset(name), app.now);
+                    set_status(e, builtin_preset_summary(name));
+                }
             ImGui::EndMenu();
         }
         ImGui::Separator();

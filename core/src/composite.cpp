@@ -13,8 +13,15 @@ void composite_pixel(const double c[3], const double L[3], const Params& p, doub
     const double denom = ac * ac + 0.1;
     const double tex_scale = std::sqrt(ac);
     const bool shadow = p.mode == Mode::shadow;
+    const bool surface = p.light_mix == LightMix::surface;
     for (int k = 0; k < 3; ++k) {
-        const double light_factor = luminance * L[k] / denom;
+        // surface (not in the paper): the sprite's own colour takes the light,
+        // and a shadow darkens it by up to three quarters instead of subtracting.
+        if (surface && shadow) {
+            out[k] = std::clamp(c[k] * tex_scale * (1.0 - 0.75 * L[k]), 0.0, 1.0);
+            continue;
+        }
+        const double light_factor = (surface ? c[k] : luminance) * L[k] / denom;
         double tex_factor = c[k] * tex_scale;
         // dark_unlit: "if the texFactor variable in Algorithm 3 is multiplied
         // by lightTexture, then what is not hit by the light ... would appear

@@ -69,7 +69,7 @@ Mask sprite_footprint(const Image& sprite, const Mask& opacity, int ax, int ay, 
     rep = FootprintReport{};
     const int w = opacity.width, h = opacity.height;
     switch (mode) {
-        case FootprintMode::none: rep.estimate = Mask(Rect{0, 0, w, h}); return Mask(Rect{0, 0, w, h});
+        case FootprintMode::none: rep.estimate = opacity; return Mask(Rect{0, 0, w, h});
         case FootprintMode::run: rep.estimate = opacity; return mark_run(w, h, spec.run_x, spec.run_y, spec.run_length);
         case FootprintMode::polygon: rep.estimate = opacity; return fill_polygon(w, h, spec.polygon);
         case FootprintMode::paper: rep.estimate = opacity; return sprite_obstacle(opacity, delta_y, &rep.trace);

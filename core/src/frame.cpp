@@ -13,6 +13,7 @@
 #include "isolux/composite.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_correction.hpp"
+#include "isolux/footprint.hpp"
 #include "isolux/opacity_map.hpp"
 #include "isolux/truth.hpp"
 
@@ -121,9 +122,18 @@ bool update_obstacle_map(FrameState& st, const World& world, const Params& p, Re
     st.obstacles = build_obstacle_map(world.tileset, world.placed, p, c.obstacle_region);
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
+    // Opacity maps of the objects alone: a baked ground diamond or a baked
+    // shadow is ground, lit by the light texture, not by the correction.
     st.opacity.clear();
-    for (const Sprite& s : world.tileset.sprites)
-        st.opacity.push_back(opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)));
+    for (const Sprite& s : world.tileset.sprites) {
+        if (s.kind != SpriteKind::overlay) {
+            st.opacity.push_back(opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)));
+            continue;
+        }
+        FootprintReport r;
+        tileset_footprint(world.tileset, s, p, &r);
+        st.opacity.push_back(std::move(r.estimate));
+    }
     c.obstacle_params = p;
     c.world_revision = world.revision;
     c.has_obstacles = true;
@@ -234,6 +244,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
                                       area_is_clear(st.obstacles, area));
             const auto t1 = Clock::now();
             if (correct) touched[k] = correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
+            if (shaped(p)) shape_light(tl.mask, p);  // beyond the paper: round lights, a fade to the border
             trace_ms[k] = ms_between(t0, t1);
             correct_ms[k] = ms_between(t1, Clock::now());
         }

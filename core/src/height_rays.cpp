@@ -66,6 +66,8 @@ LightMask trace_light_over(const Mask& obstacles, const ObstacleHeights& heights
     m.clip = clip;
     m.cx = cx;
     m.cy = cy;
+    m.a = a;
+    m.b = b;
     m.falloff_scale = p.falloff_scale;
     m.value.assign(std::size_t(std::max(0, clip.w)) * std::max(0, clip.h), 0);
     if (clip.empty()) return m;

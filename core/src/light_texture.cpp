@@ -49,7 +49,10 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
             const std::uint8_t* reached = &mask.reached[mrow];
             const std::uint8_t vy = falloff(std::llabs(y - mask.cy), mask.falloff_scale);
             for (int x = 0; x < r.w; ++x)
-                row[std::size_t(x)] = (reached[x] && v[x] == 0) ? std::min(by_x[std::size_t(x)], vy) : 0;
+                row[std::size_t(x)] = (reached[x] && v[x] == 0)
+                                          ? (shaped(p) ? shaped_falloff(r.x + x - mask.cx, y - mask.cy, mask.a, mask.b, p)
+                                                       : std::min(by_x[std::size_t(x)], vy))
+                                          : 0;
             v = row.data();
         }
         // The row's RGB contributions, then one contiguous saturating add

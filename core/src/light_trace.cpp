@@ -4,6 +4,7 @@
 #include "isolux/light_trace.hpp"
 
 #include <cassert>
+#include <cmath>
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
@@ -48,6 +49,29 @@ std::uint8_t falloff(std::int64_t d, double falloff_scale) {
     if (falloff_scale == 1.0) return std::uint8_t(255 / (1 + d));  // the paper's integer function
     double v = 255.0 / (1.0 + double(d) / falloff_scale);
     return std::uint8_t(std::min(255.0, v));
+}
+
+std::uint8_t shaped_falloff(std::int64_t dx, std::int64_t dy, int a, int b, const Params& p) {
+    const double ax = double(std::llabs(dx)), ay = double(std::llabs(dy));
+    const bool round = p.falloff_shape == FalloffShape::euclidean;
+    if (!p.edge_fade) {
+        if (!round) return falloff(std::max(std::llabs(dx), std::llabs(dy)), p.falloff_scale);
+        return std::uint8_t(255.0 / (1.0 + std::sqrt(ax * ax + ay * ay) / p.falloff_scale));
+    }
+    const double d = round ? std::sqrt(ax * ax + ay * ay) : std::max(ax, ay);
+    // The share of the way to the border: an ellipse for round lights, the rectangle for square ones.
+    const double u = ax / (a + 1.0), v = ay / (b + 1.0);
+    const double t = round ? std::sqrt(u * u + v * v) : std::max(u, v);
+    const double fade = std::max(0.0, 1.0 - t);
+    return std::uint8_t(255.0 / (1.0 + d / p.falloff_scale) * fade);
+}
+
+void shape_light(LightMask& m, const Params& p) {
+    for (int y = 0; y < m.clip.h; ++y)
+        for (int x = 0; x < m.clip.w; ++x) {
+            std::uint8_t& v = m.value[std::size_t(y) * m.clip.w + x];
+            if (v) v = shaped_falloff(m.clip.x + x - m.cx, m.clip.y + y - m.cy, m.a, m.b, p);
+        }
 }
 
 std::vector<std::pair<int, int>> border_offsets(int a, int b) {
@@ -236,6 +260,8 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
     m.clip = clip;
     m.cx = cx;
     m.cy = cy;
+    m.a = a;
+    m.b = b;
     m.falloff_scale = p.falloff_scale;
     const std::size_t n = std::size_t(std::max(0, clip.w)) * std::max(0, clip.h);
     m.value.assign(n, 0);

@@ -55,6 +55,12 @@ const ParamInfo table[] = {
     {"falloff_scale", "--falloff-scale", nullptr, "falloff scale", "", trace_group, ParamType::real, 0, 1e6, true,
      0.25, 64, true, {}, "i = 255 / (1 + max(|dx|,|dy|) / falloff scale). 1 is the paper's function; larger spreads "
      "the light.", trace, ISOLUX_FIELD(falloff_scale)},
+    {"falloff_shape", "--falloff-shape", nullptr, "falloff shape", "", trace_group, ParamType::choice, 0, 1, false, 0,
+     1, false, {"chebyshev", "euclidean"}, "How the intensity falls with distance d: chebyshev, d = max(|dx|,|dy|), the "
+     "paper's (square lights); euclidean, d = sqrt(dx^2 + dy^2) (round lights).", trace, ISOLUX_FIELD(falloff_shape)},
+    {"edge_fade", "--edge-fade", nullptr, "edge fade", "", trace_group, ParamType::boolean, 0, 1, false, 0, 1, false,
+     {}, "The intensity falls to 0 at the area's border instead of being cut there (no straight edge).", trace,
+     ISOLUX_FIELD(edge_fade)},
     {"mode", "--mode", nullptr, "mode", "", trace_group, ParamType::choice, 0, 2, false, 0, 2, false,
      {"light", "shadow", "flat"}, "light: rays stop at obstacles (the paper). shadow: paint what lies beyond the "
      "first obstacle (paper 4). flat: no obstacles, falloff only (Figure 10b).", trace, ISOLUX_FIELD(mode)},
@@ -73,6 +79,10 @@ const ParamInfo table[] = {
     {"ambient_clarity", "--ambient-clarity", "--ambient", "ambient clarity", "", shade_group, ParamType::real, 0, 1,
      false, 0, 1, false, {}, "Algorithm 3's ambientClarity: texture x sqrt(c) + luminance x light / (c^2 + 0.1) "
      "(paper 4: 0.4).", composite, ISOLUX_FIELD(ambient_clarity)},
+    {"light_mix", "--light-mix", nullptr, "light mix", "", shade_group, ParamType::choice, 0, 1, false, 0, 1, false,
+     {"luminance", "surface"}, "luminance: Algorithm 3 as written, the sprite's luminance times the light (a coloured "
+     "light paints its hue). surface: the sprite's colour times the light, so lit sprites keep their hue; shadows "
+     "darken instead of blacking out.", composite, ISOLUX_FIELD(light_mix)},
     {"dark_unlit", "--dark-unlit", nullptr, "dark unlit", "", shade_group, ParamType::boolean, 0, 1, false, 0, 1,
      false, {}, "Algorithm 3 variant (paper 4): the texture factor is multiplied by the light, so what no ray "
      "reaches is black.", composite, ISOLUX_FIELD(dark_unlit)},
@@ -234,7 +244,17 @@ std::string get_param(const Params& p, std::string_view name) {
     return info ? format_param(*info, info->get(p)) : "";
 }
 
-std::vector<std::string> builtin_preset_names() { return {"paper", "fast", "quality"}; }
+std::vector<std::string> builtin_preset_names() { return {"paper", "fast", "quality", "game"}; }
+
+std::string builtin_preset_summary(std::string_view name) {
+    if (name == "paper")
+        return "paper: the paper's own settings: square falloff 255 / (1 + d) cut at the area's border, d in pixels "
+               "(a small bright spot: raise falloff_scale or pick the game preset for wider light)";
+    if (name == "fast") return "fast: half the border rays, a retrace every 4 frames, blurred";
+    if (name == "quality") return "quality: a ray to every pixel, traced every frame";
+    if (name == "game") return "game: round lights fading to their border, sprites keep their colour, soft blur";
+    return "";
+}
 
 Params builtin_preset(std::string_view name) {
     Params p;
@@ -246,6 +266,16 @@ Params builtin_preset(std::string_view name) {
         p.blur_radius = 2;
         return p;
     }
+    if (name == "game") {
+        // A look for games: round, wide lights that fade out before their
+        // border, lit sprites keeping their hue.
+        p.falloff_shape = FalloffShape::euclidean;
+        p.edge_fade = true;
+        p.falloff_scale = 12;
+        p.light_mix = LightMix::surface;
+        p.blur_radius = 3;
+        return p;
+    }
     if (name == "quality") {
         // The accuracy reference: a ray to every pixel, fresh every frame.
         p.rays = Rays::every_pixel;
@@ -254,7 +284,7 @@ Params builtin_preset(std::string_view name) {
         p.blur_radius = 1;
         return p;
     }
-    throw Error("preset \"" + std::string(name) + "\" is not one of paper, fast, quality");
+    throw Error("preset \"" + std::string(name) + "\" is not one of paper, fast, quality, game");
 }
 
 }  // namespace isolux

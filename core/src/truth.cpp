@@ -113,6 +113,8 @@ LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::in
     LightMask m;
     m.cx = cx;
     m.cy = cy;
+    m.a = a;
+    m.b = b;
     m.falloff_scale = p.falloff_scale;
     m.clip = intersect(clip, area_of(cx, cy, a, b));
     m.value.assign(std::size_t(std::max(0, m.clip.w)) * std::max(0, m.clip.h), 0);
@@ -171,6 +173,8 @@ LightMask exact_line_light(const Mask& obstacles, std::int64_t cx, std::int64_t 
     LightMask m;
     m.cx = cx;
     m.cy = cy;
+    m.a = a;
+    m.b = b;
     m.falloff_scale = p.falloff_scale;
     m.clip = intersect(clip, area_of(cx, cy, a, b));
     m.value.assign(std::size_t(std::max(0, m.clip.w)) * std::max(0, m.clip.h), 0);

@@ -20,7 +20,7 @@ namespace isolux {
 struct FootprintReport {
     bool baked_ground = false;  // the tile's floor diamond around the anchor was mostly opaque ground
     bool baked_shadow = false;  // translucent dark pixels were left out
-    Mask estimate;              // the pixels Algorithm 1 read (sprite pixels)
+    Mask estimate;              // the object's pixels: what Algorithm 1 read, and the opacity map the correction uses
     SpriteObstacleTrace trace;  // Algorithm 1's lines and run
 };
 

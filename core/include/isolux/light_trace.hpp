@@ -37,6 +37,14 @@ struct BresenhamRay {
 // truncated to 8 bits; falloff_scale 1 gives exactly 255 / (1 + d) in integers.
 std::uint8_t falloff(std::int64_t d, double falloff_scale);
 
+// The intensity at offset (dx, dy) from a light with half-extents a, b under
+// the falloff shape and edge fade of `p` (not in the paper): falloff() of the
+// Chebyshev or Euclidean distance, times 1 - (its distance to the border as a
+// share) when edge_fade. With the paper's settings it is falloff(max(|dx|,|dy|)).
+std::uint8_t shaped_falloff(std::int64_t dx, std::int64_t dy, int a, int b, const Params& p);
+// Whether `p` asks for anything but the paper's falloff.
+inline bool shaped(const Params& p) { return p.falloff_shape != FalloffShape::chebyshev || p.edge_fade; }
+
 // One light's traced pixels, over the part of its area that matters (`clip`,
 // world pixels). value[i] is what Algorithm 2 draws there: the paper's
 // intensity falloff(d) where a ray reached the pixel before any obstacle (the
@@ -47,11 +55,15 @@ std::uint8_t falloff(std::int64_t d, double falloff_scale);
 struct LightMask {
     Rect clip;
     std::int64_t cx = 0, cy = 0;  // the light's centre pixel
+    int a = 0, b = 0;             // the area's half-extents (for shaped falloffs)
     double falloff_scale = 1.0;
     std::vector<std::uint8_t> value, reached;
 
     bool lit(std::size_t i) const { return value[i] != 0; }
 };
+
+// Rewrites every lit pixel of a traced (and corrected) mask with shaped_falloff.
+void shape_light(LightMask& mask, const Params& p);
 
 // The border pixels of the (2a+1) x (2b+1) area around the origin, each once,
 // clockwise from the top-left corner. a = b = 0 gives the single centre pixel.

@@ -32,6 +32,18 @@ enum class Footprint {
     paper,      // Algorithm 1 as the paper writes it
 };
 
+// How intensity falls with distance (not in the paper's choice but its function).
+enum class FalloffShape {
+    chebyshev,  // the paper's: d = max(|dx|, |dy|): square lights
+    euclidean,  // d = sqrt(dx^2 + dy^2): round lights
+};
+
+// How Algorithm 3 mixes a sprite's colour with the light.
+enum class LightMix {
+    luminance,  // the paper's: the sprite's luminance times the light (coloured lights paint their hue)
+    surface,    // the sprite's own colour times the light (lit sprites keep their hue); soft shadows
+};
+
 // Which pixels rays are traced to.
 enum class Rays {
     border,       // every pixel of the area's border (paper 3.2, Algorithm 2)
@@ -55,7 +67,10 @@ struct Params {
     Rays rays = Rays::border;
     double light_height = 32;      // a light's height above the ground, pixels, when it gives none (not in the paper)
     bool rays_over_obstacles = false;
-    Footprint footprint = Footprint::automatic;  // sprites without their own footprint (not in the paper)  // rays pass over obstacles lower than the ray (height_rays.hpp; not in the paper)
+    Footprint footprint = Footprint::automatic;  // sprites without their own footprint (not in the paper)
+    FalloffShape falloff_shape = FalloffShape::chebyshev;
+    bool edge_fade = false;         // intensity falls to 0 at the area's border (not in the paper)
+    LightMix light_mix = LightMix::luminance;  // rays pass over obstacles lower than the ray (height_rays.hpp; not in the paper)
 
     friend bool operator==(const Params&, const Params&) = default;
 };
@@ -130,8 +145,10 @@ std::vector<std::string> param_names();
 // The parameter's value as text (for CSV columns and labels); "" when unknown.
 std::string get_param(const Params& p, std::string_view name);
 
-// Built-in presets: "paper" (the defaults), "fast", "quality".
+// Built-in presets: "paper" (the defaults), "fast", "quality", "game".
 std::vector<std::string> builtin_preset_names();
+// One line on what a built-in preset does (the app's status bar).
+std::string builtin_preset_summary(std::string_view name);
 Params builtin_preset(std::string_view name);  // throws Error when unknown
 
 }  // namespace isolux
