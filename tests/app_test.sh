@@ -127,6 +127,28 @@ for shot in t_diff t_light; do
   if cmp -s "$tmp/t_plain.png" "$tmp/$shot.png"; then bad "$shot looks like the plain view"; else ok; fi
 done
 
+# 2e. The tileset inspector: a footprint set on a sprite is saved into the
+# manifest, which keeps its other fields.
+cp -r "$src/assets/default" "$tmp/ts"
+python3 - "$tmp/ts/tileset.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1])); d["x_custom"] = "keep me"; d["sprites"][5]["x_note"] = "mine"
+json.dump(d, open(sys.argv[1], "w"), indent=2)
+PY
+printf '{"schema_version": 1, "width": 6, "height": 6, "tileset": "%s", "lights": [{"x": 400, "y": 250}]}' "$tmp/ts/tileset.json" >"$tmp/ts_scene.json"
+cat >"$tmp/inspect.script" <<SCRIPT
+wait 3
+inspect oak
+wait 2
+footprint oak {"run":[50,100,20]}
+wait 3
+window-shot $tmp/i_shot.png
+save-footprints
+quit
+SCRIPT
+timeout 120 "$app" --scene "$tmp/ts_scene.json" --script "$tmp/inspect.script" >"$tmp/log" 2>&1 || { bad "inspector run"; cat "$tmp/log"; }
+[ "$(json "$tmp/ts/tileset.json" "d['x_custom'], d['sprites'][5]['x_note'], d['sprites'][5]['footprint']")" = "('keep me', 'mine', {'mode': 'run', 'run': [50, 100, 20]})" ] && ok || bad "the inspector's footprint was not saved into the manifest with its other fields: $(head -c 300 "$tmp/ts/tileset.json")"
+
 # 3. A drag moves a light (one undo step), right-click removes one, Delete the selected.
 cat >"$tmp/drag.script" <<SCRIPT
 wait 2

@@ -237,3 +237,28 @@ TEST(Editor, theViewIsNotPartOfTheDocumentButIsSavedWithIt) {
     EXPECT_EQ(e.view.x, 0);
     EXPECT_EQ(e.view.zoom, 1);
 }
+
+TEST(Editor, anInspectedFootprintMovesTheObstacleAndIsSavedIntoTheManifest) {
+    TempConfig c;
+    fs::create_directories(c.dir / "ts");
+    for (const auto& f : fs::directory_iterator(fs::path(ISOLUX_ASSETS_DIR) / "default"))
+        fs::copy_file(f.path(), c.dir / "ts" / f.path().filename());
+    Scene s = small_scene();
+    s.tileset = (c.dir / "ts" / "tileset.json").string();
+    Editor e = make_editor(s, c.dir);
+    int oak = -1;
+    for (int i = 0; i < int(e.world.tileset.sprites.size()); ++i)
+        if (e.world.tileset.sprites[std::size_t(i)].name == "oak") oak = i;
+    ASSERT_GE(oak, 0);
+    const auto revision = e.world.revision;
+    FootprintSpec none;
+    none.mode = FootprintMode::none;
+    set_sprite_footprint(e, oak, none);
+    EXPECT_NE(e.world.revision, revision);  // caches rebuild
+    EXPECT_TRUE(e.footprints_unsaved);
+    EXPECT_TRUE(e.undo_stack.empty());      // not a scene edit
+    ASSERT_TRUE(save_footprints(e));
+    const Tileset back = load_tileset(c.dir / "ts" / "tileset.json");
+    EXPECT_EQ(back.sprites[std::size_t(oak)].footprint.mode, FootprintMode::none);
+    EXPECT_EQ(back.sprites[std::size_t(oak)].shape, e.world.tileset.sprites[std::size_t(oak)].shape);  // the rest kept
+}

@@ -52,7 +52,7 @@ struct RenderArgs {
 // --preset, then one flag per row of the parameter table: --name-with-dashes
 // (and its old name), help from the row, booleans as plain flags.
 void add_param_flags(CLI::App& cmd, ParamArgs& pa) {
-    cmd.add_option("--preset", pa.preset, "Preset JSON file, or a built-in: paper, fast, quality");
+    cmd.add_option("--preset", pa.preset, "Preset JSON file, or a built-in: paper, fast, quality, game");
     const auto table = param_table();
     for (std::size_t i = 0; i < table.size(); ++i) {
         const ParamInfo& info = table[i];

@@ -37,6 +37,10 @@ struct Ui {
     bool map_editing = false;
     double cursor_x = 0, cursor_y = 0;  // world pixel under the mouse
     bool cursor_in_view = false;
+    bool inspector_open = false;  // the tileset inspector
+    int inspector_sprite = -1;
+    float inspector_zoom = 2;
+    bool inspector_lines = true;
 };
 
 struct App {
@@ -74,6 +78,7 @@ struct App {
 
 // Panels and the status bar: read the app's state, call the editor's actions.
 void draw_panels(App& app);
+void inspector_panel(App& app);  // gui/inspector.cpp
 
 // Viewport input: pan, zoom, place, drag and delete lights, shortcuts, the
 // character. Skipped while ImGui wants the mouse or keyboard.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "common/assets.hpp"
 #include "common/world.hpp"
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
@@ -303,6 +304,32 @@ bool recover_autosave(Editor& e, double now) {
 void discard_autosave(Editor& e) {
     std::error_code ec;
     fs::remove(autosave_path(e), ec);
+}
+
+std::filesystem::path tileset_manifest(const Editor& e) {
+    return e.scene.tileset.empty() ? default_tileset_manifest() : fs::path(e.scene.tileset);
+}
+
+void set_sprite_footprint(Editor& e, int sprite, const FootprintSpec& spec) {
+    if (sprite < 0 || sprite >= int(e.world.tileset.sprites.size())) return;
+    FootprintSpec& f = e.world.tileset.sprites[std::size_t(sprite)].footprint;
+    if (f == spec) return;
+    f = spec;
+    touch(e.world);  // the obstacle map and opacity maps are rebuilt
+    e.footprints_unsaved = true;
+}
+
+bool save_footprints(Editor& e) {
+    const fs::path manifest = tileset_manifest(e);
+    try {
+        save_manifest_footprints(manifest, e.world.tileset);
+    } catch (const Error& err) {
+        set_status(e, err.what(), true);
+        return false;
+    }
+    e.footprints_unsaved = false;
+    set_status(e, "saved the footprints into " + manifest.string());
+    return true;
 }
 
 Scene render_scene(const Editor& e) {

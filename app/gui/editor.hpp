@@ -71,6 +71,8 @@ struct Editor {
     Overlays overlays;
     Character character;
 
+    bool footprints_unsaved = false;  // the inspector changed a footprint the manifest does not have yet
+
     std::filesystem::path config;  // per-user config folder
     Settings settings;
     double autosave_due = -1;  // seconds (editor clock) when an autosave is due; -1: none
@@ -138,6 +140,13 @@ std::filesystem::path autosave_path(const Editor& e);
 bool has_recovery(const Editor& e);
 bool recover_autosave(Editor& e, double now);
 void discard_autosave(Editor& e);
+
+// The tileset inspector's edits: a sprite's footprint, applied to the world
+// at once (the manifest is its own file, not part of the scene's undo), and
+// saved into the manifest on request, keeping its other fields.
+void set_sprite_footprint(Editor& e, int sprite, const FootprintSpec& spec);
+bool save_footprints(Editor& e);
+std::filesystem::path tileset_manifest(const Editor& e);
 
 // The scene as rendered: the document plus the character's light.
 Scene render_scene(const Editor& e);

@@ -109,6 +109,24 @@ void run_script_step(App& app) {
             io.KeysDown[code] = true;
             s.key_up = code;
         }
+    } else if (step.op == "inspect" || step.op == "footprint") {
+        int found = -1;
+        for (int i = 0; i < int(e.world.tileset.sprites.size()); ++i)
+            if (e.world.tileset.sprites[std::size_t(i)].name == step.args[0]) found = i;
+        if (found < 0) {
+            set_status(e, "script: no sprite \"" + step.args[0] + "\"", true);
+        } else if (step.op == "inspect") {
+            app.ui.inspector_open = true;
+            app.ui.inspector_sprite = found;
+        } else {
+            try {
+                set_sprite_footprint(e, found, parse_footprint(step.args[1], "script footprint"));
+            } catch (const Error& err) {
+                set_status(e, err.what(), true);
+            }
+        }
+    } else if (step.op == "save-footprints") {
+        save_footprints(e);
     } else if (step.op == "window-shot") {
         s.window_shot = step.args[0];
     } else if (step.op == "type") {

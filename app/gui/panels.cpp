@@ -95,6 +95,7 @@ void menu_bar(App& app) {
         if (ImGui::MenuItem("Reset view", "Home")) reset_view(e);
         ImGui::MenuItem("Stats", nullptr, &e.settings.show_stats);
         ImGui::MenuItem("Accuracy", nullptr, &app.accuracy.open);
+        ImGui::MenuItem("Tileset inspector", nullptr, &app.ui.inspector_open);
         ImGui::EndMenu();
     }
     ImGui::EndMainMenuBar();
@@ -202,6 +203,13 @@ void map_panel(App& app) {
     }
     ImGui::Text("tileset: %s", shown.tileset.empty() ? "default" : shown.tileset.c_str());
     if (ImGui::Button("Load tileset...")) open_file_popup(app, "load-tileset", shown.tileset);
+    ImGui::SameLine();
+    if (ImGui::Button("Inspect")) app.ui.inspector_open = true;
+    if (e.footprints_unsaved) {
+        ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "footprints changed");
+        ImGui::SameLine();
+        if (ImGui::Button("Save into the manifest")) save_footprints(e);
+    }
     ImGui::SameLine();
     if (ImGui::Button("Default tileset") && !e.scene.tileset.empty()) {
         Scene before = e.scene;
@@ -484,6 +492,7 @@ void draw_panels(App& app) {
     lights_panel(app);
     stats_panel(app);
     accuracy_panel(app, app.accuracy);
+    inspector_panel(app);
     status_bar(app);
     light_area_overlay(app);
     file_popup(app);

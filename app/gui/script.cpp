@@ -24,7 +24,7 @@ Script load_script(const std::filesystem::path& path) {
         // -1: one or more.
         static const std::pair<const char*, int> arity[] = {
             {"wait", 1}, {"click", 2}, {"rclick", 2}, {"drag", 4}, {"key", 1}, {"param", 2},
-            {"type", 1}, {"window-shot", 1}, {"save-preset", 1}, {"save-scene", 1}, {"load-scene", 1}, {"load-preset", 1}, {"quit", 0},
+            {"type", 1}, {"window-shot", 1}, {"inspect", 1}, {"footprint", 2}, {"save-footprints", 0}, {"save-preset", 1}, {"save-scene", 1}, {"load-scene", 1}, {"load-preset", 1}, {"quit", 0},
             {"overlay", 2}, {"sweep", -1}, {"wait-sweep", 0}, {"apply-point", 1}, {"save-sweep", 1}};
         bool known = false;
         for (auto [op, n] : arity)

@@ -3,6 +3,8 @@
 //   wait N | click X Y | rclick X Y | drag X0 Y0 X1 Y1 | key [ctrl+]NAME
 //   (a letter, delete, home, enter, tab) | type TEXT (characters into the focused field) |
 //   window-shot PATH (the whole window, panels included, as PNG) |
+//   inspect SPRITE (the tileset inspector on it) | footprint SPRITE JSON (as the manifest
+//   spells it, no spaces) | save-footprints |
 //   param NAME VALUE (a slider moved: one undo step) | save-preset PATH |
 //   save-scene PATH | load-scene PATH | load-preset PATH | quit |
 //   overlay NAME on|off (obstacles, opacity_maps, delta_y_bands, light_areas,

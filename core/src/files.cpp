@@ -683,6 +683,49 @@ Tileset load_tileset(const fs::path& manifest) {
     return ts;
 }
 
+namespace {
+json footprint_json(const FootprintSpec& f) {
+    const FootprintSpec defaults;
+    json j = json::object();
+    if (f.mode) j["mode"] = std::string(to_string(*f.mode));
+    if (f.mode == FootprintMode::run) j["run"] = {f.run_x, f.run_y, f.run_length};
+    if (f.mode == FootprintMode::polygon) {
+        j["polygon"] = json::array();
+        for (auto [x, y] : f.polygon) j["polygon"].push_back({x, y});
+    }
+    if (f.shadow_alpha != defaults.shadow_alpha) j["shadow_alpha"] = f.shadow_alpha;
+    if (f.shadow_luminance != defaults.shadow_luminance) j["shadow_luminance"] = f.shadow_luminance;
+    if (f.ground_tolerance != defaults.ground_tolerance) j["ground_tolerance"] = f.ground_tolerance;
+    return j;
+}
+}  // namespace
+
+FootprintSpec parse_footprint(std::string_view text, std::string_view source) {
+    return footprint_from(parse_json(text, source), std::string(source));
+}
+
+std::string footprint_to_json(const FootprintSpec& spec) {
+    const json j = footprint_json(spec);
+    return j.empty() ? "" : j.dump();
+}
+
+void save_manifest_footprints(const fs::path& manifest, const Tileset& ts) {
+    const std::string src = manifest.string();
+    json j = parse_json(read_text(manifest), src);
+    check_object(j, src);
+    if (!j.contains("sprites") || !j["sprites"].is_array() || j["sprites"].size() != ts.sprites.size())
+        throw Error(src + ": sprites no longer match the loaded tileset: reload it before saving footprints");
+    for (std::size_t i = 0; i < ts.sprites.size(); ++i) {
+        json& entry = j["sprites"][i];
+        if (!entry.is_object() || !entry.contains("name") || entry["name"] != ts.sprites[i].name)
+            throw Error(src + ": sprites[" + std::to_string(i) + "] is no longer \"" + ts.sprites[i].name + "\"");
+        const json f = footprint_json(ts.sprites[i].footprint);
+        if (f.empty()) entry.erase("footprint");
+        else entry["footprint"] = f;
+    }
+    write_file_atomic(manifest, j.dump(2) + "\n");
+}
+
 void save_generated_tileset(const fs::path& folder, const GeneratedTileset& g) {
     std::error_code ec;
     fs::create_directories(folder, ec);

@@ -20,4 +20,8 @@ struct World {
 // places its sprites. Throws Error on a bad size or tileset.
 World make_world(Tileset tileset, const Scene& scene);
 
+// Marks the world changed in place (a sprite's footprint edited, say), so
+// every cache built from it is rebuilt.
+void touch(World& w);
+
 }  // namespace isolux

@@ -1,0 +1,137 @@
+// The tileset inspector: pick an overlay sprite, see what its footprint reads
+// (opacity map, Δy lines, the chosen run, the obstacle, the anchor), correct
+// it (mode, thresholds, or click to place a run), and save it into the
+// manifest. Thin: it reads the world's tileset and calls the editor's actions.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gui/app.hpp"
+#include "isolux/footprint.hpp"
+
+namespace isolux::app {
+
+namespace {
+
+// The sprite drawn at `zoom` with what its footprint read over it; a click
+// (with the run mode) puts the run's centre there.
+void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool& changed) {
+    Ui& ui = app.ui;
+    const Params& p = app.editor.scene.params;
+    FootprintReport r;
+    const Mask obstacle = tileset_footprint(app.editor.world.tileset, s, p, &r);
+    const float z = ui.inspector_zoom;
+    const ImVec2 o = ImGui::GetCursorScreenPos();
+    const float w = s.image.width * z, h = s.image.height * z;
+    ImGui::InvisibleButton("sprite", ImVec2(w, h));
+    const bool hovered = ImGui::IsItemHovered();
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->AddRectFilled(o, ImVec2(o.x + w, o.y + h), IM_COL32(40, 40, 48, 255));
+    auto px = [&](int x, int y, ImU32 c) {
+        dl->AddRectFilled(ImVec2(o.x + x * z, o.y + y * z), ImVec2(o.x + (x + 1) * z, o.y + (y + 1) * z), c);
+    };
+    for (int y = 0; y < s.image.height; ++y)
+        for (int x = 0; x < s.image.width; ++x) {
+            const std::uint8_t* c = s.image.at(x, y);
+            if (c[3] == 0) continue;
+            const bool read = r.estimate.get(x, y);
+            // What the estimate left out (a baked ground or shadow) is dimmed.
+            const int k = read ? 255 : 90;
+            px(x, y, IM_COL32(c[0] * k / 255, c[1] * k / 255, c[2] * k / 255, c[3]));
+        }
+    if (ui.inspector_lines && r.trace.last_line >= r.trace.first_line)
+        dl->AddRectFilled(ImVec2(o.x, o.y + r.trace.first_line * z), ImVec2(o.x + w, o.y + (r.trace.last_line + 1) * z),
+                          IM_COL32(60, 120, 255, 60));
+    for (int y = 0; y < obstacle.height; ++y)
+        for (int x = 0; x < obstacle.width; ++x)
+            if (obstacle.bits[std::size_t(y) * obstacle.width + x]) px(obstacle.x0 + x, obstacle.y0 + y, IM_COL32(255, 50, 50, 200));
+    if (r.trace.run_length > 0)
+        dl->AddRect(ImVec2(o.x + r.trace.run_start * z, o.y + r.trace.chosen_line * z),
+                    ImVec2(o.x + (r.trace.run_start + r.trace.run_length) * z, o.y + (r.trace.chosen_line + 1) * z),
+                    IM_COL32(0, 255, 255, 255));
+    const ImVec2 a(o.x + (s.anchor_x + 0.5f) * z, o.y + (s.anchor_y + 0.5f) * z);
+    dl->AddLine(ImVec2(a.x - 8, a.y), ImVec2(a.x + 8, a.y), IM_COL32(0, 255, 255, 255), 2);
+    dl->AddLine(ImVec2(a.x, a.y - 8), ImVec2(a.x, a.y + 8), IM_COL32(0, 255, 255, 255), 2);
+    if (hovered && ImGui::IsMouseDown(0) && spec.mode == FootprintMode::run) {
+        // Drag: the run follows the pointer (its centre under it).
+        const ImVec2 m = ImGui::GetIO().MousePos;
+        const int cx = int((m.x - o.x) / z), cy = int((m.y - o.y) / z);
+        spec.run_x = cx - spec.run_length / 2;
+        spec.run_y = cy;
+        changed = true;
+    }
+    double cx = 0, cy = 0;
+    Rect box;
+    if (mask_centre(obstacle, cx, cy, box))
+        ImGui::Text("obstacle centre (%.0f, %.0f), %.0f px from the anchor (%d, %d)%s%s", cx, cy,
+                    std::hypot(cx - s.anchor_x - 0.5, cy - s.anchor_y - 0.5), s.anchor_x, s.anchor_y,
+                    r.baked_ground ? "; baked ground found" : "", r.baked_shadow ? "; baked shadow found" : "");
+    else
+        ImGui::TextUnformatted("no obstacle: light passes through this sprite");
+    (void)index;
+}
+
+}  // namespace
+
+void inspector_panel(App& app) {
+    Ui& ui = app.ui;
+    Editor& e = app.editor;
+    if (!ui.inspector_open) return;
+    ImGui::SetNextWindowSize(ImVec2(560, 640), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Tileset inspector", &ui.inspector_open)) return ImGui::End();
+    const auto& sprites = e.world.tileset.sprites;
+    ImGui::BeginChild("list", ImVec2(150, 0), true);
+    for (int i = 0; i < int(sprites.size()); ++i)
+        if (sprites[std::size_t(i)].kind == SpriteKind::overlay &&
+            ImGui::Selectable(sprites[std::size_t(i)].name.c_str(), ui.inspector_sprite == i))
+            ui.inspector_sprite = i;
+    ImGui::EndChild();
+    ImGui::SameLine();
+    ImGui::BeginChild("sprite", ImVec2(0, 0));
+    if (ui.inspector_sprite < 0 || ui.inspector_sprite >= int(sprites.size())) {
+        ImGui::TextWrapped("Pick a sprite: its obstacle (red), the run Algorithm 1 chose (cyan box), the lines it "
+                           "read (blue band) and the anchor (cyan cross); what the estimate left out is dimmed.");
+    } else {
+        const Sprite& s = sprites[std::size_t(ui.inspector_sprite)];
+        FootprintSpec spec = s.footprint;
+        bool changed = false;
+        static const char* modes[] = {"preset's", "auto", "paper", "none", "run", "polygon"};
+        int m = spec.mode ? int(*spec.mode) + 1 : 0;
+        ImGui::SetNextItemWidth(140);
+        if (ImGui::Combo("footprint", &m, modes, 5)) {  // a polygon is set in the manifest
+            spec.mode = m == 0 ? std::nullopt : std::optional<FootprintMode>(FootprintMode(m - 1));
+            if (spec.mode == FootprintMode::run && spec.run_length < 1) {
+                spec.run_length = std::max(4, s.image.width / 8);
+                spec.run_x = s.anchor_x - spec.run_length / 2;
+                spec.run_y = s.anchor_y;
+            }
+            changed = true;
+        }
+        if (spec.mode == FootprintMode::run) {
+            int run[3] = {spec.run_x, spec.run_y, spec.run_length};
+            if (ImGui::InputInt3("run x, y, length", run)) {
+                spec.run_x = run[0], spec.run_y = run[1], spec.run_length = std::max(1, run[2]);
+                changed = true;
+            }
+            ImGui::TextDisabled("drag on the sprite to move the run");
+        }
+        if (!spec.mode || spec.mode == FootprintMode::automatic) {
+            float v[3] = {float(spec.shadow_alpha), float(spec.shadow_luminance), float(spec.ground_tolerance)};
+            changed |= ImGui::SliderFloat("shadow alpha", &v[0], 0, 1, "%.2f");
+            changed |= ImGui::SliderFloat("shadow luminance", &v[1], 0, 1, "%.2f");
+            changed |= ImGui::SliderFloat("ground tolerance", &v[2], 0, 1, "%.2f");
+            spec.shadow_alpha = v[0], spec.shadow_luminance = v[1], spec.ground_tolerance = v[2];
+        }
+        ImGui::Checkbox("Δy lines", &ui.inspector_lines);
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(100);
+        ImGui::SliderFloat("zoom", &ui.inspector_zoom, 1, 6, "%.0f");
+        draw_sprite(app, ui.inspector_sprite, s, spec, changed);
+        if (changed) set_sprite_footprint(e, ui.inspector_sprite, spec);
+    }
+    ImGui::EndChild();
+    ImGui::End();
+}
+
+}  // namespace isolux::app
