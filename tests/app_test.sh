@@ -149,6 +149,12 @@ SCRIPT
 timeout 120 "$app" --scene "$tmp/ts_scene.json" --script "$tmp/inspect.script" >"$tmp/log" 2>&1 || { bad "inspector run"; cat "$tmp/log"; }
 [ "$(json "$tmp/ts/tileset.json" "d['x_custom'], d['sprites'][5]['x_note'], d['sprites'][5]['footprint']")" = "('keep me', 'mine', {'mode': 'run', 'run': [50, 100, 20]})" ] && ok || bad "the inspector's footprint was not saved into the manifest with its other fields: $(head -c 300 "$tmp/ts/tileset.json")"
 
+# 2f. A script with a bad number is refused with its line, not a crash.
+printf 'wait 1\nclick abc 10\n' >"$tmp/badnum.script"
+timeout 60 "$app" --script "$tmp/badnum.script" >"$tmp/log" 2>&1
+code=$?
+[ "$code" = "2" ] && grep -q "badnum.script:2" "$tmp/log" && ok || { bad "a bad script number: exit $code"; cat "$tmp/log"; }
+
 # 3. A drag moves a light (one undo step), right-click removes one, Delete the selected.
 cat >"$tmp/drag.script" <<SCRIPT
 wait 2

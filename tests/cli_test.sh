@@ -100,7 +100,8 @@ if cmp -s "$tmp/cam.png" "$tmp/view.png"; then pass=$((pass + 1)); else echo "FA
 check blur_alias 0 "" -- render --size 4x4 --light 200,100 --blur 3 --out "$tmp/blur_old.png"
 check blur_new 0 "" -- render --size 4x4 --light 200,100 --blur-radius 3 --out "$tmp/blur_new.png"
 if cmp -s "$tmp/blur_old.png" "$tmp/blur_new.png"; then pass=$((pass + 1)); else echo "FAIL --blur and --blur-radius differ"; fail=$((fail + 1)); fi
-check json_huge_number 2 "malformed JSON" -- render --preset <(echo '{"schema_version": 1, "delta_y": 1e999}') --out "$tmp/x.png"
+echo '{"schema_version": 1, "delta_y": 1e999}' >"$tmp/huge_number.json"
+check json_huge_number 2 "malformed JSON" -- render --preset "$tmp/huge_number.json" --out "$tmp/x.png"
 
 # The 3D reference: the truth's lit frame and where the model disagrees with it.
 check truth 0 "" -- render --size 6x6 --light 400,250,h=48 --layer truth --out "$tmp/truth.png"
@@ -133,6 +134,37 @@ PY
 then pass=$((pass + 1)); else echo "FAIL check-tileset --json is not the documented shape"; fail=$((fail + 1)); fi
 [ -s "$tmp/sheet.png" ] && pass=$((pass + 1)) || { echo "FAIL no contact sheet"; fail=$((fail + 1)); }
 check check_tileset_bad 2 "tileset.json" -- check-tileset "$tmp/nowhere/tileset.json"
+
+# Bad paths and hostile files: a clear refusal naming the file, never a crash or a hang.
+mkfifo "$tmp/fifo.json"
+ln -s "$tmp/loop_b.json" "$tmp/loop_a.json"; ln -s "$tmp/loop_a.json" "$tmp/loop_b.json"
+mkdir -p "$tmp/adir.json"
+check fifo_scene 2 "FIFO" -- render --scene "$tmp/fifo.json" --out "$tmp/x.png"
+check loop_scene 2 "loop_a.json" -- render --scene "$tmp/loop_a.json" --out "$tmp/x.png"
+check dir_scene 2 "folder" -- render --scene "$tmp/adir.json" --out "$tmp/x.png"
+check devzero_preset 2 "device" -- render --size 3x3 --preset /dev/zero --out "$tmp/x.png"
+mkdir -p "$tmp/bad_ts"
+cp "$src/assets/default/grass.png" "$tmp/bad_ts/grass.png"
+python3 - "$tmp/bad_ts/huge.png" <<'PY'
+import struct, sys, zlib
+def chunk(kind, data):
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+ihdr = struct.pack(">IIBBBBB", 65536, 65536, 8, 6, 0, 0, 0)
+open(sys.argv[1], "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(b"\0")) + chunk(b"IEND", b""))
+PY
+ts_with() {  # ts_with OVERLAY_JSON: a manifest with a grass floor and one overlay
+  printf '{"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]}, %s]}' "$1" >"$tmp/bad_ts/tileset.json"
+}
+ts_with '{"name": "big", "image": "huge.png", "kind": "overlay"}'
+check huge_png 2 "megapixels" -- render --size 3x3 --tileset "$tmp/bad_ts/tileset.json" --out "$tmp/x.png"
+ts_with '{"name": "far", "image": "grass.png", "rect": [2147483640, 0, 16, 16], "kind": "overlay"}'
+check rect_overflow 2 "lies outside" -- render --size 3x3 --tileset "$tmp/bad_ts/tileset.json" --out "$tmp/x.png"
+ts_with '{"name": "wrap", "image": "grass.png", "rect": [4294967297, 0, 16, 16], "kind": "overlay"}'
+check rect_wrap 2 "lies outside" -- render --size 3x3 --tileset "$tmp/bad_ts/tileset.json" --out "$tmp/x.png"
+ts_with '{"name": "lost", "image": "grass.png", "anchor": [-2147483648, 0], "kind": "overlay"}'
+check anchor_min 2 "anchor" -- render --size 3x3 --tileset "$tmp/bad_ts/tileset.json" --out "$tmp/x.png"
+ts_with '{"name": "pipe", "image": "../fifo.json", "kind": "overlay"}'
+check fifo_image 2 "FIFO" -- render --size 3x3 --tileset "$tmp/bad_ts/tileset.json" --out "$tmp/x.png"
 
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -72,7 +72,8 @@ void add_param_flags(CLI::App& cmd, ParamArgs& pa) {
 Params params_from_args(const ParamArgs& a, Params p) {
     if (!a.preset.empty()) {
         std::vector<std::string> warnings;
-        bool builtin = !std::filesystem::exists(a.preset) && a.preset.find('.') == std::string::npos;
+        std::error_code ec;
+        bool builtin = !std::filesystem::exists(a.preset, ec) && a.preset.find('.') == std::string::npos;
         p = builtin ? builtin_preset(a.preset) : load_preset(a.preset, &warnings);
         for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
     }

@@ -1,5 +1,7 @@
 #include "gui/script.hpp"
 
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -35,6 +37,19 @@ Script load_script(const std::filesystem::path& path) {
                                 (n < 0 ? std::string("one or more") : std::to_string(n)) + " arguments");
             }
         if (!known) throw Error(path.string() + ":" + std::to_string(line) + ": unknown command \"" + step.op + "\"");
+        // Numbers are checked here, so a bad one is a message, not a crash mid-run.
+        const bool numeric = step.op == "wait" || step.op == "click" || step.op == "rclick" || step.op == "drag" ||
+                             step.op == "apply-point";
+        for (std::size_t k = 0; numeric && k < step.args.size(); ++k) {
+            const std::string& a = step.args[k];
+            char* end = nullptr;
+            const double v = std::strtod(a.c_str(), &end);
+            const double limit = step.op == "wait" || step.op == "apply-point" ? 1e6 : 1e5;
+            if (a.empty() || *end != '\0' || !std::isfinite(v) || v < (step.op == "wait" ? 0 : -limit) || v > limit)
+                throw Error(path.string() + ":" + std::to_string(line) + ": " + step.op + ": \"" + a +
+                            "\" is not a number in [" + (step.op == "wait" ? "0" : "-" + std::to_string(int(limit))) +
+                            ", " + std::to_string(int(limit)) + "]");
+        }
         s.steps.push_back(step);
     }
     return s;

@@ -48,10 +48,33 @@ void commit_temp(const fs::path& tmp, const fs::path& path) {
 
 }  // namespace
 
+void check_input_file(const fs::path& path, std::uintmax_t max_bytes) {
+    std::error_code ec;
+    const fs::file_status st = fs::status(path, ec);  // follows links; a loop is an error, not an exception
+    if (ec) {
+        if (ec == std::errc::no_such_file_or_directory) throw Error(quoted(path) + ": file not found");
+        throw Error(quoted(path) + ": cannot read: " + ec.message());
+    }
+    switch (st.type()) {
+        case fs::file_type::regular: break;
+        case fs::file_type::directory: throw Error(quoted(path) + ": is a folder, not a file");
+        case fs::file_type::fifo: throw Error(quoted(path) + ": is a FIFO (a pipe), not a file");
+        case fs::file_type::character:
+        case fs::file_type::block: throw Error(quoted(path) + ": is a device, not a file");
+        case fs::file_type::socket: throw Error(quoted(path) + ": is a socket, not a file");
+        default: throw Error(quoted(path) + ": is not a regular file");
+    }
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (ec) throw Error(quoted(path) + ": cannot read: " + ec.message());
+    if (size > max_bytes)
+        throw Error(quoted(path) + ": is " + std::to_string(size >> 20) + " MB, over the " +
+                    std::to_string(max_bytes >> 20) + " MB isolux reads");
+}
+
 // ---------------------------------------------------------------- images
 
 Image load_image(const fs::path& path) {
-    if (!fs::exists(path)) throw Error(quoted(path) + ": file not found");
+    check_input_file(path, max_image_file_bytes);
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);  // keep PNG's straight alpha as stored
     auto in = OIIO::ImageInput::open(path.string(), &config);
@@ -60,6 +83,10 @@ Image load_image(const fs::path& path) {
     if (spec.width <= 0 || spec.height <= 0 || spec.width > max_image_side || spec.height > max_image_side)
         throw Error(quoted(path) + ": image size " + std::to_string(spec.width) + "x" +
                     std::to_string(spec.height) + " is outside [1, " + std::to_string(max_image_side) + "]");
+    // Refused from the header, before any decoding: a tiny file may declare a huge image.
+    if (std::int64_t(spec.width) * spec.height > max_image_pixels)
+        throw Error(quoted(path) + ": image size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                    " is over the " + std::to_string(max_image_pixels >> 20) + " megapixels isolux reads");
     const int nch = spec.nchannels;
     if (nch < 1 || nch > 16) throw Error(quoted(path) + ": unsupported channel count " + std::to_string(nch));
     // Read at 16 bits when the source has more than 8, so that alpha keeps
@@ -111,7 +138,7 @@ void save_image(const fs::path& path, const Image& image) {
 }
 
 std::vector<std::uint16_t> load_gray16(const fs::path& path, int width, int height) {
-    if (!fs::exists(path)) throw Error(quoted(path) + ": file not found");
+    check_input_file(path, max_image_file_bytes);
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) throw Error(quoted(path) + ": not a readable image (" + OIIO::geterror() + ")");
     const OIIO::ImageSpec& spec = in->spec();
@@ -158,7 +185,7 @@ void write_file_atomic(const fs::path& path, std::string_view contents) {
 namespace {
 
 std::string read_text(const fs::path& path) {
-    if (!fs::exists(path)) throw Error(quoted(path) + ": file not found");
+    check_input_file(path, max_text_file_bytes);
     std::ifstream f(path, std::ios::binary);
     if (!f) throw Error(quoted(path) + ": cannot open");
     std::ostringstream ss;
@@ -619,9 +646,21 @@ Tileset load_tileset(const fs::path& manifest) {
             const json& r = arr[i]["rect"];
             if (!r.is_array() || r.size() != 4 || !std::all_of(r.begin(), r.end(), [](const json& v) { return v.is_number_integer(); }))
                 sf.fail("rect", "must be [x, y, w, h] integers");
-            rect = {r[0].get<int>(), r[1].get<int>(), r[2].get<int>(), r[3].get<int>()};
-            if (rect.w <= 0 || rect.h <= 0) sf.fail("rect", "has zero size: zero-size sprite");
-            if (rect.x < 0 || rect.y < 0 || rect.x + rect.w > sheet.width || rect.y + rect.h > sheet.height)
+            // Read wide and checked in 64 bits: no value wraps, no sum overflows.
+            std::int64_t v[4];
+            for (int k = 0; k < 4; ++k) {
+                if (r[std::size_t(k)].is_number_unsigned() && r[std::size_t(k)].get<std::uint64_t>() > std::uint64_t(INT64_MAX))
+                    sf.fail("rect", "holds a value beyond 64 bits");
+                v[k] = r[std::size_t(k)].get<std::int64_t>();
+            }
+            if (v[2] <= 0 || v[3] <= 0) sf.fail("rect", "has zero size: zero-size sprite");
+            if (v[0] < 0 || v[1] < 0 || v[0] > sheet.width || v[1] > sheet.height || v[2] > sheet.width ||
+                v[3] > sheet.height || v[0] + v[2] > sheet.width || v[1] + v[3] > sheet.height)
+                sf.fail("rect", "[" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) +
+                                    ", " + std::to_string(v[3]) + "] lies outside " + image_path.filename().string() + " (" +
+                                    std::to_string(sheet.width) + "x" + std::to_string(sheet.height) + ")");
+            rect = {int(v[0]), int(v[1]), int(v[2]), int(v[3])};
+            if (rect.x + rect.w > sheet.width || rect.y + rect.h > sheet.height)
                 sf.fail("rect", "[" + std::to_string(rect.x) + ", " + std::to_string(rect.y) + ", " +
                                     std::to_string(rect.w) + ", " + std::to_string(rect.h) + "] lies outside " +
                                     image_path.filename().string() + " (" + std::to_string(sheet.width) + "x" +
@@ -645,9 +684,13 @@ Tileset load_tileset(const fs::path& manifest) {
             const json& a = arr[i]["anchor"];
             if (!a.is_array() || a.size() != 2 || !a[0].is_number_integer() || !a[1].is_number_integer())
                 sf.fail("anchor", "must be [x, y] integers");
-            s.anchor_x = a[0].get<int>();
-            s.anchor_y = a[1].get<int>();
-            if (std::abs(s.anchor_x) > 100000 || std::abs(s.anchor_y) > 100000) sf.fail("anchor", "is too far off the sprite");
+            const bool wide = (a[0].is_number_unsigned() && a[0].get<std::uint64_t>() > 100000) ||
+                              (a[1].is_number_unsigned() && a[1].get<std::uint64_t>() > 100000);
+            const std::int64_t ax = wide ? 0 : a[0].get<std::int64_t>(), ay = wide ? 0 : a[1].get<std::int64_t>();
+            if (wide || ax < -100000 || ax > 100000 || ay < -100000 || ay > 100000)
+                sf.fail("anchor", "is too far off the sprite (each coordinate within ±100000)");
+            s.anchor_x = int(ax);
+            s.anchor_y = int(ay);
         } else if (s.kind == SpriteKind::floor) {
             s.anchor_x = rect.w / 2;  // the diamond's centre, with the diamond at the sprite's top
             s.anchor_y = ts.tile_height / 2;

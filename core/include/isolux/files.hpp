@@ -3,6 +3,7 @@
 // throws Error naming the file and the entry or field; every writer is atomic
 // (a temporary file in the same folder, then rename).
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -20,6 +21,17 @@ inline constexpr int schema_version = 1;
 
 // Largest image we read or write, pixels per side.
 inline constexpr int max_image_side = 65536;
+// Most pixels an image we read may declare (64 Mpx: 256 MB as RGBA), checked
+// from its header before decoding.
+inline constexpr std::int64_t max_image_pixels = std::int64_t(1) << 26;
+// Largest files we read: images, and JSON (presets, scenes, manifests).
+inline constexpr std::uintmax_t max_image_file_bytes = std::uintmax_t(512) << 20;
+inline constexpr std::uintmax_t max_text_file_bytes = std::uintmax_t(64) << 20;
+
+// The one way in for every file isolux reads: throws Error naming the path
+// unless it is a regular file (not a FIFO, device, folder or socket, nor a
+// symlink loop) of at most `max_bytes`.
+void check_input_file(const std::filesystem::path& path, std::uintmax_t max_bytes);
 
 // Reads any image OpenImageIO can (PNG 8/16-bit, palette, grey, grey+alpha,
 // RGB, RGBA, ...) and converts it to 8-bit RGBA.
