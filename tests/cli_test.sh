@@ -166,5 +166,9 @@ check anchor_min 2 "anchor" -- render --size 3x3 --tileset "$tmp/bad_ts/tileset.
 ts_with '{"name": "pipe", "image": "../fifo.json", "kind": "overlay"}'
 check fifo_image 2 "FIFO" -- render --size 3x3 --tileset "$tmp/bad_ts/tileset.json" --out "$tmp/x.png"
 
+# Work known to take minutes is refused up front, with the flag that allows it.
+check huge_area 2 "allow-huge" -- render --size 3x3 --light 100,100 --area 4096,4096 --rays every_pixel --out "$tmp/x.png"
+check huge_quality 2 "allow-huge" -- render --size 3x3 --light 100,100 --preset quality --area 4096,4096 --out "$tmp/x.png"
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -47,7 +47,19 @@ struct RenderArgs {
     int frames = 1;
     std::string camera_step;
     bool no_opacity_correction = false;
+    bool allow_huge = false;
 };
+
+// Refuses work beyond what finishes in seconds, with the estimate and the
+// flag that allows it anyway.
+constexpr double max_steps = 4e9;
+void check_work(double steps, bool allow, const std::string& what) {
+    if (steps <= max_steps || allow) return;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.2g", steps);
+    throw Error(what + " would trace about " + std::string(buf) +
+                " ray steps (minutes or more): use a smaller area, border rays or fewer frames, or --allow-huge");
+}
 
 // --preset, then one flag per row of the parameter table: --name-with-dashes
 // (and its old name), help from the row, booleans as plain flags.
@@ -325,6 +337,8 @@ int run_render(const RenderArgs& a) {
     Scene s = scene_from_args(a);
     World w = build_world(s);
     Rect view = view_from_args(a, s, w);
+    check_work(trace_work(s, view) * (a.frames > 1 ? std::max(1, a.frames / std::max(1, s.params.trace_every)) : 1),
+               a.allow_huge, "this render");
     Image out;
     if (a.layer == "map" || a.layer == "obstacles") {
         out = render_sprites(w.tileset, w.placed, view);
@@ -402,6 +416,7 @@ struct SweepArgs {
     std::string step = "24,12";
     std::string references = "every_pixel";
     bool no_carry = false;
+    bool allow_huge = false;
     bool no_opacity_correction = false;
 };
 
@@ -429,6 +444,22 @@ int run_sweep_command(const SweepArgs& a) {
         pos = end + 1;
     }
     World w = build_world(s);
+    {
+        // The work of every combination, before any of it starts.
+        double steps = 0;
+        const Rect view = camera_view(s.camera, w);
+        for (const SweepAxis& ax : axes)
+            for (const std::string& v : ax.values) {
+                Scene probe = s;
+                set_param(probe.params, ax.name, v, "--param");
+                steps = std::max(steps, trace_work(probe, view));
+            }
+        if (axes.empty()) steps = trace_work(s, view);
+        double combos_all = 1;
+        for (const SweepAxis& ax : axes) combos_all *= double(ax.values.size());
+        check_work(steps * combos_all * opt.frames * (opt.repeats + double(opt.references.size())), a.allow_huge,
+                   "this sweep");
+    }
     long combos = 1;
     for (const SweepAxis& ax : axes) combos *= long(ax.values.size());
     std::cerr << "isolux-cli: sweeping " << combos << " combinations x " << opt.repeats << " runs x " << opt.frames
@@ -487,6 +518,7 @@ int main(int argc, char** argv) {
     render->add_flag("--no-opacity-correction", ra.no_opacity_correction,
                      "Skip the opacity-map correction (shows the paper's Figure 6 problem)");
     add_param_flags(*render, ra.params);
+    render->add_flag("--allow-huge", ra.allow_huge, "Run even when the estimated work is beyond a few seconds");
     render->add_option("--view", ra.view, "World-pixel rectangle X,Y,W,H to render (default: the whole map)");
     render->add_option("--out", ra.out, "Output image (.png or .exr)")->required();
 
@@ -525,6 +557,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 100));
     sweep->add_option("--step", sa.step, "Camera movement per frame DX,DY (default 24,12)");
     sweep->add_flag("--no-carried-light", sa.no_carry, "No light moving with the camera");
+    sweep->add_flag("--allow-huge", sa.allow_huge, "Run even when the estimated work is beyond a few minutes");
     sweep->add_flag("--no-opacity-correction", sa.no_opacity_correction,
                     "Measure the model without its opacity correction (the paper's Figure 6)");
     sweep->add_option("--reference", sa.references,

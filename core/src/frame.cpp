@@ -32,6 +32,18 @@ std::string_view to_string(Stage s) {
     return "?";
 }
 
+double trace_work(const Scene& scene, Rect view) {
+    const Params& p = scene.params;
+    double steps = 0;
+    for (const Light& l : scene.lights) {
+        if (intersect(light_area(l, p), view).empty()) continue;
+        const double a = light_a(l, p), b = light_b(l, p);
+        const double rays = p.rays == Rays::every_pixel ? (2 * a + 1) * (2 * b + 1) : (8 * std::max(a, b) + 4) / p.ray_skip;
+        steps += rays * (std::max(a, b) + 1);
+    }
+    return steps;
+}
+
 Rect camera_view(const Camera& c, const World& w) {
     const double x = std::clamp(std::floor(c.x), -1e9, 1e9), y = std::clamp(std::floor(c.y), -1e9, 1e9);
     const int width = c.width > 0 ? c.width : w.placed.bounds.w;
