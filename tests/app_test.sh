@@ -194,6 +194,14 @@ if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/b
 [ -f "$ISOLUX_CONFIG_DIR/autosave.json" ] && ok || bad "unsaved work was not autosaved"
 [ "$(json "$ISOLUX_CONFIG_DIR/autosave.json" "len(d['lights'])")" = "4" ] && ok || bad "the autosave lacks the last light"
 
+# 4b. A crash's autosave survives a later clean run that never offered it
+# (a screenshot run, a script's quit).
+cp "$ISOLUX_CONFIG_DIR/autosave.json" "$tmp/autosave.before"
+timeout 120 "$app" --scene "$src/assets/scenes/default.json" --frames 1 --screenshot "$tmp/again.png" >"$tmp/log" 2>&1 || { bad "screenshot run"; cat "$tmp/log"; }
+printf 'wait 2\nquit\n' >"$tmp/quit.script"
+timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/quit.script" >"$tmp/log" 2>&1 || { bad "quit run"; cat "$tmp/log"; }
+cmp -s "$ISOLUX_CONFIG_DIR/autosave.json" "$tmp/autosave.before" && ok || bad "a clean run deleted or replaced an unrecovered autosave"
+
 # 5. Every overlay, the error heat map, and the Accuracy panel's sweep: a
 #    point applied from it becomes the preset.
 cat >"$tmp/accuracy.script" <<SCRIPT

@@ -386,3 +386,23 @@ TEST(Tileset, footprintsAreReadAndBadOnesNameTheEntry) {
         EXPECT_MENTIONS(msg, expect);
     }
 }
+
+TEST(Files, savingThroughASymlinkKeepsTheLinkAndTheModeAndAFullDiskKeepsTheOldFile) {
+    TempDir d;
+    fs::create_directories(d.path / "real");
+    const fs::path target = d.path / "real" / "scene.json", link = d.path / "scene.json";
+    write_file_atomic(target, "old");
+    fs::permissions(target, fs::perms::owner_read | fs::perms::owner_write);
+    fs::create_symlink(fs::path("real") / "scene.json", link);
+    write_file_atomic(link, "new");
+    EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+    std::ifstream in(target);
+    std::string text;
+    in >> text;
+    EXPECT_EQ(text, "new");
+    EXPECT_EQ(fs::status(target).permissions() & fs::perms::all, fs::perms::owner_read | fs::perms::owner_write);
+    // A loop of links is refused, not followed forever.
+    fs::create_symlink("loop_b.json", d.path / "loop_a.json");
+    fs::create_symlink("loop_a.json", d.path / "loop_b.json");
+    EXPECT_MENTIONS(error_of([&] { write_file_atomic(d.path / "loop_a.json", "x"); }), "loop_a.json");
+}

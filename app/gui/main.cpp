@@ -375,7 +375,8 @@ int main(int argc, char** argv) {
         close_window(window);
         return 2;
     }
-    if (!screenshot_mode && !app.script && has_recovery(app.editor)) app.ui.recovery_offered = true;
+    const bool had_recovery = has_recovery(app.editor);  // an earlier session's unsaved work
+    if (!screenshot_mode && !app.script && had_recovery) app.ui.recovery_offered = true;
 
     std::string error;
     if (!renderer_init(app.renderer, error)) {
@@ -453,7 +454,13 @@ int main(int argc, char** argv) {
     } catch (const Error&) {
     }
     // A clean exit: unsaved work stays in the autosave only if it was dirty.
-    if (app.editor.dirty) {
+    // An autosave from an earlier crash is deleted only once its recovery was
+    // offered and answered: never by a screenshot or script run, nor when the
+    // window closes with the prompt still showing.
+    const bool recovery_unanswered = app.ui.recovery_offered || ((screenshot_mode || app.script) && had_recovery);
+    if (recovery_unanswered) {
+        // Leave the earlier session's work where the next start offers it.
+    } else if (app.editor.dirty) {
         app.editor.autosave_due = 0;
         autosave_tick(app.editor, 1e300);
     } else {

@@ -27,6 +27,20 @@ namespace {
 
 std::string quoted(const fs::path& p) { return p.string(); }
 
+// Where a write to `path` lands: through a symlink, its target, so saving
+// keeps the link (a bounded walk: a loop is an error).
+fs::path write_target(const fs::path& path) {
+    fs::path p = path;
+    for (int hops = 0; hops < 40; ++hops) {
+        std::error_code ec;
+        if (!fs::is_symlink(fs::symlink_status(p, ec))) return p;
+        const fs::path next = fs::read_symlink(p, ec);
+        if (ec) throw Error(quoted(path) + ": cannot write: " + ec.message());
+        p = next.is_absolute() ? next : p.parent_path() / next;
+    }
+    throw Error(quoted(path) + ": cannot write: too many levels of symbolic links");
+}
+
 // A sibling temporary path that keeps the extension (OpenImageIO picks the
 // writer from it) and is unique per process and call.
 fs::path temp_sibling(const fs::path& path) {
@@ -37,8 +51,12 @@ fs::path temp_sibling(const fs::path& path) {
     return tmp;
 }
 
+// Replaces `path` by the finished temporary file, keeping the old file's
+// permissions (a 600 file stays 600).
 void commit_temp(const fs::path& tmp, const fs::path& path) {
     std::error_code ec;
+    const fs::file_status old = fs::status(path, ec);
+    if (!ec && fs::is_regular_file(old)) fs::permissions(tmp, old.permissions(), ec);
     fs::rename(tmp, path, ec);
     if (ec) {
         fs::remove(tmp, ec);
@@ -116,7 +134,8 @@ Image load_image(const fs::path& path) {
     return out;
 }
 
-void save_image(const fs::path& path, const Image& image) {
+void save_image(const fs::path& link, const Image& image) {
+    const fs::path path = write_target(link);
     std::string ext = path.extension().string();
     for (char& c : ext) c = char(std::tolower(c));
     const bool exr = ext == ".exr";
@@ -129,10 +148,21 @@ void save_image(const fs::path& path, const Image& image) {
     if (!out->open(tmp.string(), spec)) throw Error(quoted(path) + ": cannot write (" + out->geterror() + ")");
     bool ok = out->write_image(OIIO::TypeDesc::UINT8, image.rgba.data());
     ok = out->close() && ok;
+    std::string why = ok ? "" : out->geterror();
+    if (ok) {
+        // OpenImageIO's PNG writer does not report a full disk: read the
+        // file back whole before it replaces the old one.
+        auto in = OIIO::ImageInput::open(tmp.string());
+        std::vector<std::uint8_t> back(std::size_t(image.width) * image.height * 4);
+        ok = in && in->spec().width == image.width && in->spec().height == image.height &&
+             in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, back.data());
+        if (in) in->close();
+        if (!ok) why = "the written file does not read back whole: is the disk full?";
+    }
     if (!ok) {
         std::error_code ec;
         fs::remove(tmp, ec);
-        throw Error(quoted(path) + ": cannot write (" + out->geterror() + ")");
+        throw Error(quoted(path) + ": cannot write (" + why + "); the old file is kept");
     }
     commit_temp(tmp, path);
 }
@@ -151,7 +181,8 @@ std::vector<std::uint16_t> load_gray16(const fs::path& path, int width, int heig
     return values;
 }
 
-void save_gray16(const fs::path& path, int width, int height, const std::vector<std::uint16_t>& values) {
+void save_gray16(const fs::path& link, int width, int height, const std::vector<std::uint16_t>& values) {
+    const fs::path path = write_target(link);
     auto out = OIIO::ImageOutput::create("png");
     if (!out) throw Error(quoted(path) + ": no PNG writer (" + OIIO::geterror() + ")");
     OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::UINT16);
@@ -163,7 +194,8 @@ void save_gray16(const fs::path& path, int width, int height, const std::vector<
     commit_temp(tmp, path);
 }
 
-void write_file_atomic(const fs::path& path, std::string_view contents) {
+void write_file_atomic(const fs::path& link, std::string_view contents) {
+    const fs::path path = write_target(link);
     fs::path tmp = temp_sibling(path);
     {
         std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
