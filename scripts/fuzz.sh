@@ -21,8 +21,16 @@ for t in preset scene tileset sprite; do
   mkdir -p "$work"
   echo "fuzz: $t for ${seconds}s"
   ./build/fuzz/tests/fuzz/fuzz_$t -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
-    -artifact_prefix=build/fuzz/crashes/"$t"- -print_final_stats=1 "$work" tests/fuzz/corpus/$t 2>&1 |
-    grep -E "number_of_executed_units|new_units_added|ERROR|SUMMARY|runtime error" || true
+    -artifact_prefix=build/fuzz/crashes/"$t"- -print_final_stats=1 "$work" tests/fuzz/corpus/$t >build/fuzz/log_$t 2>&1 || true
+  grep -E "number_of_executed_units|new_units_added|ERROR|SUMMARY|runtime error" build/fuzz/log_$t || true
+  # The core library must be instrumented too: its parsers' branches show as
+  # hundreds of edges (the fuzz targets alone give a few dozen).
+  edges=$(grep -oE "DONE +cov: [0-9]+" build/fuzz/log_$t | grep -oE "[0-9]+$" || echo 0)
+  echo "fuzz: $t reached $edges edges"
+  if [ "${edges:-0}" -lt 250 ]; then
+    echo "fuzz: $t reached only ${edges:-0} edges: is the core library instrumented (the fuzz preset's -fsanitize=fuzzer-no-link)?"
+    exit 1
+  fi
 done
 # The pipes above keep going on a crash; the artifacts say whether one happened.
 if compgen -G "build/fuzz/crashes/*" >/dev/null; then
