@@ -166,6 +166,8 @@ check anchor_min 2 "anchor" -- render --size 3x3 --tileset "$tmp/bad_ts/tileset.
 ts_with '{"name": "pipe", "image": "../fifo.json", "kind": "overlay"}'
 check fifo_image 2 "FIFO" -- render --size 3x3 --tileset "$tmp/bad_ts/tileset.json" --out "$tmp/x.png"
 
+check out_is_a_folder 2 "is a folder" -- render --size 3x3 --out "$tmp/adir.json"
+
 # Work known to take minutes is refused up front, with the flag that allows it.
 check huge_area 2 "allow-huge" -- render --size 3x3 --light 100,100 --area 4096,4096 --rays every_pixel --out "$tmp/x.png"
 check huge_quality 2 "allow-huge" -- render --size 3x3 --light 100,100 --preset quality --area 4096,4096 --out "$tmp/x.png"

@@ -136,6 +136,8 @@ Image load_image(const fs::path& path) {
 
 void save_image(const fs::path& link, const Image& image) {
     const fs::path path = write_target(link);
+    std::error_code dir_ec;
+    if (fs::is_directory(path, dir_ec)) throw Error(quoted(path) + ": is a folder: name an image file (.png or .exr)");
     std::string ext = path.extension().string();
     for (char& c : ext) c = char(std::tolower(c));
     const bool exr = ext == ".exr";
