@@ -13,7 +13,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <system_error>
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <cstdio>
 
 #include "isolux/error.hpp"
 #include "isolux/footprint.hpp"
@@ -89,14 +92,46 @@ void check_input_file(const fs::path& path, std::uintmax_t max_bytes) {
                     std::to_string(max_bytes >> 20) + " MB isolux reads");
 }
 
+namespace {
+
+// libpng reports a broken file on stderr by itself before OpenImageIO returns
+// the same error: while an image is read, stderr goes nowhere, so a bad image
+// gives the one line that names it. (Reads happen on the calling thread.)
+struct QuietStderr {
+    int saved = -1;
+    QuietStderr() {
+        std::fflush(stderr);
+        saved = ::dup(2);
+        const int null = ::open("/dev/null", O_WRONLY);
+        if (null >= 0) ::dup2(null, 2), ::close(null);
+    }
+    ~QuietStderr() {
+        if (saved < 0) return;
+        std::fflush(stderr);
+        ::dup2(saved, 2);
+        ::close(saved);
+    }
+};
+
+// One line: a library's multi-line message joined.
+std::string one_line(std::string s) {
+    for (char& c : s)
+        if (c == '\n' || c == '\r') c = ';';
+    while (!s.empty() && (s.back() == ';' || s.back() == ' ')) s.pop_back();
+    return s;
+}
+
+}  // namespace
+
 // ---------------------------------------------------------------- images
 
 Image load_image(const fs::path& path) {
     check_input_file(path, max_image_file_bytes);
+    QuietStderr quiet;
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);  // keep PNG's straight alpha as stored
     auto in = OIIO::ImageInput::open(path.string(), &config);
-    if (!in) throw Error(quoted(path) + ": not a readable image (" + OIIO::geterror() + ")");
+    if (!in) throw Error(quoted(path) + ": not a readable image (" + one_line(OIIO::geterror()) + ")");
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.width > max_image_side || spec.height > max_image_side)
         throw Error(quoted(path) + ": image size " + std::to_string(spec.width) + "x" +
@@ -111,25 +146,29 @@ Image load_image(const fs::path& path) {
     // its precision for the opacity threshold.
     const bool deep = spec.format.size() > 1;
     const std::size_t n = std::size_t(spec.width) * spec.height;
-    std::vector<std::uint16_t> buf(n * nch);
-    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT16, buf.data()))
-        throw Error(quoted(path) + ": corrupt image data (" + in->geterror() + ")");
+    // 8-bit sources are read at 8 bits (half the memory of 16).
+    std::vector<std::uint16_t> wide;
+    std::vector<std::uint8_t> narrow;
+    const bool ok = deep ? (wide.resize(n * nch), in->read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT16, wide.data()))
+                         : (narrow.resize(n * nch), in->read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT8, narrow.data()));
+    if (!ok) throw Error(quoted(path) + ": corrupt image data (" + one_line(in->geterror()) + ")");
     in->close();
     Image out(spec.width, spec.height);
     const int alpha = spec.alpha_channel >= 0 ? spec.alpha_channel : (nch == 2 || nch >= 4 ? nch - 1 : -1);
     if (deep && alpha >= 0) out.alpha16.resize(n);
     // 16 to 8 bits exactly as OpenImageIO converts: round(v * 255 / 65535).
-    auto to8 = [](std::uint16_t v) { return std::uint8_t((v * 255u + 32767u) / 65535u); };
+    auto at8 = [&](std::size_t i, int k) {
+        return deep ? std::uint8_t((wide[i * nch + k] * 255u + 32767u) / 65535u) : narrow[i * nch + k];
+    };
     for (std::size_t i = 0; i < n; ++i) {
-        const std::uint16_t* s = &buf[i * nch];
         std::uint8_t* d = &out.rgba[i * 4];
         if (nch <= 2) {
-            d[0] = d[1] = d[2] = to8(s[0]);  // grey
+            d[0] = d[1] = d[2] = at8(i, 0);  // grey
         } else {
-            d[0] = to8(s[0]), d[1] = to8(s[1]), d[2] = to8(s[2]);
+            d[0] = at8(i, 0), d[1] = at8(i, 1), d[2] = at8(i, 2);
         }
-        d[3] = alpha >= 0 ? to8(s[alpha]) : 255;
-        if (!out.alpha16.empty()) out.alpha16[i] = s[alpha];
+        d[3] = alpha >= 0 ? at8(i, alpha) : 255;
+        if (!out.alpha16.empty()) out.alpha16[i] = wide[i * nch + alpha];
     }
     return out;
 }
@@ -275,11 +314,23 @@ struct Fields {
     }
     void warn_unknown(std::initializer_list<const char*> known, std::vector<std::string>* warnings) const {
         if (!warnings) return;
+        std::vector<std::string> unknown;
         for (auto it = obj.begin(); it != obj.end(); ++it) {  // nlohmann's object is a std::map: ordered
             bool ok = false;
             for (const char* k : known) ok = ok || it.key() == k;
-            if (!ok) warnings->push_back(where + ": unknown field \"" + it.key() + "\" ignored");
+            if (!ok) unknown.push_back(it.key());
         }
+        report_unknown(where, unknown, warnings);
+    }
+    // The first few unknown fields by name, then how many more: a file with
+    // 200000 of them gives 11 lines, not 200000.
+    static void report_unknown(const std::string& where, const std::vector<std::string>& unknown,
+                               std::vector<std::string>* warnings) {
+        constexpr std::size_t named = 10;
+        for (std::size_t i = 0; i < unknown.size() && i < named; ++i)
+            warnings->push_back(where + ": unknown field \"" + unknown[i] + "\" ignored");
+        if (unknown.size() > named)
+            warnings->push_back(where + ": and " + std::to_string(unknown.size() - named) + " more unknown fields ignored");
     }
 };
 
@@ -336,11 +387,13 @@ json params_json(const Params& p) {
 // one of `extra`.
 void warn_unknown_params(const Fields& f, std::initializer_list<const char*> extra, std::vector<std::string>* warnings) {
     if (!warnings) return;
+    std::vector<std::string> unknown;
     for (auto it = f.obj.begin(); it != f.obj.end(); ++it) {  // nlohmann's object is a std::map: ordered
         bool known = find_param(it.key()) != nullptr;
         for (const char* k : extra) known = known || it.key() == k;
-        if (!known) warnings->push_back(f.where + ": unknown field \"" + it.key() + "\" ignored");
+        if (!known) unknown.push_back(it.key());
     }
+    Fields::report_unknown(f.where, unknown, warnings);
 }
 
 // A sprite's solids: [{"kind": "box", "min": [x,y,z], "max": [x,y,z]},

@@ -21,9 +21,9 @@ inline constexpr int schema_version = 1;
 
 // Largest image we read or write, pixels per side.
 inline constexpr int max_image_side = 65536;
-// Most pixels an image we read may declare (64 Mpx: 256 MB as RGBA), checked
-// from its header before decoding.
-inline constexpr std::int64_t max_image_pixels = std::int64_t(1) << 26;
+// Most pixels an image we read may declare (16 Mpx, 4096 x 4096: 64 MB as
+// RGBA), checked from its header before decoding.
+inline constexpr std::int64_t max_image_pixels = std::int64_t(1) << 24;
 // Largest files we read: images, and JSON (presets, scenes, manifests).
 inline constexpr std::uintmax_t max_image_file_bytes = std::uintmax_t(512) << 20;
 inline constexpr std::uintmax_t max_text_file_bytes = std::uintmax_t(64) << 20;

@@ -1,0 +1,234 @@
+#!/usr/bin/env python3
+"""The bad-input corpus: named hostile or broken inputs run through isolux-cli,
+each with its expected exit code and a fragment of the expected one-line
+message. Every case must end in a clean refusal (exit 2, one line naming the
+file or field) or a correct result (exit 0), within 10 s and 1 GB, and never
+crash, hang or print a sanitizer report. Usage: run.py PATH/TO/isolux-cli SOURCE_DIR [--instrumented]"""
+import json, os, resource, shutil, struct, subprocess, sys, tempfile, time, zlib
+
+cli, src = sys.argv[1], sys.argv[2]
+tmp = tempfile.mkdtemp(prefix="isolux_bad_")
+T = lambda *p: os.path.join(tmp, *p)
+LIMIT_S, LIMIT_MB = 10.0, 1024
+if "--instrumented" in sys.argv[3:]:
+    # AddressSanitizer's shadow memory and checks: the same cases, budgets for an instrumented binary.
+    LIMIT_S, LIMIT_MB = 60.0, 4096
+cases = []  # (name, args, want_exit, fragment)
+
+
+def case(name, args, want, fragment=""):
+    cases.append((name, args, want, fragment))
+
+
+def write(name, data):
+    path = T(name)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "wb") as f:
+        f.write(data if isinstance(data, bytes) else data.encode())
+    return path
+
+
+def png(width, height, rows=None, depth=8, colour=6):
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+    ihdr = struct.pack(">IIBBBBB", width, height, depth, colour, 0, 0, 0)
+    if rows is None:
+        rows = b"".join(b"\0" + b"\x80" * (width * 4) for _ in range(height))
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b"")
+
+
+R = ["render", "--size", "3x3", "--out", T("out.png")]
+
+# 1. Every parameter flag beyond its range, and not a number at all.
+rows = subprocess.run([cli, "params"], capture_output=True, text=True, check=True).stdout.strip().splitlines()
+keys = rows[0].split("\t")
+for line in rows[1:]:
+    r = dict(zip(keys, line.split("\t")))
+    if r["type"] in ("integer", "real"):
+        lo = float(r["min"].split()[0])
+        hi = float(r["max"])
+        for label, value in (("below", str(int(lo) - 1) if r["type"] == "integer" else repr(lo - 1)),
+                             ("above", str(int(hi) + 1) if r["type"] == "integer" else repr(hi * 2 + 1)),
+                             ("text", "abc"), ("nan", "nan"), ("huge", "1e999")):
+            case(f"flag_{r['name']}_{label}", R + [r["flag"], value], 2, r["name"])
+    elif r["type"] == "choice":
+        case(f"flag_{r['name']}_unknown", R + [r["flag"], "no_such_choice"], 2, r["name"])
+
+# 2. Other flags.
+for name, args, frag in [
+    ("size_zero", ["render", "--size", "0x5"], "--size"),
+    ("size_huge", ["render", "--size", "2000x2000"], "--size"),
+    ("size_text", ["render", "--size", "axb"], "--size"),
+    ("size_overflow", ["render", "--size", "99999999999999999999x2"], "--size"),
+    ("view_huge", ["render", "--size", "3x3", "--view", "0,0,65536,65536"], "megapixel"),
+    ("view_far", ["render", "--size", "3x3", "--view", "1000000000000,0,10,10"], "--view"),
+    ("light_text", ["render", "--size", "3x3", "--light", "a,b"], "--light"),
+    ("light_far", ["render", "--size", "3x3", "--light", "1e18,0"], "--light"),
+    ("light_colour", ["render", "--size", "3x3", "--light", "1,2,3,4,zzzzzz"], "colour"),
+    ("light_height_text", ["render", "--size", "3x3", "--light", "1,2,h=tall"], "light_height"),
+    ("area_negative", ["render", "--size", "3x3", "--area", "-1,5"], "area_a"),
+    ("area_one_number", ["render", "--size", "3x3", "--area", "5"], "--area"),
+    ("frames_zero", ["render", "--size", "3x3", "--frames", "0"], "frames"),
+    ("layer_unknown", ["render", "--size", "3x3", "--layer", "heat"], "layer"),
+    ("reference_unknown", ["render", "--size", "3x3", "--layer", "truth", "--reference", "x"], "reference"),
+    ("camera_step_text", ["render", "--size", "3x3", "--frames", "2", "--camera-step", "x"], "--camera-step"),
+    ("huge_work", ["render", "--size", "3x3", "--light", "50,50", "--area", "4096,4096", "--rays", "every_pixel"], "allow-huge"),
+    ("layout_unknown", ["render", "--size", "3x3", "--layout", "hex"], "layout"),
+    ("preset_unknown", ["render", "--size", "3x3", "--preset", "brilliant"], "brilliant"),
+]:
+    case(name, args + ["--out", T("out.png")], 2, frag)
+case("out_folder", ["render", "--size", "3x3", "--out", tmp], 2, "folder")
+case("out_extension", ["render", "--size", "3x3", "--out", T("out.bmp")], 2, "extension")
+case("out_missing_folder", ["render", "--size", "3x3", "--out", T("no", "such", "out.png")], 2, "out.png")
+case("no_subcommand", [], 2, "")
+case("sweep_bad_axis", ["sweep", "--scene", os.path.join(src, "assets/scenes/default.json"), "--param", "ray_skip=0",
+                        "--out", T("s.csv")], 2, "ray_skip")
+case("sweep_unknown_param", ["sweep", "--scene", os.path.join(src, "assets/scenes/default.json"), "--param", "zoom=1",
+                             "--out", T("s.csv")], 2, "zoom")
+
+# 3. Presets, scenes and manifests that are broken or hostile.
+def preset(name, text, want, frag):
+    case("preset_" + name, R + ["--preset", write(name + ".json", text)], want, frag)
+
+preset("wrong_type", '{"delta_y": "big"}', 2, "delta_y")
+preset("huge_number", '{"delta_y": 1e999}', 2, "malformed JSON")
+preset("negative_zero_window", '{"noise_window": -0}', 2, "noise_window")
+preset("float_for_int", '{"ray_skip": 1.5}', 2, "ray_skip")
+preset("int_beyond_64_bits", '{"ray_skip": 99999999999999999999999}', 2, "ray_skip")
+preset("array", "[1, 2, 3]", 2, "object")
+preset("string", '"paper"', 2, "object")
+preset("empty", "", 2, "malformed")
+preset("truncated", '{"delta_y": 2', 2, "malformed")
+preset("nan_literal", '{"delta_y": NaN}', 2, "malformed")
+preset("deep_nesting", "[" * 100000 + "]" * 100000, 2, "object")
+preset("deep_object", '{"a":' * 50000 + "1" + "}" * 50000, 0, "")
+preset("duplicate_keys", '{"delta_y": 5, "delta_y": 7}', 0, "")
+preset("bom", "\ufeff{\"delta_y\": 5}", 0, "")
+preset("nul_bytes", '{"delta_y": 5}\0\0\0', 0, "")  # padding after the object: read as the object
+preset("nul_in_string", '{"mode": "light\\u0000x"}', 2, "mode")
+preset("newer_schema", '{"schema_version": 99}', 2, "schema_version")
+preset("many_unknown", "{" + ",".join(f'"k{i}": 1' for i in range(50000)) + "}", 0, "")
+preset("big_string", '{"mode": "' + "x" * (50 << 20) + '"}', 2, "mode")
+case("preset_too_large", R + ["--preset", write("too_large.json", " " * (65 << 20) + "{}")], 2, "MB")
+preset("invalid_utf8", b'{"mode": "\xff\xfe"}'.decode("latin-1"), 2, "mode")
+
+def scene(name, text, want, frag, extra=()):
+    case("scene_" + name, ["render", "--scene", write(name + ".scene.json", text), *extra, "--out", T("out.png")], want, frag)
+
+scene("lights_not_array", '{"lights": 5}', 2, "lights")
+scene("light_without_y", '{"lights": [{"x": 1}]}', 2, "lights[0]")
+scene("light_far", '{"lights": [{"x": 1e300, "y": 0}]}', 2, "lights[0]")
+scene("light_intensity", '{"lights": [{"x": 1, "y": 1, "intensity": -1}]}', 2, "intensity")
+scene("light_area_huge", '{"lights": [{"x": 1, "y": 1, "a": 999999}]}', 2, "lights[0]")
+scene("light_height_negative", '{"lights": [{"x": 1, "y": 1, "height": -5}]}', 2, "height")
+scene("width_zero", '{"width": 0}', 2, "width")
+scene("width_huge", '{"width": 100000}', 2, "width")
+scene("layout_unknown", '{"layout": "hex"}', 2, "layout")
+scene("camera_huge", '{"width": 3, "height": 3, "camera": {"x": 0, "y": 0, "width": 65536, "height": 65536}}', 2, "megapixel")
+scene("camera_far", '{"width": 3, "height": 3, "camera": {"x": 1e18, "y": 0, "width": 10, "height": 10}}', 0, "")
+scene("preset_name_unknown", '{"preset": "brilliant"}', 2, "brilliant")
+scene("tileset_missing", '{"width": 3, "height": 3, "tileset": "nowhere/tileset.json"}', 2, "tileset.json")
+scene("too_many_lights", '{"lights": [' + ",".join('{"x": 1, "y": 1}' for _ in range(100001)) + "]}", 2, "lights")
+
+# 4. Tilesets and images.
+os.makedirs(T("ts"), exist_ok=True)
+shutil.copy(os.path.join(src, "assets/default/grass.png"), T("ts", "grass.png"))
+good = png(16, 16)
+write("ts/good.png", good)
+write("ts/truncated.png", good[: len(good) // 2])
+write("ts/not_an_image.png", "this is text")
+write("ts/declared_huge.png", png(100000, 100000, rows=b"\0"))
+write("ts/bomb.png", png(8000, 8000, rows=b"\0" * (8000 * (8000 * 4 + 1))))
+write("ts/zero.png", b"")
+subprocess.run(["oiiotool", "--pattern", "checker", "16x16", "4", "-d", "uint16", "-o", T("ts", "deep.png")], check=True)
+subprocess.run(["oiiotool", "--pattern", "constant:color=0.5", "16x16", "1", "-o", T("ts", "grey.png")], check=True)
+subprocess.run(["oiiotool", "--pattern", "checker", "16x16", "4", "-d", "half", "-o", T("ts", "image.exr")], check=True)
+
+def tileset(name, overlay, want, frag, extra=None):
+    doc = {"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]}, overlay]}
+    if extra:
+        doc.update(extra)
+    path = write(f"ts/{name}.json", json.dumps(doc))
+    case("tileset_" + name, R + ["--tileset", path], want, frag)
+
+O = lambda **kw: {"name": "o", "image": "good.png", "kind": "overlay", **kw}
+tileset("image_missing", O(image="nowhere.png"), 2, "nowhere.png")
+tileset("image_truncated", O(image="truncated.png"), 2, "truncated.png")
+tileset("image_not_an_image", O(image="not_an_image.png"), 2, "not_an_image.png")
+tileset("image_declared_huge", O(image="declared_huge.png"), 2, "declared_huge.png")
+tileset("image_bomb", O(image="bomb.png"), 2, "megapixels")
+tileset("image_empty_file", O(image="zero.png"), 2, "zero.png")
+tileset("image_16bit", O(image="deep.png"), 0, "")
+tileset("image_grey", O(image="grey.png"), 0, "")
+tileset("image_exr", O(image="image.exr"), 0, "")
+tileset("image_folder", O(image="."), 2, "folder")
+tileset("image_device", O(image="/dev/zero"), 2, "device")
+tileset("image_outside", O(image="../../../../../../etc/hostname"), 2, "hostname")
+tileset("rect_outside", O(rect=[10, 10, 16, 16]), 2, "lies outside")
+tileset("rect_overflow", O(rect=[2147483640, 0, 16, 16]), 2, "lies outside")
+tileset("rect_wrap", O(rect=[4294967297, 0, 16, 16]), 2, "lies outside")
+tileset("rect_negative", O(rect=[-1, 0, 4, 4]), 2, "lies outside")
+tileset("rect_floats", O(rect=[0.5, 0, 4, 4]), 2, "rect")
+tileset("anchor_min", O(anchor=[-2147483648, 0]), 2, "anchor")
+tileset("anchor_huge", O(anchor=[0, 18446744073709551615]), 2, "anchor")
+tileset("kind_unknown", O(kind="ceiling"), 2, "ceiling")
+tileset("threshold_range", O(opacity_threshold=2), 2, "opacity_threshold")
+tileset("shape_unknown", O(shape=[{"kind": "pyramid"}]), 2, "pyramid")
+tileset("shape_negative", O(shape=[{"kind": "cylinder", "base": [0, 0, 0], "radius": -1, "height": 2}]), 2, "radius")
+tileset("footprint_unknown", O(footprint="sideways"), 2, "sideways")
+tileset("height_map_wrong_size", O(height_map="grass.png"), 2, "height_map")
+tileset("tile_huge", O(), 2, "tile", extra={"tile": {"width": 999999, "height": 64}})
+tileset("sprites_not_array", O(), 2, "sprites", extra={"sprites": 5})
+
+# 5. Paths that are not plain files.
+os.mkfifo(T("fifo.json"))
+os.symlink(T("loop_b.json"), T("loop_a.json"))
+os.symlink(T("loop_a.json"), T("loop_b.json"))
+os.makedirs(T("folder.json"), exist_ok=True)
+for name, path, frag in [("fifo", T("fifo.json"), "FIFO"), ("loop", T("loop_a.json"), "loop_a.json"),
+                         ("folder", T("folder.json"), "folder"), ("dev_zero", "/dev/zero", "device"),
+                         ("dev_urandom", "/dev/urandom", "device"), ("missing", T("missing.json"), "not found"),
+                         ("etc_hostname", "/etc/hostname", "malformed")]:
+    case("path_scene_" + name, ["render", "--scene", path, "--out", T("out.png")], 2, frag)
+    case("path_preset_" + name, R + ["--preset", path], 2, frag)
+case("path_tileset_fifo", R + ["--tileset", T("fifo.json")], 2, "FIFO")
+case("path_check_tileset_loop", ["check-tileset", T("loop_a.json")], 2, "loop_a.json")
+
+# Run them all.
+failures = []
+worst_s = worst_mb = 0.0
+for name, args, want, fragment in cases:
+    start = time.monotonic()
+    proc = subprocess.Popen([cli, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    try:
+        _, err = proc.communicate(timeout=LIMIT_S * 3)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.communicate()
+        failures.append(f"{name}: hung (killed after {LIMIT_S * 3:.0f} s)")
+        continue
+    seconds = time.monotonic() - start
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    mb = usage.ru_maxrss / 1024
+    worst_s, worst_mb = max(worst_s, seconds), max(worst_mb, mb)
+    err = err.decode("utf-8", "replace")
+    lines = [l for l in err.splitlines() if l.strip()]
+    problems = []
+    if proc.returncode != want:
+        problems.append(f"exit {proc.returncode}, want {want}")
+    if "Sanitizer" in err or "runtime error" in err:
+        problems.append("sanitizer report")
+    if want == 2 and name != "no_subcommand" and len([l for l in lines if not l.startswith("isolux-cli: warning")]) != 1:
+        problems.append(f"{len(lines)} lines of message, want one")
+    if fragment and fragment not in err:
+        problems.append(f"message lacks {fragment!r}")
+    if seconds > LIMIT_S:
+        problems.append(f"took {seconds:.1f} s")
+    if problems:
+        failures.append(f"{name}: {'; '.join(problems)}: {err.strip()[:300]}")
+shutil.rmtree(tmp, ignore_errors=True)
+for f in failures:
+    print("FAIL", f)
+print(f"bad inputs: {len(cases) - len(failures)} of {len(cases)} cases handled; slowest {worst_s:.2f} s; "
+      f"largest peak memory of any case so far {worst_mb:.0f} MB")
+sys.exit(1 if failures or worst_mb > LIMIT_MB else 0)
