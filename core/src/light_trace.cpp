@@ -344,14 +344,7 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
             if (p.mode == Mode::shadow) m.reached[i] = 1;
         }
     };
-    if (p.rays == Rays::every_pixel) {
-        for (int y = -b; y <= b; ++y)
-            for (int x = -a; x <= a; ++x) trace(cx + x, cy + y);
-    } else {
-        const auto border = border_offsets(a, b);
-        for (std::size_t i = 0; i < border.size(); i += std::size_t(p.ray_skip))
-            trace(cx + border[i].first, cy + border[i].second);
-    }
+    for_each_ray_target(cx, cy, a, b, p, trace);
     return m;
 }
 

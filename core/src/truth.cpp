@@ -23,6 +23,19 @@ Rect area_of(std::int64_t cx, std::int64_t cy, int a, int b) {
     return {int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1};
 }
 
+// A light's mask over the part of its area inside `clip`, nothing lit yet.
+LightMask unlit_mask(std::int64_t cx, std::int64_t cy, int a, int b, const Params& p, Rect clip) {
+    LightMask m;
+    m.cx = cx;
+    m.cy = cy;
+    m.a = a;
+    m.b = b;
+    m.falloff_scale = p.falloff_scale;
+    m.clip = intersect(clip, area_of(cx, cy, a, b));
+    m.value.assign(std::size_t(std::max(0, m.clip.w)) * std::max(0, m.clip.h), 0);
+    return m;
+}
+
 bool boxes_meet(const std::array<Vec3, 2>& p, const std::array<Vec3, 2>& q) {
     return p[0].x <= q[1].x && q[0].x <= p[1].x && p[0].y <= q[1].y && q[0].y <= p[1].y && p[0].z <= q[1].z &&
            q[0].z <= p[1].z;
@@ -110,14 +123,7 @@ WorldSolids world_solids(const World& world, Rect region) {
 
 LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::int64_t cx, std::int64_t cy,
                       double height, int a, int b, const Params& p, Rect clip, bool facing) {
-    LightMask m;
-    m.cx = cx;
-    m.cy = cy;
-    m.a = a;
-    m.b = b;
-    m.falloff_scale = p.falloff_scale;
-    m.clip = intersect(clip, area_of(cx, cy, a, b));
-    m.value.assign(std::size_t(std::max(0, m.clip.w)) * std::max(0, m.clip.h), 0);
+    LightMask m = unlit_mask(cx, cy, a, b, p, clip);
     if (m.clip.empty()) return m;
     // The light stands `height` above the ground point shown at its centre pixel.
     const Vec3 ground_point = ground_frame(double(cx) + 0.5, double(cy) + 0.5, 0);
@@ -170,14 +176,7 @@ LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::in
 
 LightMask exact_line_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
                            Rect clip) {
-    LightMask m;
-    m.cx = cx;
-    m.cy = cy;
-    m.a = a;
-    m.b = b;
-    m.falloff_scale = p.falloff_scale;
-    m.clip = intersect(clip, area_of(cx, cy, a, b));
-    m.value.assign(std::size_t(std::max(0, m.clip.w)) * std::max(0, m.clip.h), 0);
+    LightMask m = unlit_mask(cx, cy, a, b, p, clip);
     for (int y = m.clip.y; y < m.clip.y + m.clip.h; ++y)
         for (int x = m.clip.x; x < m.clip.x + m.clip.w; ++x) {
             bool clear = true;

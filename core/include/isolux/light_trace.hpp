@@ -69,6 +69,20 @@ void shape_light(LightMask& mask, const Params& p);
 // clockwise from the top-left corner. a = b = 0 gives the single centre pixel.
 std::vector<std::pair<int, int>> border_offsets(int a, int b);
 
+// Calls target(x, y) for every pixel a ray is traced to: each pixel of the
+// area (Rays::every_pixel), else every ray_skip-th border pixel.
+template <class Target>
+void for_each_ray_target(std::int64_t cx, std::int64_t cy, int a, int b, const Params& p, Target&& target) {
+    if (p.rays == Rays::every_pixel) {
+        for (int y = -b; y <= b; ++y)
+            for (int x = -a; x <= a; ++x) target(cx + x, cy + y);
+        return;
+    }
+    const auto border = border_offsets(a, b);
+    for (std::size_t i = 0; i < border.size(); i += std::size_t(p.ray_skip))
+        target(cx + border[i].first, cy + border[i].second);
+}
+
 // Traces one light centred at pixel (cx, cy) with half-extents a, b:
 // Rays::border traces to every ray_skip-th border pixel, Rays::every_pixel to
 // every pixel of the area (the paper's 4ab rays). Mode::light stops each ray at
