@@ -395,7 +395,7 @@ int run_render(const RenderArgs& a) {
         out = Image(view.w, view.h);
         for (std::size_t i = 3; i < out.rgba.size(); i += 4) out.rgba[i] = 255;
         std::vector<std::optional<Mask>> maps(w.tileset.sprites.size());
-        for (std::size_t i = w.placed.first_overlay; i < w.placed.instances.size(); ++i) {
+        for (std::uint32_t i : draw_order(w.placed, true)) {
             const SpriteInstance& in = w.placed.instances[i];
             const Sprite& sp = w.tileset.sprites[in.sprite];
             if (!maps[in.sprite]) maps[in.sprite] = opacity_map(sp.image, sprite_threshold(sp, s.params.opacity_threshold));

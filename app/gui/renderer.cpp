@@ -296,11 +296,34 @@ void renderer_shutdown(Renderer& r) {
     r = Renderer{};
 }
 
+void renderer_set_atlas(Renderer& r, const Tileset& tileset);
+
 void renderer_set_world(Renderer& r, const World& world) {
     if (r.world_revision == world.revision) return;
     r.world_revision = world.revision;
+    if (r.atlas_built != world.built_revision || world.built_revision == 0) {
+        r.atlas_built = world.built_revision;
+        renderer_set_atlas(r, world.tileset);
+    }
+    std::vector<float> inst;
+    const std::vector<std::uint32_t> order = draw_order(world.placed);
+    inst.reserve(order.size() * 8);
+    for (std::uint32_t k : order) {
+        const SpriteInstance& in = world.placed.instances[k];
+        const Image& im = world.tileset.sprites[std::size_t(in.sprite)].image;
+        const auto& pos = r.atlas_pos[std::size_t(in.sprite)];
+        const float v[8] = {float(in.x), float(in.y), float(im.width), float(im.height),
+                            float(pos[0]), float(pos[1]), float(im.width), float(im.height)};
+        inst.insert(inst.end(), v, v + 8);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, r.instance_vbo);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(inst.size() * sizeof(float)), inst.data(), GL_STATIC_DRAW);
+    r.instance_count = GLsizei(order.size());
+}
+
+void renderer_set_atlas(Renderer& r, const Tileset& tileset) {
     // Shelf-pack the sprites into one atlas.
-    const auto& sprites = world.tileset.sprites;
+    const auto& sprites = tileset.sprites;
     int max_w = 1;
     long area = 0;
     for (const Sprite& s : sprites) {
@@ -339,17 +362,7 @@ void renderer_set_world(Renderer& r, const World& world) {
     glBindTexture(GL_TEXTURE_2D, r.atlas);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, r.atlas_w, r.atlas_h, 0, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-    std::vector<float> inst;
-    inst.reserve(world.placed.instances.size() * 8);
-    for (const SpriteInstance& in : world.placed.instances) {
-        const Image& im = sprites[in.sprite].image;
-        const float v[8] = {float(in.x), float(in.y), float(im.width), float(im.height),
-                            float(pos[in.sprite][0]), float(pos[in.sprite][1]), float(im.width), float(im.height)};
-        inst.insert(inst.end(), v, v + 8);
-    }
-    glBindBuffer(GL_ARRAY_BUFFER, r.instance_vbo);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(inst.size() * sizeof(float)), inst.data(), GL_STATIC_DRAW);
-    r.instance_count = GLsizei(world.placed.instances.size());
+    r.atlas_pos = std::move(pos);
 }
 
 double renderer_upload_light(Renderer& r, const LightTexture& tex, Rect dirty) {

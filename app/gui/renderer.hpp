@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "gui/gl.hpp"
 #include "isolux/image.hpp"
@@ -48,6 +49,8 @@ struct Renderer {
     GLsizei instance_count = 0;
     GLuint atlas = 0;
     int atlas_w = 0, atlas_h = 0;
+    std::vector<std::array<int, 2>> atlas_pos;  // each sprite's top-left in the atlas
+    std::uint64_t atlas_built = ~0ull;          // the World::built_revision the atlas holds
     std::uint64_t world_revision = ~0ull;
 
     GLuint light_tex = 0, flat_tex = 0, overlay_tex = 0;
@@ -82,7 +85,8 @@ void renderer_shutdown(Renderer& r);
 // program and sets shader_error. Returns true when something was reloaded.
 bool renderer_reload_shaders(Renderer& r, bool force = false);
 
-// Builds the atlas and instance buffer for the world's sprites.
+// Builds the atlas (when the world was rebuilt) and the instance buffer (after
+// any change, edits included) for the world's sprites, in draw order.
 void renderer_set_world(Renderer& r, const World& world);
 
 // Uploads the world-anchored light texture (after tracing and the opacity

@@ -338,15 +338,15 @@ void check_object(const json& j, const std::string& where) {
     if (!j.is_object()) throw Error(where + ": must be a JSON object, got " + std::string(j.type_name()));
 }
 
-void check_schema(const Fields& f, std::vector<std::string>* warnings) {
+void check_schema(const Fields& f, std::vector<std::string>* warnings, int newest = schema_version) {
     if (!f.has("schema_version")) {
         if (warnings) warnings->push_back(f.where + ": no schema_version; reading as version 1");
         return;
     }
     long long v = f.integer("schema_version", 1, 1000000);
-    if (v > schema_version)
+    if (v > newest)
         f.fail("schema_version", "= " + std::to_string(v) + " is newer than this isolux reads (" +
-                                     std::to_string(schema_version) + ")");
+                                     std::to_string(newest) + ")");
 }
 
 // Reads every parameter the object holds, by the table; the rest stay at
@@ -580,14 +580,76 @@ void save_preset(const fs::path& path, const Params& p) {
 
 // ---------------------------------------------------------------- scenes
 
+namespace {
+
+// "edits": [{"tile": [x, y], "floor": "water"}, {"tile": [x, y], "overlays": ["oak"]}]
+std::vector<TileEdit> edits_from(const json& arr, const Fields& scene) {
+    if (!arr.is_array()) scene.fail("edits", "must be an array");
+    // A tile holds one edit that matters; more than a 1024 x 1024 map's worth is not a level.
+    constexpr std::size_t max_edits = std::size_t(max_map_side) * max_map_side;
+    if (arr.size() > max_edits) scene.fail("edits", "holds more than " + std::to_string(max_edits) + " entries");
+    std::vector<TileEdit> out;
+    out.reserve(arr.size());
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+        const std::string where = scene.where + ": edits[" + std::to_string(i) + "]";
+        check_object(arr[i], where);
+        Fields ef{arr[i], where};
+        for (auto it = arr[i].begin(); it != arr[i].end(); ++it)
+            if (it.key() != "tile" && it.key() != "floor" && it.key() != "overlays")
+                ef.fail("\"" + it.key() + "\"", "is not a field of an edit (tile, floor, overlays)");
+        if (!ef.has("tile")) ef.fail("tile", "is required: [column, row]");
+        const json& t = arr[i]["tile"];
+        if (!t.is_array() || t.size() != 2 || !t[0].is_number_integer() || !t[1].is_number_integer())
+            ef.fail("tile", "must be [column, row], two integers");
+        TileEdit e;
+        auto coord = [&](const json& v) {
+            const long long x = v.is_number_unsigned()
+                                    ? (long long)std::min<unsigned long long>(v.get<unsigned long long>(), 1ull << 40)
+                                    : v.get<long long>();
+            if (x < -(1 << 30) || x > (1 << 30)) ef.fail("tile", "= " + std::to_string(x) + " is out of range");
+            return int(x);
+        };
+        e.col = coord(t[0]);
+        e.row = coord(t[1]);
+        if (ef.has("floor")) e.floor = ef.text("floor");
+        if (ef.has("overlays")) {
+            const json& o = arr[i]["overlays"];
+            if (!o.is_array()) ef.fail("overlays", "must be an array of sprite names");
+            if (o.size() > 3) ef.fail("overlays", "holds " + std::to_string(o.size()) + " sprites; a tile holds at most 3");
+            e.overlays.emplace();
+            for (const json& n : o) {
+                if (!n.is_string()) ef.fail("overlays", "must hold sprite names (strings)");
+                e.overlays->push_back(n.get<std::string>());
+            }
+        }
+        if (!e.floor && !e.overlays) ef.fail("floor, overlays", "are both missing: an edit sets at least one");
+        out.push_back(std::move(e));
+    }
+    return out;
+}
+
+json edits_json(const std::vector<TileEdit>& edits) {
+    json arr = json::array();
+    for (const TileEdit& e : edits) {
+        json o{{"tile", {e.col, e.row}}};
+        if (e.floor) o["floor"] = *e.floor;
+        if (e.overlays) o["overlays"] = *e.overlays;
+        arr.push_back(o);
+    }
+    return arr;
+}
+
+}  // namespace
+
 Scene scene_from_json(std::string_view text, std::string_view source, std::vector<std::string>* warnings) {
     json j = parse_json(text, source);
     const std::string src(source);
     check_object(j, src);
     Fields f{j, src};
-    check_schema(f, warnings);
-    f.warn_unknown({"schema_version", "seed", "width", "height", "layout", "tileset", "preset", "lights", "camera"},
-                   warnings);
+    check_schema(f, warnings, scene_schema_version);
+    f.warn_unknown(
+        {"schema_version", "seed", "width", "height", "layout", "tileset", "preset", "lights", "camera", "edits"},
+        warnings);
     Scene s;
     if (f.has("seed")) s.seed = f.text("seed");
     if (f.has("width")) s.width = int(f.integer("width", 1, max_map_side));
@@ -646,6 +708,7 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
         if (cf.has("width")) s.camera.width = int(cf.integer("width", 0, max_image_side));
         if (cf.has("height")) s.camera.height = int(cf.integer("height", 0, max_image_side));
     }
+    if (f.has("edits")) s.edits = edits_from(j["edits"], f);
     return s;
 }
 
@@ -658,7 +721,7 @@ std::string scene_to_json(const Scene& s) {
         if (l.height) o["height"] = *l.height;
         lights.push_back(o);
     }
-    json j{{"schema_version", schema_version},
+    json j{{"schema_version", scene_schema_version},
            {"seed", s.seed},
            {"width", s.width},
            {"height", s.height},
@@ -667,6 +730,7 @@ std::string scene_to_json(const Scene& s) {
            {"preset", params_json(s.params)},
            {"lights", lights},
            {"camera", {{"x", s.camera.x}, {"y", s.camera.y}, {"width", s.camera.width}, {"height", s.camera.height}}}};
+    if (!s.edits.empty()) j["edits"] = edits_json(s.edits);
     return j.dump(2) + "\n";
 }
 

@@ -46,9 +46,12 @@ double trace_work(const Scene& scene, Rect view) {
 
 Rect camera_view(const Camera& c, const World& w) {
     const double x = std::clamp(std::floor(c.x), -1e9, 1e9), y = std::clamp(std::floor(c.y), -1e9, 1e9);
-    const int width = c.width > 0 ? c.width : w.placed.bounds.w;
-    const int height = c.height > 0 ? c.height : w.placed.bounds.h;
-    return {int(x), int(y), width, height};
+    // The whole map: from the map's top-left (the origin, unless edits reach
+    // further up or left), offset by the camera.
+    const Rect& b = w.placed.bounds;
+    if (c.width > 0 && c.height > 0) return {int(x), int(y), c.width, c.height};
+    return {int(x) + (c.width > 0 ? 0 : b.x), int(y) + (c.height > 0 ? 0 : b.y), c.width > 0 ? c.width : b.w,
+            c.height > 0 ? c.height : b.h};
 }
 
 namespace {
@@ -99,11 +102,37 @@ void run_on_threads(int count, Work& work) {
 // ---------------------------------------------------------------- the steps
 
 // The view's sprites (drawn by the GPU in the app).
-void draw_view_sprites(FrameState& st, const World& world, Rect view, bool world_changed, FrameReport& rep) {
+// What changed in the world since the caches were built: nothing, edited
+// tiles only (`region`), or everything.
+struct WorldDelta {
+    bool changed = false;
+    bool partial = false;  // only `region` changed (set_edits)
+    Rect region;
+};
+
+WorldDelta world_delta(const FrameCache& c, const World& world) {
+    WorldDelta d;
+    d.changed = c.world_revision != world.revision;
+    if (d.changed && c.has_obstacles) d.partial = changed_since(world, c.world_revision, d.region);
+    return d;
+}
+
+void draw_view_sprites(FrameState& st, const World& world, Rect view, const WorldDelta& delta, FrameReport& rep) {
     if (!st.options.cpu_sprites) return;
-    if (!world_changed && st.view == view && st.sprites.width == view.w) return;
+    const bool same_view = st.view == view && st.sprites.width == view.w && st.sprites.height == view.h;
+    if (!delta.changed && same_view) return;
     Timer t{rep, Stage::sprites};
-    st.sprites = render_sprites(world.tileset, world.placed, view);
+    if (!delta.partial || !same_view) {
+        st.sprites = render_sprites(world.tileset, world.placed, view);
+        return;
+    }
+    // An edit: redraw only its rectangle (each pixel is drawn from every
+    // sprite over it, so the part equals the whole's).
+    const Rect r = intersect(delta.region, view);
+    if (r.empty()) return;
+    const Image part = render_sprites(world.tileset, world.placed, r);
+    for (int y = 0; y < r.h; ++y)
+        std::copy_n(part.at(0, y), std::size_t(r.w) * 4, st.sprites.at(r.x - view.x, r.y + y - view.y));
 }
 
 // The light texture's rectangle and every light area that meets it: the
@@ -117,17 +146,51 @@ Rect region_lights_need(const World& world, const Scene& scene, Rect tex_rect) {
     return intersect(needed, world.placed.bounds);
 }
 
+// What the obstacle map did this frame: nothing, a part (after an edit), or
+// all of it.
+struct ObstacleChange {
+    bool all = false;
+    Rect part;  // rebuilt after an edit; lights meeting it are retraced
+};
+
+// How far an edit's effect on the obstacle map reaches past the sprites it
+// changed: Algorithm 1's arms (a quarter of a sprite's width) and the noise
+// filter's window.
+int obstacle_reach(const Tileset& ts, const Params& p) {
+    int reach = 0;
+    for (const Sprite& s : ts.sprites) reach = std::max(reach, s.image.width / 4 + 1);
+    return reach + p.noise_window;
+}
+
 // Paper 3.1: the obstacle map and the sprites' opacity maps. Their content
 // changes only with the world, Δy, n or the threshold; a larger region is the
 // same map over more pixels (the build is exact per region), so it alone does
-// not force a retrace. Returns whether the content changed.
-bool update_obstacle_map(FrameState& st, const World& world, const Params& p, Rect needed, bool world_changed,
-                         FrameReport& rep) {
+// not force a retrace. An edit rebuilds only around the edited sprites.
+ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Params& p, Rect needed,
+                                   const WorldDelta& delta, FrameReport& rep) {
     FrameCache& c = st.cache;
-    const bool changed =
-        world_changed || !c.has_obstacles || params_changed_for(Stage::obstacle_map, c.obstacle_params, p);
-    if (!changed && covers(c.obstacle_region, needed)) return false;
+    const bool params_changed = !c.has_obstacles || params_changed_for(Stage::obstacle_map, c.obstacle_params, p);
+    const bool changed = delta.changed || params_changed;
+    if (!changed && covers(c.obstacle_region, needed)) return {};
     Timer t{rep, Stage::obstacle_map};
+    if (delta.partial && !params_changed && covers(c.obstacle_region, needed)) {
+        // The build is exact per region: the edited part, rebuilt, equals a
+        // full rebuild there. Opacity maps are per sprite: an edit keeps them.
+        ObstacleChange ch;
+        ch.part = intersect(grow(delta.region, obstacle_reach(world.tileset, p)), c.obstacle_region);
+        if (!ch.part.empty()) {
+            const Mask part = build_obstacle_map(world.tileset, world.placed, p, ch.part);
+            for (int y = 0; y < ch.part.h; ++y)
+                std::copy_n(&part.bits[std::size_t(y) * ch.part.w], ch.part.w,
+                            &st.obstacles.bits[std::size_t(ch.part.y + y - st.obstacles.y0) * st.obstacles.width +
+                                               (ch.part.x - st.obstacles.x0)]);
+            if (p.rays_over_obstacles)
+                st.obstacle_heights = build_obstacle_heights(world.tileset, world.placed, p, st.obstacles);
+        }
+        c.world_revision = world.revision;
+        rep.rebuilt = ch.part;
+        return ch;
+    }
     // Some room around what is needed, so a panning camera does not rebuild
     // every frame; never more than the map.
     c.obstacle_region = needed.empty() ? needed : intersect(grow(needed, 256), world.placed.bounds);
@@ -149,7 +212,10 @@ bool update_obstacle_map(FrameState& st, const World& world, const Params& p, Re
     c.obstacle_params = p;
     c.world_revision = world.revision;
     c.has_obstacles = true;
-    return changed;
+    ObstacleChange ch;
+    ch.all = changed;
+    if (changed) rep.rebuilt = c.obstacle_region;
+    return ch;
 }
 
 // Paper 3.2: rays are traced once every l frames. `must`: nothing traced can
@@ -158,14 +224,15 @@ struct TraceDecision {
     bool must = false, retrace = false;
 };
 
-TraceDecision decide_retrace(const FrameState& st, const Scene& scene, Rect view, long frame, bool obstacles_changed) {
+TraceDecision decide_retrace(const FrameState& st, const Scene& scene, Rect view, long frame,
+                             const ObstacleChange& obstacles) {
     const FrameCache& c = st.cache;
     const Params& p = scene.params;
     TraceDecision d;
-    d.must = !c.has_trace || obstacles_changed || params_changed_for(Stage::trace, c.trace_params, p) ||
+    d.must = !c.has_trace || obstacles.all || params_changed_for(Stage::trace, c.trace_params, p) ||
              c.lights_corrected != st.options.opacity_correction;
     const bool due = frame % p.trace_every == 0 && (c.trace_lights != scene.lights || !covers(st.traced.rect, view));
-    d.retrace = d.must || due;
+    d.retrace = d.must || due || !obstacles.part.empty();  // an edit: the lights it touched, now
     return d;
 }
 
@@ -177,7 +244,7 @@ struct LightPlan {
     std::vector<std::size_t> todo;
 };
 
-LightPlan plan_lights(const FrameCache& c, const Scene& scene, Rect tex_rect, FrameReport& rep) {
+LightPlan plan_lights(const FrameCache& c, const Scene& scene, Rect tex_rect, Rect edited, FrameReport& rep) {
     const Params& p = scene.params;
     LightPlan plan;
     for (const Light& l : scene.lights)
@@ -194,7 +261,7 @@ LightPlan plan_lights(const FrameCache& c, const Scene& scene, Rect tex_rect, Fr
         const Rect clip = intersect(light_area(l, p), tex_rect);
         auto same = [&](const TracedLight& old) {
             return old.cx == t.cx && old.cy == t.cy && old.a == t.a && old.b == t.b && old.height == t.height &&
-                   old.mask.clip == clip;
+                   old.mask.clip == clip && intersect(old.mask.clip, edited).empty();
         };
         // Lights mostly keep their place in the list: look there first.
         const TracedLight* hit = nullptr;
@@ -354,7 +421,7 @@ void keep_trace(FrameState& st, const Scene& scene, LightPlan& plan, FrameReport
 
 // Paper 3.2 and Algorithm 3 on the CPU: the blur, the inverse translation of
 // the world-anchored texture to the view, and the composite.
-void update_view(FrameState& st, const Params& p, Rect view, bool world_changed, FrameReport& rep) {
+void update_view(FrameState& st, const Params& p, Rect view, const WorldDelta& delta, FrameReport& rep) {
     FrameCache& c = st.cache;
     bool light_changed = false;
     if (!c.has_blur || params_changed_for(Stage::blur, c.blur_params, p)) {
@@ -375,7 +442,7 @@ void update_view(FrameState& st, const Params& p, Rect view, bool world_changed,
         st.light = shift_light_texture(c.blurred, view);
         light_changed = true;
     }
-    if (light_changed || !c.has_final || !(st.view == view) || world_changed ||
+    if (light_changed || !c.has_final || !(st.view == view) || delta.changed ||
         params_changed_for(Stage::composite, c.composite_params, p)) {
         Timer t{rep, Stage::composite};
         st.final = composite(st.sprites, view, st.light, p);
@@ -394,23 +461,23 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene,
     FrameReport rep;
     const Rect view = camera_view(camera, world);
     const Rect tex_rect = grow(view, st.options.margin);
-    const bool world_changed = st.cache.world_revision != world.revision;
+    const WorldDelta delta = world_delta(st.cache, world);
 
-    draw_view_sprites(st, world, view, world_changed, rep);
+    draw_view_sprites(st, world, view, delta, rep);
     const Rect needed = region_lights_need(world, scene, tex_rect);
-    const bool obstacles_changed = update_obstacle_map(st, world, scene.params, needed, world_changed, rep);
-    const TraceDecision trace = decide_retrace(st, scene, view, frame, obstacles_changed);
+    const ObstacleChange obstacles = update_obstacle_map(st, world, scene.params, needed, delta, rep);
+    const TraceDecision trace = decide_retrace(st, scene, view, frame, obstacles);
     if (trace.retrace) {
         bool fresh = false;
         const std::vector<Rect> to_clear = prepare_texture(st, tex_rect, fresh);
         const bool had_lights = !st.cache.lights.empty();
         if (trace.must) st.cache.lights.clear();  // nothing traced is reusable
-        LightPlan plan = plan_lights(st.cache, scene, tex_rect, rep);
+        LightPlan plan = plan_lights(st.cache, scene, tex_rect, obstacles.part, rep);
         trace_and_accumulate(st, world, scene.params, plan, to_clear, tex_rect, rep);
         rep.dirty = dirty_region(st.cache, scene, plan, tex_rect, fresh, trace.must, had_lights);
         keep_trace(st, scene, plan, rep);
     }
-    if (st.options.cpu_blur_and_composite) update_view(st, scene.params, view, world_changed, rep);
+    if (st.options.cpu_blur_and_composite) update_view(st, scene.params, view, delta, rep);
     st.view = view;
     return rep;
 }

@@ -2,6 +2,7 @@
 #include "isolux/map.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <climits>
 #include <cmath>
 #include <string>
@@ -50,6 +51,19 @@ void tile_center(Layout layout, int tw, int th, int col, int row, int& x, int& y
     }
 }
 
+Overlay make_overlay(int sprite, int index, int tile_width, int tile_height, Pcg32& rng) {
+    // Overlays share the tile: spread them over slots inside the diamond so
+    // they overlap like the paper's Figure 2 without standing on one point.
+    static constexpr int slots[4][2] = {{0, 0}, {-1, 0}, {1, 0}, {0, 1}};
+    const int slot = index == 0 ? int(rng.below(2)) * 3 % 4 : index;
+    const int jx = int(rng.below(9)) - 4, jy = int(rng.below(5)) - 2;
+    Overlay o;
+    o.sprite = sprite;
+    o.dx = slots[slot][0] * tile_width / 5 + jx * tile_width / 128;
+    o.dy = slots[slot][1] * tile_height / 5 + jy * tile_height / 64;
+    return o;
+}
+
 namespace {
 
 enum class Biome { water, sand, meadow, forest, dirt, stone };
@@ -75,15 +89,8 @@ int pick(const Tileset& ts, SpriteKind kind, std::string_view tag, Pcg32& rng) {
 
 void add_overlay(Tile& t, int sprite, const Map& m, Pcg32& rng) {
     if (sprite < 0 || t.overlay_count >= 3) return;
-    // Overlays share the tile: spread them over slots inside the diamond so
-    // they overlap like the paper's Figure 2 without standing on one point.
-    static constexpr int slots[4][2] = {{0, 0}, {-1, 0}, {1, 0}, {0, 1}};
-    int slot = t.overlay_count == 0 ? int(rng.below(2)) * 3 % 4 : t.overlay_count;
-    int jx = int(rng.below(9)) - 4, jy = int(rng.below(5)) - 2;
-    Overlay& o = t.overlays[t.overlay_count++];
-    o.sprite = sprite;
-    o.dx = slots[slot][0] * m.tile_width / 5 + jx * m.tile_width / 128;
-    o.dy = slots[slot][1] * m.tile_height / 5 + jy * m.tile_height / 64;
+    t.overlays[t.overlay_count] = make_overlay(sprite, t.overlay_count, m.tile_width, m.tile_height, rng);
+    ++t.overlay_count;
 }
 
 }  // namespace
@@ -153,7 +160,119 @@ Map generate_map(std::string_view seed, int width, int height, Layout layout, co
     return m;
 }
 
-PlacedMap place_sprites(const Map& map, const Tileset& ts) {
+namespace {
+
+SpriteInstance make_instance(const Tileset& ts, int sprite, int gx, int gy, int tile, int layer) {
+    const Sprite& s = ts.sprites.at(std::size_t(sprite));
+    SpriteInstance in;
+    in.sprite = sprite;
+    in.ground_x = gx;
+    in.ground_y = gy;
+    in.x = gx - s.anchor_x;
+    in.y = gy - s.anchor_y;
+    in.tile = tile;
+    in.w = s.image.width;
+    in.h = s.image.height;
+    in.layer = layer;
+    return in;
+}
+
+Rect rect_of(const SpriteInstance& in) { return {in.x, in.y, in.w, in.h}; }
+
+Rect bounding(Rect a, Rect b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    const int x0 = std::min(a.x, b.x), y0 = std::min(a.y, b.y);
+    const int x1 = std::max(a.x + a.w, b.x + b.w), y1 = std::max(a.y + a.h, b.y + b.h);
+    return {x0, y0, x1 - x0, y1 - y0};
+}
+
+// The grid cells a world rectangle meets, clamped to the grid.
+struct CellRange {
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+};
+CellRange cells_of(const PlacedMap& p, Rect r) {
+    CellRange c;
+    const Rect g{p.grid_x, p.grid_y, p.grid_w * p.cell, p.grid_h * p.cell};
+    const Rect q = intersect(r, g);
+    if (q.empty()) return c;
+    c.x0 = (q.x - p.grid_x) / p.cell;
+    c.y0 = (q.y - p.grid_y) / p.cell;
+    c.x1 = (q.x + q.w - 1 - p.grid_x) / p.cell;
+    c.y1 = (q.y + q.h - 1 - p.grid_y) / p.cell;
+    return c;
+}
+
+void grid_add(PlacedMap& p, std::uint32_t i) {
+    const CellRange c = cells_of(p, rect_of(p.instances[i]));
+    for (int cy = c.y0; cy <= c.y1; ++cy)
+        for (int cx = c.x0; cx <= c.x1; ++cx) p.grid[std::size_t(cy) * p.grid_w + cx].push_back(i);
+}
+
+void grid_remove(PlacedMap& p, std::uint32_t i) {
+    const CellRange c = cells_of(p, rect_of(p.instances[i]));
+    for (int cy = c.y0; cy <= c.y1; ++cy)
+        for (int cx = c.x0; cx <= c.x1; ++cx) {
+            auto& cell = p.grid[std::size_t(cy) * p.grid_w + cx];
+            cell.erase(std::remove(cell.begin(), cell.end(), i), cell.end());
+        }
+}
+
+// Where any tileset sprite could stand on any tile (overlay offsets stay
+// inside the diamond), in world pixels: the grid's extent, so an edit never
+// has to grow it.
+Rect reachable_rect(const Map& map, const Tileset& ts, int shift_x, int shift_y) {
+    int left = 0, right = 0, up = 0, down = 0;
+    for (const Sprite& s : ts.sprites) {
+        left = std::max(left, s.anchor_x);
+        right = std::max(right, s.image.width - s.anchor_x);
+        up = std::max(up, s.anchor_y);
+        down = std::max(down, s.image.height - s.anchor_y);
+    }
+    int x0 = INT_MAX, y0 = INT_MAX, x1 = INT_MIN, y1 = INT_MIN;
+    auto corner = [&](int col, int row) {
+        int cx = 0, cy = 0;
+        tile_center(map.layout, map.tile_width, map.tile_height, col, row, cx, cy);
+        x0 = std::min(x0, cx), y0 = std::min(y0, cy), x1 = std::max(x1, cx), y1 = std::max(y1, cy);
+    };
+    // Every layout's tile centres are extreme at the map's corners (or one
+    // row in, for the staggered shift).
+    for (int row : {0, std::min(1, map.height - 1), std::max(0, map.height - 2), map.height - 1})
+        for (int col : {0, map.width - 1}) corner(col, row);
+    const int mx = map.tile_width / 2 + 1, my = map.tile_height / 2 + 1;
+    return {x0 + shift_x - left - mx, y0 + shift_y - up - my, x1 - x0 + left + right + 2 * mx,
+            y1 - y0 + up + down + 2 * my};
+}
+
+Rect live_bounds(const PlacedMap& p) {
+    Rect b;
+    for (const SpriteInstance& in : p.instances)
+        if (in.sprite >= 0) b = bounding(b, rect_of(in));
+    return b;
+}
+
+}  // namespace
+
+bool draws_before(const PlacedMap& p, std::uint32_t a, std::uint32_t b) {
+    const bool oa = a >= p.first_overlay, ob = b >= p.first_overlay;
+    if (oa != ob) return ob;
+    const SpriteInstance &x = p.instances[a], &y = p.instances[b];
+    if (x.ground_y != y.ground_y) return x.ground_y < y.ground_y;
+    if (x.ground_x != y.ground_x) return x.ground_x < y.ground_x;
+    if (x.tile != y.tile) return x.tile < y.tile;
+    return x.layer < y.layer;
+}
+
+std::vector<std::uint32_t> draw_order(const PlacedMap& p, bool overlays_only) {
+    std::vector<std::uint32_t> out;
+    out.reserve(p.instances.size());
+    for (std::size_t i = overlays_only ? p.first_overlay : 0; i < p.instances.size(); ++i)
+        if (p.instances[i].sprite >= 0) out.push_back(std::uint32_t(i));
+    if (!p.in_index_order) std::sort(out.begin(), out.end(), [&](std::uint32_t a, std::uint32_t b) { return draws_before(p, a, b); });
+    return out;
+}
+
+PlacedMap place_sprites(const Map& map, const Tileset& ts, const PlacedMap* origin_of) {
     struct Key {
         int y, x, tile, layer;
         bool operator<(const Key& o) const {
@@ -170,23 +289,11 @@ PlacedMap place_sprites(const Map& map, const Tileset& ts) {
             const Tile& t = map.tiles[idx];
             int cx = 0, cy = 0;
             tile_center(map.layout, map.tile_width, map.tile_height, col, row, cx, cy);
-            auto make = [&](int sprite, int gx, int gy) {
-                const Sprite& s = ts.sprites.at(sprite);
-                SpriteInstance in;
-                in.sprite = sprite;
-                in.ground_x = gx;
-                in.ground_y = gy;
-                in.x = gx - s.anchor_x;
-                in.y = gy - s.anchor_y;
-                in.tile = idx;
-                in.w = s.image.width;
-                in.h = s.image.height;
-                return in;
-            };
-            floors.push_back({{cy, cx, idx, 0}, make(t.floor, cx, cy)});
+            floors.push_back({{cy, cx, idx, 0}, make_instance(ts, t.floor, cx, cy, idx, 0)});
             for (int i = 0; i < t.overlay_count; ++i) {
                 const Overlay& o = t.overlays[i];
-                overlays.push_back({{cy + o.dy, cx + o.dx, idx, i + 1}, make(o.sprite, cx + o.dx, cy + o.dy)});
+                overlays.push_back(
+                    {{cy + o.dy, cx + o.dx, idx, i + 1}, make_instance(ts, o.sprite, cx + o.dx, cy + o.dy, idx, i + 1)});
             }
         }
     }
@@ -200,55 +307,123 @@ PlacedMap place_sprites(const Map& map, const Tileset& ts) {
     out.first_overlay = out.instances.size();
     for (auto& o : overlays) out.instances.push_back(o.second);
 
-    int x0 = INT_MAX, y0 = INT_MAX, x1 = INT_MIN, y1 = INT_MIN;
-    for (const SpriteInstance& in : out.instances) {
-        const Image& im = ts.sprites[in.sprite].image;
-        x0 = std::min(x0, in.x);
-        y0 = std::min(y0, in.y);
-        x1 = std::max(x1, in.x + im.width);
-        y1 = std::max(y1, in.y + im.height);
+    int x0 = INT_MAX, y0 = INT_MAX;
+    if (origin_of) {
+        x0 = -origin_of->shift_x;
+        y0 = -origin_of->shift_y;
+    } else {
+        for (const SpriteInstance& in : out.instances) x0 = std::min(x0, in.x), y0 = std::min(y0, in.y);
     }
-    for (SpriteInstance& in : out.instances) {
+    out.tile_instances.assign(map.tiles.size(), {no_instance, no_instance, no_instance, no_instance});
+    for (std::size_t i = 0; i < out.instances.size(); ++i) {
+        SpriteInstance& in = out.instances[i];
         in.x -= x0;
         in.y -= y0;
         in.ground_x -= x0;
         in.ground_y -= y0;
+        out.tile_instances[std::size_t(in.tile)][std::size_t(in.layer)] = std::uint32_t(i);
     }
-    out.bounds = {0, 0, x1 - x0, y1 - y0};
+    out.bounds = live_bounds(out);
     out.shift_x = -x0;
     out.shift_y = -y0;
-    out.grid_w = (out.bounds.w + out.cell - 1) / out.cell;
-    out.grid_h = (out.bounds.h + out.cell - 1) / out.cell;
+    const Rect g = bounding(reachable_rect(map, ts, out.shift_x, out.shift_y), out.bounds);
+    out.grid_x = g.x;
+    out.grid_y = g.y;
+    out.grid_w = (g.w + out.cell - 1) / out.cell;
+    out.grid_h = (g.h + out.cell - 1) / out.cell;
     out.grid.assign(std::size_t(out.grid_w) * out.grid_h, {});
-    for (std::size_t i = 0; i < out.instances.size(); ++i) {
-        const SpriteInstance& in = out.instances[i];
-        const int cx0 = std::max(0, in.x / out.cell), cy0 = std::max(0, in.y / out.cell);
-        const int cx1 = std::min(out.grid_w - 1, (in.x + in.w - 1) / out.cell);
-        const int cy1 = std::min(out.grid_h - 1, (in.y + in.h - 1) / out.cell);
-        for (int cy = cy0; cy <= cy1; ++cy)
-            for (int cx = cx0; cx <= cx1; ++cx) out.grid[std::size_t(cy) * out.grid_w + cx].push_back(std::uint32_t(i));
-    }
+    for (std::size_t i = 0; i < out.instances.size(); ++i) grid_add(out, std::uint32_t(i));
     return out;
+}
+
+Rect replace_tile(PlacedMap& p, const Map& map, const Tileset& ts, int col, int row, const Tile& tile) {
+    assert(col >= 0 && row >= 0 && col < map.width && row < map.height && tile.floor >= 0);
+    const int idx = row * map.width + col;
+    auto& slots = p.tile_instances[std::size_t(idx)];
+    int cx = 0, cy = 0;
+    tile_center(map.layout, map.tile_width, map.tile_height, col, row, cx, cy);
+    cx += p.shift_x;
+    cy += p.shift_y;
+
+    // What the tile would hold, as instances.
+    std::array<SpriteInstance, 4> want;
+    want[0] = make_instance(ts, tile.floor, cx, cy, idx, 0);
+    for (int i = 0; i < tile.overlay_count; ++i) {
+        const Overlay& o = tile.overlays[std::size_t(i)];
+        want[std::size_t(i) + 1] = make_instance(ts, o.sprite, cx + o.dx, cy + o.dy, idx, i + 1);
+    }
+    auto same = [](const SpriteInstance& a, const SpriteInstance& b) {
+        return a.sprite == b.sprite && a.x == b.x && a.y == b.y && a.ground_x == b.ground_x && a.ground_y == b.ground_y;
+    };
+    bool unchanged = same(p.instances[slots[0]], want[0]);
+    for (int l = 1; l <= 3; ++l) {
+        const bool had = slots[std::size_t(l)] != no_instance, has = l <= tile.overlay_count;
+        unchanged = unchanged && had == has && (!has || same(p.instances[slots[std::size_t(l)]], want[std::size_t(l)]));
+    }
+    if (unchanged) return {};
+
+    Rect changed;
+    bool touched_edge = false;
+    const Rect b = p.bounds;
+    auto remove = [&](std::uint32_t i) {
+        const Rect r = rect_of(p.instances[i]);
+        changed = bounding(changed, r);
+        touched_edge = touched_edge || r.x == b.x || r.y == b.y || r.x + r.w == b.x + b.w || r.y + r.h == b.y + b.h;
+        grid_remove(p, i);
+    };
+    auto add = [&](std::uint32_t i) {
+        changed = bounding(changed, rect_of(p.instances[i]));
+        p.bounds = bounding(p.bounds, rect_of(p.instances[i]));
+        grid_add(p, i);
+    };
+    // The floor keeps its slot (its draw position depends only on the tile).
+    remove(slots[0]);
+    p.instances[slots[0]] = want[0];
+    add(slots[0]);
+    for (int l = 1; l <= 3; ++l) {
+        std::uint32_t& s = slots[std::size_t(l)];
+        if (s != no_instance) {
+            remove(s);
+            p.instances[s].sprite = -1;
+            p.free_slots.push_back(s);
+            s = no_instance;
+        }
+        if (l > tile.overlay_count) continue;
+        p.in_index_order = false;
+        if (!p.free_slots.empty()) {
+            s = p.free_slots.back();
+            p.free_slots.pop_back();
+            p.instances[s] = want[std::size_t(l)];
+        } else {
+            s = std::uint32_t(p.instances.size());
+            p.instances.push_back(want[std::size_t(l)]);
+        }
+        add(s);
+    }
+    // Removing a sprite on the edge may shrink what the map covers.
+    if (touched_edge) p.bounds = live_bounds(p);
+    return changed;
 }
 
 void instances_in(const PlacedMap& placed, Rect r, bool overlays_only, std::vector<std::uint32_t>& out, int margin) {
     out.clear();
     const std::size_t first = overlays_only ? placed.first_overlay : 0;
     const Rect q{r.x - margin, r.y - margin, r.w + 2 * margin, r.h + 2 * margin};
-    auto meets = [&](const SpriteInstance& in) { return !intersect({in.x, in.y, in.w, in.h}, q).empty(); };
+    auto meets = [&](const SpriteInstance& in) { return in.sprite >= 0 && !intersect(rect_of(in), q).empty(); };
     if (placed.grid.empty()) {
         for (std::size_t i = first; i < placed.instances.size(); ++i)
             if (meets(placed.instances[i])) out.push_back(std::uint32_t(i));
         return;
     }
-    const Rect c = intersect(q, placed.bounds);
-    if (c.empty()) return;
-    for (int cy = c.y / placed.cell; cy <= (c.y + c.h - 1) / placed.cell; ++cy)
-        for (int cx = c.x / placed.cell; cx <= (c.x + c.w - 1) / placed.cell; ++cx)
+    const CellRange c = cells_of(placed, q);
+    for (int cy = c.y0; cy <= c.y1; ++cy)
+        for (int cx = c.x0; cx <= c.x1; ++cx)
             for (std::uint32_t i : placed.grid[std::size_t(cy) * placed.grid_w + cx])
                 if (i >= first && meets(placed.instances[i])) out.push_back(i);
-    std::sort(out.begin(), out.end());  // draw order; a sprite over several cells counts once
+    std::sort(out.begin(), out.end());  // a sprite over several cells counts once
     out.erase(std::unique(out.begin(), out.end()), out.end());
+    if (!placed.in_index_order)
+        std::sort(out.begin(), out.end(), [&](std::uint32_t a, std::uint32_t b) { return draws_before(placed, a, b); });
 }
 
 bool tile_at(const Map& map, const PlacedMap& placed, double wx, double wy, int& col, int& row) {

@@ -1,22 +1,97 @@
 #include "isolux/world.hpp"
 
+#include <algorithm>
 #include <atomic>
+#include <map>
+
+#include "isolux/edits.hpp"
 
 namespace isolux {
 
 namespace {
+
 std::atomic<std::uint64_t> next_revision{1};
+
+// Changes remembered for caches; older ones make a cache rebuild everything.
+constexpr std::size_t max_changes = 4096;
+
+Rect bounding(Rect a, Rect b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    const int x0 = std::min(a.x, b.x), y0 = std::min(a.y, b.y);
+    const int x1 = std::max(a.x + a.w, b.x + b.w), y1 = std::max(a.y + a.h, b.y + b.h);
+    return {x0, y0, x1 - x0, y1 - y0};
+}
+
 }  // namespace
 
-void touch(World& w) { w.revision = next_revision++; }
+void touch(World& w) {
+    w.revision = next_revision++;
+    w.built_revision = w.revision;
+    w.changes.clear();
+}
 
-World make_world(Tileset tileset, const Scene& scene) {
+World make_world(Tileset tileset, const Scene& scene, std::string_view source, std::vector<std::string>* warnings) {
     World w;
     w.tileset = std::move(tileset);
-    w.map = generate_map(scene.seed, scene.width, scene.height, scene.layout, w.tileset);
-    w.placed = place_sprites(w.map, w.tileset);
-    w.revision = next_revision++;
+    w.seeded = generate_map(scene.seed, scene.width, scene.height, scene.layout, w.tileset);
+    const std::vector<ResolvedEdit> resolved = resolve_edits(scene.edits, w.tileset, source);
+    if (warnings) warn_edits_outside(scene.edits, scene.width, scene.height, source, *warnings);
+    if (resolved.empty()) {
+        w.map = w.seeded;
+        w.placed = place_sprites(w.map, w.tileset);
+    } else {
+        // The world's pixels are the seeded map's: an edit never moves lights.
+        const PlacedMap origin = place_sprites(w.seeded, w.tileset);
+        w.map = apply_edits(w.seeded, resolved);
+        w.placed = place_sprites(w.map, w.tileset, &origin);
+    }
+    w.edits = scene.edits;
+    touch(w);
     return w;
+}
+
+Rect set_edits(World& w, const std::vector<TileEdit>& edits, std::string_view source) {
+    const std::vector<ResolvedEdit> resolved = resolve_edits(edits, w.tileset, source);  // may throw: nothing changed yet
+    const std::vector<ResolvedEdit> before = resolve_edits(w.edits, w.tileset, source);
+    // Every tile the old or the new edits name, with the new edits' entries
+    // for it (an ordered map: the same order on every machine).
+    std::map<int, std::vector<const ResolvedEdit*>> tiles;
+    auto inside = [&](const ResolvedEdit& e) { return e.col >= 0 && e.row >= 0 && e.col < w.map.width && e.row < w.map.height; };
+    for (const ResolvedEdit& e : before)
+        if (inside(e)) tiles[e.row * w.map.width + e.col];
+    for (const ResolvedEdit& e : resolved)
+        if (inside(e)) tiles[e.row * w.map.width + e.col].push_back(&e);
+    Rect changed;
+    for (const auto& [idx, list] : tiles) {
+        const int col = idx % w.map.width, row = idx / w.map.width;
+        const Tile t = edited_tile(w.seeded, col, row, list);
+        w.map.tiles[std::size_t(idx)] = t;
+        changed = bounding(changed, replace_tile(w.placed, w.map, w.tileset, col, row, t));
+    }
+    w.edits = edits;
+    if (changed.empty()) return changed;
+    w.revision = next_revision++;
+    if (w.changes.size() >= max_changes) {
+        // Too long a record: caches older than its start rebuild everything.
+        w.changes.erase(w.changes.begin(), w.changes.begin() + std::ptrdiff_t(max_changes / 2));
+        w.built_revision = 0;
+    }
+    w.changes.push_back({w.revision, changed});
+    return changed;
+}
+
+bool changed_since(const World& w, std::uint64_t revision, Rect& region) {
+    region = {};
+    if (revision == w.revision) return true;
+    std::size_t first = 0;
+    if (revision != w.built_revision || w.built_revision == 0) {
+        auto it = std::find_if(w.changes.begin(), w.changes.end(), [&](const auto& c) { return c.first == revision; });
+        if (it == w.changes.end()) return false;
+        first = std::size_t(it - w.changes.begin()) + 1;
+    }
+    for (std::size_t i = first; i < w.changes.size(); ++i) region = bounding(region, w.changes[i].second);
+    return true;
 }
 
 }  // namespace isolux

@@ -17,7 +17,10 @@
 
 namespace isolux {
 
-inline constexpr int schema_version = 1;
+inline constexpr int schema_version = 1;  // presets and tileset manifests
+// Scenes: 2 added "edits" (hand edits over the seeded map); version 1 scenes
+// load unchanged.
+inline constexpr int scene_schema_version = 2;
 
 // Largest image we read or write, pixels per side.
 inline constexpr int max_image_side = 65536;

@@ -25,6 +25,10 @@ struct FrameReport {
     int sprites_corrected = 0;   // sprite instances the opacity correction touched
     bool retraced = false;       // FrameState::traced changed this frame
     Rect dirty;                  // where it changed (what an upload must send); empty when it did not
+    // World pixels whose sprites and obstacle map were rebuilt after an edit
+    // (set_edits): only there, and only the lights meeting it were retraced.
+    // Empty when no edit arrived; the whole obstacle region on a full rebuild.
+    Rect rebuilt;
     bool ran_stage(Stage s) const { return ran[int(s)]; }
 };
 
@@ -100,8 +104,8 @@ struct FrameState {
 // before it starts. About 1e9 steps take a few seconds on one core.
 double trace_work(const Scene& scene, Rect view);
 
-// The view a camera shows: its rectangle, or the map's size at the camera's
-// position when the camera's width or height is 0.
+// The view a camera shows: its rectangle; where its width or height is 0,
+// the map's extent on that axis, offset by the camera's x or y.
 Rect camera_view(const Camera& camera, const World& world);
 
 // Runs frame number `frame` (0, 1, 2, ...) for the scene's lights and

@@ -49,6 +49,12 @@ inline constexpr int max_map_side = 1024;  // tiles; 256 x 256 is the documented
 // 1..max_map_side or a tileset without floors.
 Map generate_map(std::string_view seed, int width, int height, Layout layout, const Tileset& tileset);
 
+struct Pcg32;
+// The overlay generate_map puts on a tile as its `index`-th (0, 1, 2): one of
+// four slots inside the diamond, jittered by `rng`. Hand edits place theirs
+// by the same rule (edits.hpp).
+Overlay make_overlay(int sprite, int index, int tile_width, int tile_height, Pcg32& rng);
+
 // One sprite placed in the world. World pixels: the map's bounding box starts
 // at (0, 0).
 struct SpriteInstance {
@@ -57,23 +63,43 @@ struct SpriteInstance {
     int ground_x = 0, ground_y = 0;  // where it stands: its anchor in world pixels
     int tile = -1;               // index into Map::tiles
     int w = 0, h = 0;            // the sprite image's size
+    int layer = 0;               // 0: the tile's floor; 1..3: its overlays
 };
 
-// Every sprite of the map in draw order (back to front): all floor blocks by
+inline constexpr std::uint32_t no_instance = 0xFFFFFFFFu;
+
+// Every sprite of the map. Draw order (back to front): all floor blocks by
 // their tile's depth, then all overlays by their ground point, so an overlay is
-// never covered by a flat floor in front of it.
+// never covered by a flat floor in front of it. As placed, `instances` is in
+// draw order; after hand edits (replace_tile) removed overlays leave dead
+// slots (sprite -1) and new ones may sit anywhere past first_overlay, so
+// walk the map with draw_order() or instances_in(), never by index.
 struct PlacedMap {
-    Rect bounds;  // world pixels covered by any sprite; x = y = 0
+    // World pixels covered by any sprite. The world's origin is the seeded
+    // map's top-left, so bounds start at (0, 0) unless edits reach further.
+    Rect bounds;
     std::vector<SpriteInstance> instances;
-    std::size_t first_overlay = 0;  // instances[first_overlay..] are overlays
+    std::size_t first_overlay = 0;  // instances[..first_overlay] are the floors, in draw order
     int shift_x = 0, shift_y = 0;   // world = layout pixels + shift (tile_center's frame to the world's)
 
-    // A grid of `cell`-pixel squares over `bounds`: each lists the instances
-    // whose rectangle meets it, so a frame touches only the sprites near its
-    // view and lights, whatever the map's size.
-    int cell = 256, grid_w = 0, grid_h = 0;
+    // A grid of `cell`-pixel squares from (grid_x, grid_y) over every place a
+    // tileset sprite can stand on the map: each lists the instances whose
+    // rectangle meets it, so a frame or an edit touches only the sprites near
+    // it, whatever the map's size.
+    int cell = 256, grid_x = 0, grid_y = 0, grid_w = 0, grid_h = 0;
     std::vector<std::vector<std::uint32_t>> grid;
+
+    // Per tile, its floor's and overlays' instances (no_instance when none).
+    std::vector<std::array<std::uint32_t, 4>> tile_instances;
+    std::vector<std::uint32_t> free_slots;  // dead overlay slots, reused by edits
+    bool in_index_order = true;             // instances' indices are still their draw order (no overlay edited)
 };
+
+// Whether instance `a` is drawn before instance `b`.
+bool draws_before(const PlacedMap& placed, std::uint32_t a, std::uint32_t b);
+
+// Every live instance in draw order (overlays only when `overlays_only`).
+std::vector<std::uint32_t> draw_order(const PlacedMap& placed, bool overlays_only = false);
 
 // The instances whose rectangle (grown by `margin` pixels) meets `r`, in draw
 // order; overlays only when `overlays_only`. Without a grid (a hand-built
@@ -81,7 +107,17 @@ struct PlacedMap {
 void instances_in(const PlacedMap& placed, Rect r, bool overlays_only, std::vector<std::uint32_t>& out,
                   int margin = 0);
 
-PlacedMap place_sprites(const Map& map, const Tileset& tileset);
+// Places every tile's sprites. The world's origin is the top-left of what
+// they cover, unless `origin_of` is given: then it is that map's (a seeded
+// map's, so that its edited copy keeps the same world pixels).
+PlacedMap place_sprites(const Map& map, const Tileset& tileset, const PlacedMap* origin_of = nullptr);
+
+// Gives tile (col, row) of `placed` the sprites of `tile`, in place, touching
+// only the grid cells they cover: an edit costs what it touches, not the
+// map's size. `map` holds the tile's placement (layout and tile size).
+// Returns the world rectangle whose pixels may have changed (the old and the
+// new sprites'); empty when the tile already held exactly these sprites.
+Rect replace_tile(PlacedMap& placed, const Map& map, const Tileset& tileset, int col, int row, const Tile& tile);
 
 // The centre of tile (col, row) in layout pixels, before PlacedMap's shift.
 void tile_center(Layout layout, int tile_w, int tile_h, int col, int row, int& x, int& y);

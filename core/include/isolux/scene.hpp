@@ -28,6 +28,18 @@ struct Camera {
     friend bool operator==(const Camera&, const Camera&) = default;
 };
 
+// One hand edit over the seeded map (docs/guide.md, "Edits"): the tile's
+// column and row as the layout numbers them, and what replaces the seed's
+// content there. Names are the tileset's sprite names. A later edit of the
+// same tile overrides an earlier one field by field.
+struct TileEdit {
+    int col = 0, row = 0;
+    std::optional<std::string> floor;                  // unset: the seed's (or an earlier edit's) floor
+    std::optional<std::vector<std::string>> overlays;  // unset: unchanged; empty: no overlays
+
+    friend bool operator==(const TileEdit&, const TileEdit&) = default;
+};
+
 inline constexpr const char* default_seed = "isolux";
 inline constexpr int default_map_side = 16;
 
@@ -39,6 +51,7 @@ struct Scene {
     Params params;
     std::vector<Light> lights;
     Camera camera;
+    std::vector<TileEdit> edits;  // the level: the seed's map plus these, in order
 
     friend bool operator==(const Scene&, const Scene&) = default;
 };
