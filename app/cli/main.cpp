@@ -335,7 +335,7 @@ void print_param_table() {
 
 int run_render(const RenderArgs& a) {
     Scene s = scene_from_args(a);
-    World w = build_world(s);
+    World w = build_world(s, a.scene.empty() ? "scene" : a.scene);
     Rect view = view_from_args(a, s, w);
     check_work(trace_work(s, view) * (a.frames > 1 ? std::max(1, a.frames / std::max(1, s.params.trace_every)) : 1),
                a.allow_huge, "this render");
@@ -443,7 +443,7 @@ int run_sweep_command(const SweepArgs& a) {
         if (end == std::string::npos) break;
         pos = end + 1;
     }
-    World w = build_world(s);
+    World w = build_world(s, a.scene);
     {
         // The work of every combination, before any of it starts.
         double steps = 0;

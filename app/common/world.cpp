@@ -1,19 +1,24 @@
 #include "common/world.hpp"
 
+#include <iostream>
+
 #include "common/assets.hpp"
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
 
 namespace isolux::app {
 
-World build_world(const Scene& scene) {
+World build_world(const Scene& scene, std::string_view source, std::vector<std::string>* warnings) {
     std::filesystem::path manifest = scene.tileset;
     if (manifest.empty()) {
         manifest = default_tileset_manifest();
         if (manifest.empty())
             throw Error("default tileset not found: set ISOLUX_ASSETS to the assets/ folder or pass --tileset");
     }
-    return make_world(load_tileset(manifest), scene);
+    std::vector<std::string> own;
+    World w = make_world(load_tileset(manifest), scene, source, warnings ? warnings : &own);
+    for (const std::string& line : own) std::cerr << "isolux: warning: " << line << "\n";
+    return w;
 }
 
 }  // namespace isolux::app

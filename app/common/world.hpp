@@ -1,12 +1,18 @@
 // Builds a scene's world for the front ends: the scene's tileset (the default
 // one when empty), then isolux::make_world.
 #pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
 #include "isolux/scene.hpp"
 #include "isolux/world.hpp"
 
 namespace isolux::app {
 
-// Throws Error naming the tileset file on bad input.
-World build_world(const Scene& scene);
+// Throws Error naming the tileset file on bad input, or `source` (the scene's
+// file) and the entry for a bad edit. Warnings (edits outside the map) are
+// printed to stderr when `warnings` is null.
+World build_world(const Scene& scene, std::string_view source = "scene", std::vector<std::string>* warnings = nullptr);
 
 }  // namespace isolux::app

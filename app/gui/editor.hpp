@@ -41,6 +41,34 @@ struct Character {
     Light light;
 };
 
+// The level editor's tools (one table: the tool bar, the hotkeys, the Help
+// window and the script's `tool` command all read it).
+enum class Tool { lights, floor, floor_rect, floor_fill, overlay_add, overlay_remove, eraser, eyedropper };
+struct ToolInfo {
+    Tool tool;
+    const char* name;   // the script's name
+    const char* label;  // the tool bar's
+    char key;           // its hotkey (a letter)
+    const char* help;
+};
+const std::vector<ToolInfo>& tool_table();
+const ToolInfo& tool_info(Tool t);
+
+// What the terrain tools paint with.
+struct Brush {
+    Tool tool = Tool::lights;
+    int floor = -1;           // a floor sprite
+    int overlay = -1;         // an overlay sprite, used when overlay_tag is empty
+    std::string overlay_tag;  // not empty: any overlay with this tag, picked per tile
+};
+
+// A mouse stroke of a terrain tool: one undo step however many tiles it paints.
+struct Stroke {
+    bool active = false;
+    Scene before;
+    int col0 = -1, row0 = -1, col1 = -1, row1 = -1;  // the rectangle tool's corners
+};
+
 // Where the editor looks: not part of the document (panning is not an edit),
 // written into the scene's camera only when the scene is saved.
 struct View {
@@ -48,6 +76,8 @@ struct View {
     int width = 0, height = 0;  // the scene camera's size, kept for saving and --screenshot (0: the whole map)
     double zoom = 1;            // window pixels per world pixel
 };
+
+inline constexpr double min_zoom = 1.0 / 16, max_zoom = 16;
 
 struct Editor {
     // The document: what is saved, undone and autosaved. The one source of
@@ -70,6 +100,10 @@ struct Editor {
 
     Overlays overlays;
     Character character;
+
+    Brush brush;
+    Stroke stroke;
+    std::uint32_t strokes = 0;  // strokes so far: seeds "any sprite with tag" picks
 
     bool footprints_unsaved = false;  // the inspector changed a footprint the manifest does not have yet
 
@@ -119,7 +153,25 @@ void place_light(Editor& e, double x, double y, double now);
 void remove_light(Editor& e, int index, double now);
 void move_light(Editor& e, int index, double x, double y);  // no undo step: call commit_edit at drag end
 void set_params(Editor& e, const Params& p, double now);   // validated; bad values refused with a message
-void regenerate(Editor& e, const std::string& seed, int width, int height, Layout layout, double now);
+// Changing seed, size or layout. A scene's edits stay (kept_edits) or are
+// cleared; edits beyond a smaller map stay in the file and are reported.
+void regenerate(Editor& e, const std::string& seed, int width, int height, Layout layout, double now,
+                bool keep_edits = true);
+// How many of the scene's edits lie outside its map.
+int edits_outside(const Scene& s);
+
+// Terrain editing: a stroke starts on a tile, continues over others and ends
+// as one undo step. The floor brush, overlay place and remove, the eraser
+// (clears a tile's overlays) and the eyedropper act on each tile the stroke
+// enters; the rectangle fills its corners' rectangle at the end; the bucket
+// fills the connected tiles of the first tile's floor.
+void begin_stroke(Editor& e, int col, int row);
+void continue_stroke(Editor& e, int col, int row);
+void end_stroke(Editor& e, double now);
+// What the brush would do on tile (col, row), for the hover tooltip.
+std::string brush_preview(const Editor& e, int col, int row);
+// Sprite names for messages.
+std::string sprite_name(const Editor& e, int sprite);
 bool undo(Editor& e, double now);
 bool redo(Editor& e, double now);
 
