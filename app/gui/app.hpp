@@ -2,11 +2,14 @@
 // and the UI's own transient state. Panels are functions over this.
 #pragma once
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "gui/accuracy_panel.hpp"
 #include "gui/editor.hpp"
+#include "gui/layout.hpp"
 #include "gui/renderer.hpp"
 #include "gui/script.hpp"
 
@@ -28,10 +31,30 @@ struct Stats {
 struct Ui {
     bool editing = false;  // a slider or field is being dragged: one undo step at its end
     Scene edit_before;
-    int dragging_light = -1;
+    int dragging_light = -1;  // the light the drag started on (the whole selection moves)
     Scene drag_before;
-    std::string file_action;  // the file popup's action, "" when closed
-    std::string path;         // its path field
+    std::string file_action;  // the file browser's action (file_actions in panels.cpp), "" when closed
+    std::string path;         // its path field (typing a path works as in any dialog)
+    std::string browse_folder;  // the folder it lists
+    int filter = -1;            // its kind filter; -1: the action's own
+    std::string overwrite;      // a path waiting for "replace?" confirmation
+    std::string confirm_what;   // the unsaved-changes prompt: what waits ("" when none)
+    std::function<void()> confirmed;   // runs after Save or Don't save
+    std::function<void()> after_save;  // runs once a Save-as dialog has saved
+    bool edits_prompt = false;         // "keep or clear the edits?" before a regenerate
+    MapFields edits_target;
+    PanelLayout layout;                // where the panels go (gui/layout.hpp)
+    int layout_w = 0, layout_h = 0;    // the window size it was made for
+    bool reset_layout = true;          // apply it this frame
+    bool help_open = false;
+    bool box_selecting = false;        // a box select in progress, from (box_x0, box_y0) world
+    double box_x0 = 0, box_y0 = 0;
+    bool pressed_empty = false;        // the left button went down on empty ground (lights tool)
+    double press_x = 0, press_y = 0;   // where, window pixels
+    int stroke_col = -1, stroke_row = -1;
+    std::vector<std::string> dropped;  // files dropped on the window, opened next frame
+    bool quit_confirmed = false;       // the window may close
+    std::string title;                 // the window title last set
     bool recovery_offered = false;
     MapFields map_edit;       // the Map panel's fields while one is being edited
     bool map_editing = false;
@@ -74,6 +97,9 @@ struct App {
     long screenshot_frames = 0;
     bool quit = false;
     int exit_code = 0;
+    unsigned character_tex = 0;  // the character's sprite (GL texture)
+    int character_w = 0, character_h = 0, character_ax = 0, character_ay = 0;
+    std::string font_warning;    // the label font was not found
 };
 
 // Panels and the status bar: read the app's state, call the editor's actions.
@@ -84,8 +110,15 @@ void inspector_panel(App& app);  // gui/inspector.cpp
 // character. Skipped while ImGui wants the mouse or keyboard.
 void handle_viewport_input(App& app, double dt);
 
-// Exports (PNG or EXR by extension): the final frame as shown, the light
-// texture and the obstacle map of the view.
+// Runs `then` now, or after asking to save unsaved changes (Save, Don't
+// save, Cancel); `what` names what waits ("opening another scene").
+void guard_unsaved(App& app, const std::string& what, std::function<void()> then);
+
+// Applies the pending fit (Editor::fit_pending) to the free area.
+void fit_map(App& app);
+
+// Exports (PNG or EXR by extension): the final frame as shown (the window's
+// size at zoom 1, exactly), the light texture and the obstacle map of the view.
 bool export_image(App& app, const std::string& what, const std::string& path);
 
 }  // namespace isolux::app

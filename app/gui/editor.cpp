@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 
 #include "common/assets.hpp"
 #include "common/world.hpp"
@@ -124,7 +126,7 @@ void place_light(Editor& e, double x, double y, double now) {
     l.x = std::floor(x) + 0.5;
     l.y = std::floor(y) + 0.5;
     e.scene.lights.push_back(l);
-    e.selected = int(e.scene.lights.size()) - 1;
+    select_light(e, int(e.scene.lights.size()) - 1);
     commit_edit(e, before, now);
     if (e.frame.obstacles.get(int(std::floor(x)), int(std::floor(y))))
         set_status(e, "light " + std::to_string(e.selected + 1) +
@@ -136,16 +138,25 @@ void place_light(Editor& e, double x, double y, double now) {
 
 void remove_light(Editor& e, int index, double now) {
     if (index < 0 || index >= int(e.scene.lights.size())) return;
+    if (e.scene.lights[std::size_t(index)].locked) {
+        set_status(e, light_label(e.scene, index) + " is locked: unlock it in the Lights panel to remove it", true);
+        return;
+    }
     Scene before = e.scene;
+    const std::string label = light_label(e.scene, index);
     e.scene.lights.erase(e.scene.lights.begin() + index);
+    std::vector<int> kept;
+    for (int i : e.selection)
+        if (i != index) kept.push_back(i > index ? i - 1 : i);
+    e.selection = kept;
     if (e.selected == index) e.selected = -1;
     else if (e.selected > index) --e.selected;
     commit_edit(e, before, now);
-    set_status(e, "removed light " + std::to_string(index + 1));
+    set_status(e, "removed " + label);
 }
 
 void move_light(Editor& e, int index, double x, double y) {
-    if (index < 0 || index >= int(e.scene.lights.size())) return;
+    if (index < 0 || index >= int(e.scene.lights.size()) || e.scene.lights[std::size_t(index)].locked) return;
     e.scene.lights[index].x = std::floor(x) + 0.5;
     e.scene.lights[index].y = std::floor(y) + 0.5;
 }
@@ -178,6 +189,7 @@ void regenerate(Editor& e, const std::string& seed, int width, int height, Layou
     if (!keep_edits) e.scene.edits.clear();
     if (sync_world(e)) {
         commit_edit(e, before, now);
+        e.fit_pending = true;
         std::string msg = "generated \"" + seed + "\" (" + std::to_string(width) + "x" + std::to_string(height) + ")";
         const int outside = edits_outside(e.scene);
         if (outside > 0)
@@ -388,6 +400,7 @@ bool step_history(Editor& e, std::vector<Scene>& from, std::vector<Scene>& to, d
     from.pop_back();
     sync_world(e);
     if (e.selected >= int(e.scene.lights.size())) e.selected = -1;
+    std::erase_if(e.selection, [&](int i) { return i >= int(e.scene.lights.size()); });
     e.dirty = true;
     e.autosave_due = now + autosave_delay;
     set_status(e, what);
@@ -445,6 +458,8 @@ bool load_scene_impl(Editor& e, const fs::path& path, double now, bool remember)
         return false;
     }
     e.selected = -1;
+    e.selection.clear();
+    e.fit_pending = e.view.width == 0;  // a scene without a camera: show all of its map
     e.scene_path = path;
     e.dirty = false;
     e.autosave_due = -1;
@@ -487,7 +502,7 @@ bool load_tileset_from(Editor& e, const fs::path& manifest, double now) {
     e.scene.tileset = manifest.string();
     if (!sync_world(e)) return false;
     commit_edit(e, before, now);
-    reset_view(e);
+    e.fit_pending = true;
     remember_file(e, manifest, FileKind::tileset);
     set_status(e, "loaded tileset " + manifest.string());
     return true;
@@ -551,6 +566,25 @@ bool save_footprints(Editor& e) {
     return true;
 }
 
+bool walk_character(Editor& e, double dx, double dy) {
+    Character& c = e.character;
+    auto free_at = [&](double x, double y) {
+        int col = 0, row = 0;
+        if (!tile_at(e.world.map, e.world.placed, x, y, col, row)) return false;  // off the map
+        return !e.frame.obstacles.get(int(std::floor(x)), int(std::floor(y)));
+    };
+    // Small steps, so a fast frame does not jump over a thin obstacle.
+    const int steps = std::max(1, int(std::ceil(std::max(std::abs(dx), std::abs(dy)) / 2.0)));
+    bool moved = false;
+    for (int i = 0; i < steps; ++i) {
+        const double sx = dx / steps, sy = dy / steps;
+        if (free_at(c.x + sx, c.y + sy)) c.x += sx, c.y += sy, moved = true;
+        else if (sx != 0 && free_at(c.x + sx, c.y)) c.x += sx, moved = true;
+        else if (sy != 0 && free_at(c.x, c.y + sy)) c.y += sy, moved = true;
+    }
+    return moved;
+}
+
 Scene render_scene(const Editor& e) {
     Scene s = e.scene;
     if (e.character.enabled) {
@@ -573,6 +607,181 @@ int light_at(const Editor& e, double x, double y, double radius) {
         }
     }
     return best;
+}
+
+// ---------------------------------------------------------------- lights
+
+std::string light_label(const Scene& s, int i) {
+    if (i < 0 || i >= int(s.lights.size())) return "no light";
+    const Light& l = s.lights[std::size_t(i)];
+    return l.name.empty() ? "light " + std::to_string(i + 1) : l.name;
+}
+
+bool is_selected(const Editor& e, int i) { return std::binary_search(e.selection.begin(), e.selection.end(), i); }
+
+void select_light(Editor& e, int i, bool add) {
+    if (i < 0 || i >= int(e.scene.lights.size())) {
+        if (!add) e.selection.clear(), e.selected = -1;
+        return;
+    }
+    if (!add) {
+        e.selection = {i};
+        e.selected = i;
+        return;
+    }
+    auto it = std::lower_bound(e.selection.begin(), e.selection.end(), i);
+    if (it != e.selection.end() && *it == i) {
+        e.selection.erase(it);
+        if (e.selected == i) e.selected = e.selection.empty() ? -1 : e.selection.back();
+    } else {
+        e.selection.insert(it, i);
+        e.selected = i;
+    }
+}
+
+void select_lights_in(Editor& e, Rect r, bool add) {
+    if (!add) e.selection.clear();
+    for (int i = 0; i < int(e.scene.lights.size()); ++i) {
+        const Light& l = e.scene.lights[std::size_t(i)];
+        if (l.x >= r.x && l.y >= r.y && l.x < r.x + r.w && l.y < r.y + r.h && !is_selected(e, i)) {
+            e.selection.insert(std::lower_bound(e.selection.begin(), e.selection.end(), i), i);
+        }
+    }
+    e.selected = e.selection.empty() ? -1 : e.selection.back();
+}
+
+void move_selection(Editor& e, double dx, double dy) {
+    for (int i : e.selection) {
+        Light& l = e.scene.lights[std::size_t(i)];
+        if (l.locked) continue;
+        l.x += dx;
+        l.y += dy;
+    }
+}
+
+void delete_selection(Editor& e, double now) {
+    Scene before = e.scene;
+    int removed = 0, locked = 0;
+    for (auto it = e.selection.rbegin(); it != e.selection.rend(); ++it) {
+        if (e.scene.lights[std::size_t(*it)].locked) {
+            ++locked;
+            continue;
+        }
+        e.scene.lights.erase(e.scene.lights.begin() + *it);
+        ++removed;
+    }
+    e.selection.clear();
+    e.selected = -1;
+    commit_edit(e, before, now);
+    set_status(e, "removed " + std::to_string(removed) + " light" + (removed == 1 ? "" : "s") +
+                      (locked ? " (" + std::to_string(locked) + " locked kept)" : ""),
+               locked > 0);
+}
+
+void copy_selection(Editor& e) {
+    e.clipboard.clear();
+    for (int i : e.selection) e.clipboard.push_back(e.scene.lights[std::size_t(i)]);
+    set_status(e, "copied " + std::to_string(e.clipboard.size()) + " light" + (e.clipboard.size() == 1 ? "" : "s"));
+}
+
+namespace {
+// Adds `lights` to the scene, selected, as one undo step.
+void add_lights(Editor& e, const std::vector<Light>& lights, double dx, double dy, double now, const char* what) {
+    if (lights.empty()) return;
+    Scene before = e.scene;
+    e.selection.clear();
+    for (Light l : lights) {
+        l.x = std::floor(l.x + dx) + 0.5;
+        l.y = std::floor(l.y + dy) + 0.5;
+        l.locked = false;
+        e.scene.lights.push_back(l);
+        e.selection.push_back(int(e.scene.lights.size()) - 1);
+    }
+    e.selected = e.selection.back();
+    commit_edit(e, before, now);
+    set_status(e, std::string(what) + " " + std::to_string(lights.size()) + " light" + (lights.size() == 1 ? "" : "s"));
+}
+}  // namespace
+
+void duplicate_selection(Editor& e, double now) {
+    std::vector<Light> copies;
+    for (int i : e.selection) copies.push_back(e.scene.lights[std::size_t(i)]);
+    add_lights(e, copies, 16, 16, now, "duplicated");
+}
+
+void paste_lights(Editor& e, double x, double y, double now) {
+    if (e.clipboard.empty()) return;
+    double cx = 0, cy = 0;
+    for (const Light& l : e.clipboard) cx += l.x, cy += l.y;
+    cx /= double(e.clipboard.size());
+    cy /= double(e.clipboard.size());
+    add_lights(e, e.clipboard, x - cx, y - cy, now, "pasted");
+}
+
+// ---------------------------------------------------------------- files and the window
+
+void new_scene(Editor& e, double now) {
+    Scene fresh;
+    World w;
+    try {
+        w = build_world(fresh);
+    } catch (const Error& err) {
+        set_status(e, err.what(), true);
+        return;
+    }
+    Scene before = e.scene;
+    e.scene = fresh;
+    e.world = std::move(w);
+    e.world_source = fresh;
+    FrameOptions keep = e.frame.options;
+    e.frame = FrameState{};
+    e.frame.options = keep;
+    commit_edit(e, before, now);  // New can be undone
+    e.scene_path.clear();
+    e.dirty = false;
+    e.autosave_due = -1;
+    e.selected = -1;
+    e.selection.clear();
+    e.view = View{};
+    e.fit_pending = true;
+    set_status(e, "new scene");
+}
+
+std::string window_title(const Editor& e) {
+    const std::string name = e.scene_path.empty() ? "untitled" : e.scene_path.filename().string();
+    return name + (e.dirty ? " *" : "") + " - isolux";
+}
+
+FileKind detect_file_kind(const fs::path& path) {
+    check_input_file(path, max_text_file_bytes);  // a FIFO or a folder is refused here, by name
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw Error(path.string() + ": cannot open");
+    const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    // By the fields only each kind has; the loader then checks the file whole.
+    if (text.find("\"sprites\"") != std::string::npos) return FileKind::tileset;
+    for (const char* k : {"\"seed\"", "\"lights\"", "\"edits\"", "\"width\"", "\"preset\"", "\"camera\""})
+        if (text.find(k) != std::string::npos) return FileKind::scene;
+    return FileKind::preset;
+}
+
+bool open_dropped(Editor& e, const fs::path& path, double now) {
+    FileKind kind;
+    try {
+        kind = detect_file_kind(path);
+    } catch (const Error& err) {
+        set_status(e, err.what(), true);
+        return false;
+    }
+    return open_recent(e, RecentFile{path.string(), kind}, now);
+}
+
+void fit_view(View& v, Rect world, Rect area) {
+    if (world.empty() || area.empty()) return;
+    const double margin = 16;
+    const double zx = (area.w - 2 * margin) / double(world.w), zy = (area.h - 2 * margin) / double(world.h);
+    v.zoom = std::clamp(std::min(zx, zy), min_zoom, max_zoom);
+    v.x = world.x + world.w / 2.0 - (area.x + area.w / 2.0) / v.zoom;
+    v.y = world.y + world.h / 2.0 - (area.y + area.h / 2.0) / v.zoom;
 }
 
 }  // namespace isolux::app

@@ -90,7 +90,9 @@ struct Editor {
     long frame_number = 0;
 
     View view;
-    int selected = -1;                      // selected light, or -1
+    int selected = -1;                      // the light the Lights panel edits, or -1
+    std::vector<int> selection;             // every selected light, ascending (holds `selected`)
+    std::vector<Light> clipboard;           // copied lights
     std::vector<Scene> undo_stack, redo_stack;
     bool dirty = false;                     // changes since the last save or load
     std::filesystem::path scene_path;       // where the document was last saved or loaded
@@ -101,6 +103,7 @@ struct Editor {
     Overlays overlays;
     Character character;
 
+    bool fit_pending = true;  // fit the view to the map next frame (the app knows the free area)
     Brush brush;
     Stroke stroke;
     std::uint32_t strokes = 0;  // strokes so far: seeds "any sprite with tag" picks
@@ -200,10 +203,49 @@ void set_sprite_footprint(Editor& e, int sprite, const FootprintSpec& spec);
 bool save_footprints(Editor& e);
 std::filesystem::path tileset_manifest(const Editor& e);
 
+// Walks the character by (dx, dy) world pixels: it stays on the map's tiles
+// and does not step onto the obstacle map, sliding along an obstacle when
+// only one axis is blocked. Returns whether it moved.
+bool walk_character(Editor& e, double dx, double dy);
+
 // The scene as rendered: the document plus the character's light.
 Scene render_scene(const Editor& e);
 
 // The light under world pixel (x, y) (within `radius` pixels), or -1.
 int light_at(const Editor& e, double x, double y, double radius);
+
+// Selecting lights: one (replacing the selection, or toggled into it with
+// `add`), every light in a world rectangle (box select), or none (-1).
+void select_light(Editor& e, int index, bool add = false);
+void select_lights_in(Editor& e, Rect world, bool add);
+bool is_selected(const Editor& e, int index);
+// The selection moved by (dx, dy) world pixels, locked lights staying; no
+// undo step (the drag commits once at its end).
+void move_selection(Editor& e, double dx, double dy);
+// Each one undo step; locked lights are neither deleted nor moved.
+void delete_selection(Editor& e, double now);
+void duplicate_selection(Editor& e, double now);  // copies 16 px right and down, selected
+void copy_selection(Editor& e);
+void paste_lights(Editor& e, double x, double y, double now);  // the copied group centred on (x, y)
+// "light 3" or its name.
+std::string light_label(const Scene& s, int index);
+
+// File › New: the default scene, untitled, after the caller asked about unsaved changes.
+void new_scene(Editor& e, double now);
+// "name.json * - isolux": the file (or "untitled") and an unsaved mark.
+std::string window_title(const Editor& e);
+// What a JSON file is, from its fields: a scene (seed, lights, edits, ...),
+// a tileset manifest (sprites) or a preset (parameters only). Throws Error
+// naming the file when it is none of them or unreadable.
+FileKind detect_file_kind(const std::filesystem::path& path);
+// Opens a file dropped on the window as what it is.
+bool open_dropped(Editor& e, const std::filesystem::path& path, double now);
+
+// The zoom and position that show `world` whole and centred in the window
+// rectangle `area` (window pixels), zoom within [min_zoom, max_zoom].
+void fit_view(View& v, Rect world, Rect area);
+// Set by whatever replaces the map (open, new, regenerate): the app fits the
+// view to the map in its next frame, when it knows the free area.
+inline bool fit_requested(const Editor& e) { return e.fit_pending; }
 
 }  // namespace isolux::app

@@ -6,6 +6,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include <chrono>
 #include <cmath>
@@ -18,6 +19,8 @@
 #include "gui/window.hpp"
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
+#include "isolux/edits.hpp"
+#include "isolux/tileset_generator.hpp"
 #include "isolux/truth.hpp"
 
 using namespace isolux;
@@ -25,6 +28,46 @@ using namespace isolux::app;
 namespace fs = std::filesystem;
 
 namespace {
+
+// Files dropped on the window, picked up by the frame loop.
+std::vector<std::string>* g_dropped = nullptr;
+void on_drop(GLFWwindow*, int count, const char** paths) {
+    for (int i = 0; g_dropped && i < count; ++i) g_dropped->push_back(paths[i]);
+}
+
+// The labels' font: one with the glyphs they use (Δ, ×, ², arrows), from
+// Debian's fonts-dejavu-core; ISOLUX_FONT names another. Without it ImGui's
+// built-in font draws those as '?', and the status bar says so.
+std::string load_label_font(ImGuiIO& io) {
+    static const ImWchar ranges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2010, 0x206F, 0x2190, 0x21FF, 0x2200, 0x22FF, 0};
+    std::vector<std::string> candidates;
+    if (const char* env = std::getenv("ISOLUX_FONT")) candidates.push_back(env);
+    candidates.push_back("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf");
+    for (const std::string& path : candidates) {
+        std::error_code ec;
+        if (!fs::is_regular_file(path, ec)) continue;
+        if (io.Fonts->AddFontFromFileTTF(path.c_str(), 15.0f, nullptr, ranges)) return "";
+    }
+    return "no label font found (install fonts-dejavu-core or set ISOLUX_FONT): symbols such as Δ show as '?'";
+}
+
+// The character's sprite as a GL texture (straight alpha, as ImGui draws).
+void upload_character(App& app) {
+    const Sprite s = generate_character_sprite();
+    GLuint tex = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, s.image.width, s.image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 s.image.rgba.data());
+    app.character_tex = tex;
+    app.character_w = s.image.width;
+    app.character_h = s.image.height;
+    app.character_ax = s.anchor_x;
+    app.character_ay = s.anchor_y;
+}
 
 // No display: the same scene through core's CPU frame, written as a PNG.
 int render_headless(const Scene& scene, const std::string& out, const std::string& why) {
@@ -59,6 +102,7 @@ void run_script_step(App& app) {
     if (s.key_up >= 0) {
         io.KeysDown[s.key_up] = false;
         io.KeyCtrl = false;
+        io.KeyShift = false;
         s.key_up = -1;
     }
     if (!s.drag_path.empty()) {
@@ -100,7 +144,14 @@ void run_script_step(App& app) {
             k = k.substr(5);
         }
         int code = -1;
+        if (k.rfind("shift+", 0) == 0) {
+            io.KeyShift = true;
+            k = k.substr(6);
+        }
         if (k.size() == 1 && std::isalpha(unsigned(k[0]))) code = GLFW_KEY_A + (std::toupper(unsigned(k[0])) - 'A');
+        else if (k.size() == 1 && std::isdigit(unsigned(k[0]))) code = GLFW_KEY_0 + (k[0] - '0');
+        else if (k == "f1") code = GLFW_KEY_F1;
+        else if (k == "escape") code = GLFW_KEY_ESCAPE;
         else if (k == "delete") code = GLFW_KEY_DELETE;
         else if (k == "home") code = GLFW_KEY_HOME;
         else if (k == "enter") code = GLFW_KEY_ENTER;
@@ -125,6 +176,97 @@ void run_script_step(App& app) {
                 set_status(e, err.what(), true);
             }
         }
+    } else if (step.op == "tool") {
+        bool found = false;
+        for (const ToolInfo& t : tool_table())
+            if (step.args[0] == t.name) e.brush.tool = t.tool, found = true;
+        if (!found) set_status(e, "script: no tool \"" + step.args[0] + "\"", true);
+    } else if (step.op == "brush") {
+        // brush floor NAME | brush overlay NAME | brush tag TAG
+        if (step.args[0] == "tag") {
+            e.brush.overlay_tag = step.args[1];
+        } else {
+            int found = -1;
+            for (int i = 0; i < int(e.world.tileset.sprites.size()); ++i)
+                if (e.world.tileset.sprites[std::size_t(i)].name == step.args[1] && found < 0) found = i;
+            if (found < 0) set_status(e, "script: no sprite \"" + step.args[1] + "\"", true);
+            else if (step.args[0] == "floor") e.brush.floor = found;
+            else e.brush.overlay = found, e.brush.overlay_tag.clear();
+        }
+    } else if (step.op == "view") {
+        e.view.x = num(0);
+        e.view.y = num(1);
+        e.view.zoom = std::clamp(num(2), min_zoom, max_zoom);
+        e.fit_pending = false;
+    } else if (step.op == "click-tile" || step.op == "drag-tiles") {
+        // Window pixels of a tile's centre in the current view.
+        auto tile_screen = [&](int col, int row) {
+            int cx = 0, cy = 0;
+            const Map& m = e.world.map;
+            tile_center(m.layout, m.tile_width, m.tile_height, col, row, cx, cy);
+            return std::pair<double, double>{(cx + e.world.placed.shift_x - e.view.x) * e.view.zoom,
+                                             (cy + e.world.placed.shift_y - e.view.y) * e.view.zoom};
+        };
+        const auto [x0, y0] = tile_screen(int(num(0)), int(num(1)));
+        move_to(x0, y0);
+        io.MouseDown[0] = true;
+        if (step.op == "click-tile") {
+            s.release = 0;
+        } else {
+            const auto [x1, y1] = tile_screen(int(num(2)), int(num(3)));
+            for (int i = 1; i <= 8; ++i) s.drag_path.push_back({x0 + (x1 - x0) * i / 8, y0 + (y1 - y0) * i / 8});
+        }
+    } else if (step.op == "new") {
+        new_scene(e, app.now);
+    } else if (step.op == "fit") {
+        e.fit_pending = true;
+    } else if (step.op == "open-dropped") {
+        app.ui.dropped.push_back(step.args[0]);
+    } else if (step.op == "check-glyphs") {
+        // Every character of the argument must have a glyph in the label font.
+        const ImFont* font = ImGui::GetFont();
+        const std::string& t = step.args[0];
+        for (std::size_t i = 0; i < t.size();) {
+            unsigned int c = 0;
+            const int n = ImTextCharFromUtf8(&c, t.c_str() + i, t.c_str() + t.size());
+            i += std::size_t(std::max(1, n));
+            if (!font->FindGlyphNoFallback(ImWchar(c))) {
+                std::cerr << "isolux: the label font has no glyph for U+" << std::hex << c << std::dec << "\n";
+                app.exit_code = 3;
+            }
+        }
+    } else if (step.op == "dump-panels") {
+        // Every ImGui window's rectangle, as JSON lines: what the layout test reads.
+        std::string out;
+        ImGuiContext& g = *ImGui::GetCurrentContext();
+        for (ImGuiWindow* w : g.Windows) {
+            if (!w->Active || w->Hidden || (w->Flags & ImGuiWindowFlags_ChildWindow) || w->Name[0] == '#') continue;
+            out += "{\"name\": \"" + std::string(w->Name) + "\", \"x\": " + std::to_string(w->Pos.x) +
+                   ", \"y\": " + std::to_string(w->Pos.y) + ", \"w\": " + std::to_string(w->Size.x) +
+                   ", \"h\": " + std::to_string(w->Size.y) + "}\n";
+        }
+        out += "{\"window\": [" + std::to_string(app.window_w) + ", " + std::to_string(app.window_h) + "]}\n";
+        try {
+            write_file_atomic(step.args[0], out);
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
+    } else if (step.op == "export-final") {
+        export_image(app, "final", step.args[0]);
+    } else if (step.op == "select") {
+        // select I[,J...] (1-based, as the panel numbers them)
+        select_light(e, -1);
+        std::string list = step.args[0];
+        for (std::size_t pos = 0; pos <= list.size();) {
+            const std::size_t end = std::min(list.find(',', pos), list.size());
+            const int i = std::atoi(list.substr(pos, end - pos).c_str()) - 1;
+            select_light(e, i, true);
+            pos = end + 1;
+        }
+    } else if (step.op == "character") {
+        e.character.enabled = step.args[0] == "on";
+        if (step.args.size() > 2) e.character.x = num(1), e.character.y = num(2);
+        e.character.follow = false;
     } else if (step.op == "save-footprints") {
         save_footprints(e);
     } else if (step.op == "window-shot") {
@@ -370,6 +512,9 @@ int main(int argc, char** argv) {
     try {
         app.editor = make_editor(scene, config);
         if (!script_file.empty()) app.script = load_script(script_file);
+        // Scripts place their clicks in a known view: it starts at the scene's
+        // camera (the origin, zoom 1) until the script says `fit` or `view`.
+        if (app.script) app.editor.fit_pending = false;
     } catch (const Error& err) {
         std::cerr << "isolux: " << err.what() << "\n";
         close_window(window);
@@ -394,15 +539,31 @@ int main(int argc, char** argv) {
     ini = (config / "imgui.ini").string();
     io.IniFilename = (screenshot_mode || app.script) ? nullptr : ini.c_str();  // layout kept per user
     ImGui::StyleColorsDark();
+    app.font_warning = load_label_font(io);
+    if (!app.font_warning.empty()) set_status(app.editor, app.font_warning, true);
     ImGui_ImplGlfw_InitForOpenGL(window, true);
+    g_dropped = &app.ui.dropped;
+    glfwSetDropCallback(window, on_drop);
+    upload_character(app);
     ImGui_ImplOpenGL3_Init("#version 330 core");
 
     auto start = std::chrono::steady_clock::now();
     auto last = start;
     double reload_check = 0;
     long frames_run = 0;
-    while (!glfwWindowShouldClose(window) && !app.quit) {
+    while (!app.quit) {
         glfwPollEvents();
+        if (glfwWindowShouldClose(window)) {
+            // Closing the window asks about unsaved work first (scripted
+            // and screenshot runs close at once).
+            if (screenshot_mode || app.script || app.ui.quit_confirmed) break;
+            glfwSetWindowShouldClose(window, GLFW_FALSE);
+            guard_unsaved(app, "quitting", [&app] {
+                app.ui.quit_confirmed = true;
+                app.quit = true;
+            });
+            if (app.quit) break;
+        }
         const auto t = std::chrono::steady_clock::now();
         const double dt = std::chrono::duration<double>(t - last).count();
         last = t;
@@ -416,7 +577,23 @@ int main(int argc, char** argv) {
         ImGui_ImplGlfw_NewFrame();
         run_script_step(app);
         ImGui::NewFrame();
-        if (!screenshot_mode) handle_viewport_input(app, dt);
+        for (const std::string& path : std::vector<std::string>(std::move(app.ui.dropped))) {
+            // A dropped scene replaces the document: ask first when it is unsaved.
+            try {
+                if (detect_file_kind(path) == FileKind::scene) {
+                    guard_unsaved(app, "opening " + fs::path(path).filename().string(),
+                                  [&app, path] { open_dropped(app.editor, path, app.now); });
+                    continue;
+                }
+            } catch (const Error&) {
+            }
+            open_dropped(app.editor, path, app.now);  // reports what is wrong
+        }
+        app.ui.dropped.clear();
+        if (!screenshot_mode) {
+            fit_map(app);
+            handle_viewport_input(app, dt);
+        }
         const auto f0 = std::chrono::steady_clock::now();
         const FrameReport rep = render(app, screenshot_mode);
         push_stats(app, rep, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - f0).count(), dt);
@@ -432,6 +609,11 @@ int main(int argc, char** argv) {
             app.script->window_shot.clear();
         }
         glfwSwapBuffers(window);
+        const std::string title = window_title(app.editor);
+        if (title != app.ui.title) {
+            glfwSetWindowTitle(window, title.c_str());
+            app.ui.title = title;
+        }
         autosave_tick(app.editor, app.now);
         ++frames_run;
         if (screenshot_mode && frames_run >= app.screenshot_frames) {
@@ -469,6 +651,7 @@ int main(int argc, char** argv) {
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
+    if (app.character_tex) glDeleteTextures(1, &app.character_tex);
     renderer_shutdown(app.renderer);
     close_window(window);
     return app.exit_code;

@@ -27,7 +27,10 @@ Script load_script(const std::filesystem::path& path) {
         static const std::pair<const char*, int> arity[] = {
             {"wait", 1}, {"click", 2}, {"rclick", 2}, {"drag", 4}, {"key", 1}, {"param", 2},
             {"type", 1}, {"window-shot", 1}, {"inspect", 1}, {"footprint", 2}, {"save-footprints", 0}, {"save-preset", 1}, {"save-scene", 1}, {"load-scene", 1}, {"load-preset", 1}, {"quit", 0},
-            {"overlay", 2}, {"sweep", -1}, {"wait-sweep", 0}, {"apply-point", 1}, {"save-sweep", 1}};
+            {"overlay", 2}, {"sweep", -1}, {"wait-sweep", 0}, {"apply-point", 1}, {"save-sweep", 1},
+            {"tool", 1}, {"brush", 2}, {"view", 3}, {"click-tile", 2}, {"drag-tiles", 4}, {"new", 0}, {"fit", 0},
+            {"open-dropped", 1}, {"check-glyphs", 1}, {"dump-panels", 1}, {"export-final", 1}, {"select", 1},
+            {"character", -1}};
         bool known = false;
         for (auto [op, n] : arity)
             if (step.op == op) {
@@ -39,7 +42,16 @@ Script load_script(const std::filesystem::path& path) {
         if (!known) throw Error(path.string() + ":" + std::to_string(line) + ": unknown command \"" + step.op + "\"");
         // Numbers are checked here, so a bad one is a message, not a crash mid-run.
         const bool numeric = step.op == "wait" || step.op == "click" || step.op == "rclick" || step.op == "drag" ||
-                             step.op == "apply-point";
+                             step.op == "apply-point" || step.op == "view" || step.op == "click-tile" ||
+                             step.op == "drag-tiles";
+        if (step.op == "character" && step.args.size() != 1 && step.args.size() != 3)
+            throw Error(path.string() + ":" + std::to_string(line) + ": character takes on|off [X Y]");
+        if (step.op == "view" && step.args.size() == 3) {
+            const double z = std::strtod(step.args[2].c_str(), nullptr);
+            if (!(z > 0))
+                throw Error(path.string() + ":" + std::to_string(line) + ": view: zoom \"" + step.args[2] +
+                            "\" must be a number above 0");
+        }
         for (std::size_t k = 0; numeric && k < step.args.size(); ++k) {
             const std::string& a = step.args[k];
             char* end = nullptr;

@@ -9,7 +9,14 @@
 //   save-scene PATH | load-scene PATH | load-preset PATH | quit |
 //   overlay NAME on|off (obstacles, opacity_maps, delta_y_bands, light_areas,
 //   raw_light, split_view, heatmap) | sweep NAME=V1,V2... [...] (the Accuracy
-//   panel's sweep) | wait-sweep | apply-point K | save-sweep PATH (its CSV)
+//   panel's sweep) | wait-sweep | apply-point K | save-sweep PATH (its CSV) |
+//   tool NAME (lights, floor, rectangle, fill, place, remove, eraser, eyedropper) |
+//   brush floor|overlay SPRITE | brush tag TAG | view X Y ZOOM (the camera) |
+//   click-tile COL ROW | drag-tiles C0 R0 C1 R1 (a stroke from tile to tile) |
+//   new | fit | open-dropped PATH (as if dropped on the window) |
+//   check-glyphs TEXT (exit 3 unless the font has each) | dump-panels PATH (every
+//   window's rectangle, JSON lines) | export-final PATH | select I[,J...] |
+//   character on|off [X Y]
 // Coordinates are window pixels; '#' starts a comment.
 #pragma once
 #include <filesystem>

@@ -675,7 +675,7 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
             std::string where = src + ": lights[" + std::to_string(i) + "]";
             check_object(arr[i], where);
             Fields lf{arr[i], where};
-            lf.warn_unknown({"x", "y", "a", "b", "color", "intensity", "height"}, warnings);
+            lf.warn_unknown({"x", "y", "a", "b", "color", "intensity", "height", "name", "hidden", "locked"}, warnings);
             Light l;
             if (!lf.has("x") || !lf.has("y")) lf.fail("x, y", "are required");
             l.x = lf.real("x");
@@ -695,6 +695,9 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
                 if (*l.height < range.min || *l.height > range.max)
                     lf.fail("height", "must be in " + param_range_text(range) + " pixels");
             }
+            if (lf.has("name")) l.name = lf.text("name");
+            if (lf.has("hidden")) l.hidden = lf.boolean("hidden");
+            if (lf.has("locked")) l.locked = lf.boolean("locked");
             s.lights.push_back(l);
         }
     }
@@ -719,6 +722,9 @@ std::string scene_to_json(const Scene& s) {
         if (l.area_a) o["a"] = *l.area_a;
         if (l.area_b) o["b"] = *l.area_b;
         if (l.height) o["height"] = *l.height;
+        if (!l.name.empty()) o["name"] = l.name;
+        if (l.hidden) o["hidden"] = true;
+        if (l.locked) o["locked"] = true;
         lights.push_back(o);
     }
     json j{{"schema_version", scene_schema_version},

@@ -36,7 +36,7 @@ double trace_work(const Scene& scene, Rect view) {
     const Params& p = scene.params;
     double steps = 0;
     for (const Light& l : scene.lights) {
-        if (intersect(light_area(l, p), view).empty()) continue;
+        if (l.hidden || intersect(light_area(l, p), view).empty()) continue;
         const double a = light_a(l, p), b = light_b(l, p);
         const double rays = p.rays == Rays::every_pixel ? (2 * a + 1) * (2 * b + 1) : (8 * std::max(a, b) + 4) / p.ray_skip;
         steps += rays * (std::max(a, b) + 1);
@@ -453,7 +453,16 @@ void update_view(FrameState& st, const Params& p, Rect view, const WorldDelta& d
 
 }  // namespace
 
-FrameReport render_frame(FrameState& st, const World& world, const Scene& scene, const Camera& camera, long frame) {
+FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_in, const Camera& camera, long frame) {
+    // Hidden lights stay in the scene but light nothing.
+    const bool any_hidden = std::any_of(scene_in.lights.begin(), scene_in.lights.end(), [](const Light& l) { return l.hidden; });
+    Scene shown;
+    if (any_hidden) {
+        shown.params = scene_in.params;
+        for (const Light& l : scene_in.lights)
+            if (!l.hidden) shown.lights.push_back(l);
+    }
+    const Scene& scene = any_hidden ? shown : scene_in;
     assert(frame >= 0 && st.options.margin >= 0 && st.options.threads >= 0);
     // An Error here, not a division by zero below. The last trace's
     // parameters were validated then.

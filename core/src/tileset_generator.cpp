@@ -369,4 +369,24 @@ GeneratedTileset generate_default_tileset(double scale) {
     return g;
 }
 
+Sprite generate_character_sprite(double scale) {
+    Model m;
+    m.materials = {{{0.25, 0.22, 0.35}, 0.08, 0.3},   // trousers
+                   {{0.72, 0.2, 0.18}, 0.1, 0.3},     // coat
+                   {{0.93, 0.76, 0.6}, 0.05, 0.3},    // face
+                   {{0.98, 0.86, 0.42}, 0.02, 0.3}};  // lantern
+    m.prims = {cylinder({-3, 3, 0}, 3, 16, 0),       cylinder({3, -3, 0}, 3, 16, 0),
+               cylinder({0, 0, 15}, 7, 18, 1),       ellipsoid({0, 0, 39}, {6, 6, 7}, 2),
+               cylinder({8, 6, 20}, 2, 10, 1),       ellipsoid({10, 8, 16}, {3, 3, 4}, 3)};
+    m.shadow_rx = 12, m.shadow_ry = 5;
+    Sprite s;
+    s.name = "character";
+    s.kind = SpriteKind::overlay;
+    const int w = int(48 * scale + 0.5), h = int(80 * scale + 0.5);
+    s.anchor_x = w / 2;
+    s.anchor_y = int(72 * scale + 0.5);
+    s.image = render_model(m, w, h, s.anchor_x, s.anchor_y, scale, hash_seed("isolux character")).image;
+    return s;
+}
+
 }  // namespace isolux

@@ -230,7 +230,7 @@ LightTexture reference_texture(const World& world, const Scene& scene, Rect rect
     Rect region = rect;
     for (const Light& l : scene.lights) {
         const Rect area = light_area(l, p);
-        if (intersect(area, rect).empty()) continue;
+        if (l.hidden || intersect(area, rect).empty()) continue;
         lights.push_back(&l);
         const Rect u = region;
         const int x0 = std::min(u.x, area.x), y0 = std::min(u.y, area.y);

@@ -17,6 +17,9 @@ struct Light {
     std::uint8_t r = 255, g = 255, b = 255;
     double intensity = 1.0;              // scales the paper's 255 / (1 + d)
     std::optional<double> height;        // above the ground, pixels; the preset's light_height when unset
+    std::string name;                    // the editor's label; empty: "light N"
+    bool hidden = false;                 // kept in the scene, not rendered
+    bool locked = false;                 // the editor does not move or delete it
 
     friend bool operator==(const Light&, const Light&) = default;
 };

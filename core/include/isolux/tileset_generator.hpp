@@ -21,4 +21,9 @@ struct GeneratedTileset {
 // scales resize everything (0.5: 64x32 diamonds, 64x64 sprites).
 GeneratedTileset generate_default_tileset(double scale = 1.0);
 
+// The editor's walking character, drawn by the same generator (a figure of
+// cylinders and ellipsoids with a lantern): about 48 x 80 pixels at scale 1,
+// anchored at its feet.
+Sprite generate_character_sprite(double scale = 1.0);
+
 }  // namespace isolux
