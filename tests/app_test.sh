@@ -227,6 +227,124 @@ if timeout 300 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/a
 [ "$(wc -l <"$tmp/sweep.csv" 2>/dev/null)" = "3" ] && ok || bad "the panel's sweep did not write two rows"
 [ "$(json "$tmp/applied.json" "d['ray_skip'], d['blur_radius']")" = "(8, 0)" ] && ok || bad "applying a sweep point did not set its parameters"
 
+# 7. Terrain editing: a lake (rectangle), a clearing (eraser), a wall of
+#    trees (place), one undo and redo; saved, reopened and saved again the same;
+#    rendered by the app and by isolux-cli within 2/255.
+cat >"$tmp/terrain.script" <<SCRIPT
+wait 2
+fit
+wait 2
+tool rectangle
+brush floor water
+drag-tiles 1 1 4 3
+wait 2
+tool eraser
+drag-tiles 6 6 7 7
+wait 2
+tool eraser
+drag-tiles 0 9 3 9
+wait 2
+tool place
+brush overlay pine
+drag-tiles 0 9 3 9
+wait 2
+key ctrl+z
+wait 2
+save-scene $tmp/undone.json
+key ctrl+y
+wait 2
+tool fill
+brush floor sand
+click-tile 2 2
+wait 2
+save-scene $tmp/level.json
+quit
+SCRIPT
+if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/terrain.script" >"$tmp/log" 2>&1; then ok; else bad "terrain run"; cat "$tmp/log"; fi
+cat >"$tmp/terrain_check.py" <<'PY'
+import json, sys
+level = json.load(open(sys.argv[1])); undone = json.load(open(sys.argv[2]))
+assert level["schema_version"] == 2, level["schema_version"]
+edits = {tuple(e["tile"]): e for e in level["edits"]}
+# The lake, then the bucket: every tile of the rectangle holds sand now (it was all water, connected).
+for c in range(1, 5):
+    for r in range(1, 4):
+        assert edits.get((c, r), {}).get("floor") == "sand", ((c, r), edits.get((c, r)))
+# The clearing: no overlays on its corners.
+for t in [(6, 6), (7, 7)]:
+    assert t not in edits or edits[t].get("overlays", [None]) == [] or "overlays" not in edits[t], (t, edits.get(t))
+# The wall of trees: each tile of row 9 from 0 to 3 ends with a pine.
+for c in range(0, 4):
+    e = edits.get((c, 9))
+    assert e and e["overlays"][-1] == "pine", ((c, 9), e)
+# Undo removed the wall.
+u = {tuple(e["tile"]): e for e in undone["edits"]}
+assert all(u.get((c, 9), {}).get("overlays", [""])[-1:] != ["pine"] or (c, 9) not in u for c in range(4)), u
+print("ok")
+PY
+python3 "$tmp/terrain_check.py" "$tmp/level.json" "$tmp/undone.json" >"$tmp/check" 2>&1 && ok || { bad "terrain edits"; cat "$tmp/check"; }
+printf 'wait 2\nsave-scene %s\nquit\n' "$tmp/level2.json" >"$tmp/reopen.script"
+timeout 120 "$app" --scene "$tmp/level.json" --script "$tmp/reopen.script" >"$tmp/log" 2>&1 || { bad "reopen run"; cat "$tmp/log"; }
+[ "$(json "$tmp/level2.json" "d['edits']")" = "$(json "$tmp/level.json" "d['edits']")" ] && ok || bad "reopening changed the edits"
+timeout 120 "$app" --scene "$tmp/level.json" --frames 3 --screenshot "$tmp/level_app.png" >"$tmp/log" 2>&1 || { bad "level screenshot"; cat "$tmp/log"; }
+"$cli" render --scene "$tmp/level.json" --out "$tmp/level_cli.png" >/dev/null 2>&1 || bad "isolux-cli could not render the edited scene"
+if idiff -fail 0.0079 -warn 0.0079 "$tmp/level_app.png" "$tmp/level_cli.png" >"$tmp/idiff" 2>&1; then ok; else bad "edited scene: app and isolux-cli differ"; cat "$tmp/idiff"; fi
+cmp -s "$tmp/level_cli.png" "$tmp/cli.png" && bad "the edits did not change isolux-cli's render" || ok
+
+# 8. The editor's comforts: every panel inside 1280x720 and 1366x768 (floating
+#    ones opened), the label font's symbols, an export of the window's exact
+#    size, a dropped scene opened, New held by the unsaved-changes prompt.
+for size in 1280x720 1366x768 1600x900; do
+  w=${size%x*}; h=${size#*x}
+  cat >"$tmp/panels.script" <<SCRIPT
+wait 2
+show stats
+show help
+wait 2
+dump-panels $tmp/panels_$size.json
+show accuracy
+inspect oak
+wait 2
+dump-panels $tmp/floating_$size.json
+check-glyphs Δ×²
+quit
+SCRIPT
+  if timeout 120 "$app" --width "$w" --height "$h" --script "$tmp/panels.script" >"$tmp/log" 2>&1; then ok; else bad "panels run $size (exit $?)"; cat "$tmp/log"; fi
+  python3 - "$tmp/panels_$size.json" "$tmp/floating_$size.json" >"$tmp/check" 2>&1 <<'PY' && ok || { bad "a panel outside the $size window"; cat "$tmp/check"; }
+import json, sys
+names = set()
+for f in sys.argv[1:]:
+    rows = [json.loads(l) for l in open(f)]
+    W, H = rows[-1]["window"]
+    for p in rows[:-1]:
+        names.add(p["name"])
+        assert p["x"] >= 0 and p["y"] >= 0 and p["x"] + p["w"] <= W and p["y"] + p["h"] <= H, (f, p, W, H)
+for n in ["Map", "Parameters", "Overlays", "Tools", "Lights", "Stats", "Help", "Accuracy", "Tileset inspector"]:
+    assert n in names, (n, names)
+PY
+done
+cat >"$tmp/comfort.script" <<SCRIPT
+wait 2
+export-final $tmp/exact.png
+open-dropped $tmp/level.json
+wait 2
+save-scene $tmp/dropped.json
+click 800 450
+wait 2
+key ctrl+n
+wait 2
+dump-panels $tmp/prompt.json
+key escape
+wait 2
+save-scene $tmp/after_new.json
+quit
+SCRIPT
+if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/comfort.script" >"$tmp/log" 2>&1; then ok; else bad "comfort run"; cat "$tmp/log"; fi
+[ "$(python3 -c "import struct,sys; d=open(sys.argv[1],'rb').read(24); print(struct.unpack('>II', d[16:24]))" "$tmp/exact.png")" = "(1600, 900)" ] && ok || bad "the exported frame is not the window's 1600x900"
+[ "$(json "$tmp/dropped.json" "len(d.get('edits', []))")" = "$(json "$tmp/level.json" "len(d['edits'])")" ] && ok || bad "the dropped scene was not opened"
+grep -q '"Unsaved changes"' "$tmp/prompt.json" && ok || bad "New did not ask about unsaved changes"
+[ "$(json "$tmp/after_new.json" "len(d['lights'])")" = "$(( $(json "$tmp/level.json" "len(d['lights'])") + 1 ))" ] && ok || bad "Cancel on the prompt lost the document"
+
 # 6. No display: a clear message and the headless renderer.
 if env -u DISPLAY "$app" --scene "$src/assets/scenes/default.json" --screenshot "$tmp/nodisplay.png" >"$tmp/log" 2>&1 &&
   grep -q "no display" "$tmp/log" && [ -f "$tmp/nodisplay.png" ]; then ok; else bad "no-display fallback"; cat "$tmp/log"; fi

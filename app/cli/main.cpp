@@ -203,8 +203,7 @@ Scene scene_from_args(const RenderArgs& a) {
 }
 
 Rect view_from_args(const RenderArgs& a, const Scene& s, const World& w) {
-    Rect view = w.placed.bounds;
-    if (s.camera.width > 0 && s.camera.height > 0) view = camera_view(s.camera, w);  // core's rounding
+    Rect view = camera_view(s.camera, w);  // the whole map when the camera has no size
     if (!a.view.empty()) {
         std::vector<long long> v;
         if (!parse_ints(a.view, ',', v) || v.size() != 4 || v[2] < 1 || v[3] < 1 || v[2] > max_image_side ||

@@ -119,7 +119,12 @@ std::string label_of(const std::vector<SweepAxis>& axes, const SweepPoint& p) {
 
 void accuracy_panel(App& app, AccuracyPanel& panel) {
     if (!panel.open) return;
-    ImGui::SetNextWindowSize(ImVec2(520, 560), ImGuiCond_FirstUseEver);
+    {
+        // Opens over the map, inside the window whatever its size.
+        const Rect fl = app.ui.layout.floating;
+        ImGui::SetNextWindowPos(ImVec2(float(fl.x), float(fl.y)), ImGuiCond_Appearing);
+        ImGui::SetNextWindowSize(ImVec2(float(fl.w), float(fl.h)), ImGuiCond_Appearing);
+    }
     if (!ImGui::Begin("Accuracy", &panel.open)) return ImGui::End();
     ImGui::TextWrapped("Time and error of parameter combinations against a reference, over the current view "
                        "with the camera moving. 3d: the sprites' true shapes, lights at their height; every_pixel: "

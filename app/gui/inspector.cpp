@@ -78,7 +78,12 @@ void inspector_panel(App& app) {
     Ui& ui = app.ui;
     Editor& e = app.editor;
     if (!ui.inspector_open) return;
-    ImGui::SetNextWindowSize(ImVec2(560, 640), ImGuiCond_FirstUseEver);
+    {
+        // Opens over the map, inside the window whatever its size.
+        const Rect fl = app.ui.layout.floating;
+        ImGui::SetNextWindowPos(ImVec2(float(fl.x), float(fl.y)), ImGuiCond_Appearing);
+        ImGui::SetNextWindowSize(ImVec2(float(fl.w), float(fl.h)), ImGuiCond_Appearing);
+    }
     if (!ImGui::Begin("Tileset inspector", &ui.inspector_open)) return ImGui::End();
     const auto& sprites = e.world.tileset.sprites;
     ImGui::BeginChild("list", ImVec2(150, 0), true);

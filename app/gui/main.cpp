@@ -216,6 +216,13 @@ void run_script_step(App& app) {
             const auto [x1, y1] = tile_screen(int(num(2)), int(num(3)));
             for (int i = 1; i <= 8; ++i) s.drag_path.push_back({x0 + (x1 - x0) * i / 8, y0 + (y1 - y0) * i / 8});
         }
+    } else if (step.op == "show") {
+        const std::string& n = step.args[0];
+        if (n == "accuracy") app.accuracy.open = true;
+        else if (n == "inspector") app.ui.inspector_open = true;
+        else if (n == "help") app.ui.help_open = true;
+        else if (n == "stats") e.settings.show_stats = true;
+        else set_status(e, "script: no panel \"" + n + "\"", true);
     } else if (step.op == "new") {
         new_scene(e, app.now);
     } else if (step.op == "fit") {

@@ -765,13 +765,13 @@ void tools_panel(App& app) {
     if (!ImGui::Begin("Tools")) return ImGui::End();
     Brush& b = e.brush;
     const auto& tools = tool_table();
-    wrapped_row(76, int(tools.size()), [&](int i) {
+    wrapped_row(96, int(tools.size()), [&](int i) {
         const ToolInfo& t = tools[std::size_t(i)];
         const bool on = b.tool == t.tool;
         if (on) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.85f, 0.6f, 0.2f, 0.9f));
         char label[48];
         std::snprintf(label, sizeof label, "%s (%c)", t.label, t.key);
-        if (ImGui::Button(label, ImVec2(88, 0))) b.tool = t.tool;
+        if (ImGui::Button(label, ImVec2(96, 0))) b.tool = t.tool;
         if (on) ImGui::PopStyleColor();
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", t.help);
     });

@@ -46,12 +46,9 @@ double trace_work(const Scene& scene, Rect view) {
 
 Rect camera_view(const Camera& c, const World& w) {
     const double x = std::clamp(std::floor(c.x), -1e9, 1e9), y = std::clamp(std::floor(c.y), -1e9, 1e9);
-    // The whole map: from the map's top-left (the origin, unless edits reach
-    // further up or left), offset by the camera.
-    const Rect& b = w.placed.bounds;
-    if (c.width > 0 && c.height > 0) return {int(x), int(y), c.width, c.height};
-    return {int(x) + (c.width > 0 ? 0 : b.x), int(y) + (c.height > 0 ? 0 : b.y), c.width > 0 ? c.width : b.w,
-            c.height > 0 ? c.height : b.h};
+    // No size: the whole map, wherever the camera was (as isolux-cli renders it).
+    if (c.width <= 0 || c.height <= 0) return w.placed.bounds;
+    return {int(x), int(y), c.width, c.height};
 }
 
 namespace {

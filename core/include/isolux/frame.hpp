@@ -104,8 +104,9 @@ struct FrameState {
 // before it starts. About 1e9 steps take a few seconds on one core.
 double trace_work(const Scene& scene, Rect view);
 
-// The view a camera shows: its rectangle; where its width or height is 0,
-// the map's extent on that axis, offset by the camera's x or y.
+// The view a camera shows: its rectangle, or the whole map (its bounds,
+// which edits may extend above or left of the origin) when its width or
+// height is 0.
 Rect camera_view(const Camera& camera, const World& world);
 
 // Runs frame number `frame` (0, 1, 2, ...) for the scene's lights and
