@@ -17,6 +17,7 @@
 #include "isolux/hash.hpp"
 #include "isolux/light_trace.hpp"
 #include "isolux/truth.hpp"
+#include "edits.hpp"
 #include "scenes.hpp"
 
 using namespace isolux;
@@ -368,6 +369,7 @@ int ratios(int argc, char** argv) {
     std::printf("bresenham_steps_per_pixel %.3f\n", steps / pixels);
     std::printf("paper_bresenham_steps_per_pixel %.3f\n", paper_steps / pixels);
     std::printf("identical_to_paper_at_k1 %d\n", identical ? 1 : 0);
+    bench::print_edit_ratios();
     std::printf("# scene %s, area %dx%d, one light, k = 1, %u hardware threads\n", ratio_scene, 2 * a + 1, 2 * a + 1,
                 std::thread::hardware_concurrency());
     return identical ? 0 : 1;
@@ -379,6 +381,7 @@ int main(int argc, char** argv) {
     register_tracers();
     register_frames();
     register_truth();
+    bench::register_edits();
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--ratios") == 0) return ratios(argc, argv);
     benchmark::Initialize(&argc, argv);

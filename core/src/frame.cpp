@@ -176,7 +176,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
         ObstacleChange ch;
         ch.part = intersect(grow(delta.region, obstacle_reach(world.tileset, p)), c.obstacle_region);
         if (!ch.part.empty()) {
-            const Mask part = build_obstacle_map(world.tileset, world.placed, p, ch.part);
+            const Mask part = build_obstacle_map(world.tileset, world.placed, p, ch.part, &c.footprints);
             for (int y = 0; y < ch.part.h; ++y)
                 std::copy_n(&part.bits[std::size_t(y) * ch.part.w], ch.part.w,
                             &st.obstacles.bits[std::size_t(ch.part.y + y - st.obstacles.y0) * st.obstacles.width +
@@ -191,7 +191,8 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     // Some room around what is needed, so a panning camera does not rebuild
     // every frame; never more than the map.
     c.obstacle_region = needed.empty() ? needed : intersect(grow(needed, 256), world.placed.bounds);
-    st.obstacles = build_obstacle_map(world.tileset, world.placed, p, c.obstacle_region);
+    c.footprints = sprite_footprints(world.tileset, p);
+    st.obstacles = build_obstacle_map(world.tileset, world.placed, p, c.obstacle_region, &c.footprints);
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
     // Opacity maps of the objects alone: a baked ground diamond or a baked
@@ -239,6 +240,7 @@ struct LightPlan {
     std::vector<const Light*> lights;
     std::vector<TracedLight> traced;  // by index in `lights`
     std::vector<std::size_t> todo;
+    std::vector<std::size_t> recoloured;  // reused masks whose colour or intensity changed
 };
 
 LightPlan plan_lights(const FrameCache& c, const Scene& scene, Rect tex_rect, Rect edited, FrameReport& rep) {
@@ -255,6 +257,8 @@ LightPlan plan_lights(const FrameCache& c, const Scene& scene, Rect tex_rect, Re
         t.a = light_a(l, p);
         t.b = light_b(l, p);
         t.height = p.rays_over_obstacles ? light_height(l, p) : 0;
+        t.colour = {l.r, l.g, l.b};
+        t.intensity = l.intensity;
         const Rect clip = intersect(light_area(l, p), tex_rect);
         auto same = [&](const TracedLight& old) {
             return old.cx == t.cx && old.cy == t.cy && old.a == t.a && old.b == t.b && old.height == t.height &&
@@ -268,6 +272,8 @@ LightPlan plan_lights(const FrameCache& c, const Scene& scene, Rect tex_rect, Re
         if (hit) {
             t.mask = hit->mask;
             ++rep.lights_reused;
+            if (hit->colour != t.colour || hit->intensity != t.intensity)
+                plan.recoloured.push_back(i);
         } else {
             t.mask.clip = clip;
             plan.todo.push_back(i);
@@ -297,7 +303,7 @@ std::vector<Rect> prepare_texture(FrameState& st, Rect tex_rect, bool& fresh) {
 // spread evenly over the rows). The saturating sum is the same in any order,
 // so the bytes do not depend on the thread count.
 void trace_and_accumulate(FrameState& st, const World& world, const Params& p, LightPlan& plan,
-                          const std::vector<Rect>& to_clear, Rect tex_rect, FrameReport& rep) {
+                          const std::vector<Rect>& to_clear, Rect tex_rect, const Rect* redo, FrameReport& rep) {
     const int threads_wanted =
         st.options.threads > 0 ? st.options.threads : std::max(1, int(std::thread::hardware_concurrency()));
     const bool correct = st.options.opacity_correction && p.mode != Mode::flat;
@@ -330,20 +336,26 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     auto accumulate_band = [&](int k) {
         const int y0 = tex_rect.y + int(std::int64_t(tex_rect.h) * k / bands);
         const int y1 = tex_rect.y + int(std::int64_t(tex_rect.h) * (k + 1) / bands);
-        for (const Rect& c : to_clear) {
+        // Only where lights changed (`redo`), when the rest of the texture
+        // still holds the sum of unchanged lights; everything they covered otherwise.
+        const std::vector<Rect> only_redo = redo ? std::vector<Rect>{*redo} : std::vector<Rect>{};
+        for (const Rect& c : redo ? only_redo : to_clear) {
             const Rect z = intersect(intersect(c, tex_rect), Rect{tex_rect.x, y0, tex_rect.w, y1 - y0});
             for (int y = z.y; y < z.y + z.h; ++y)
                 std::memset(&st.traced.rgb[(std::size_t(y - tex_rect.y) * tex_rect.w + (z.x - tex_rect.x)) * 3], 0,
                             std::size_t(z.w) * 3);
         }
         for (std::size_t i = 0; i < plan.lights.size(); ++i)
-            accumulate_light(st.traced, plan.traced[i].mask, *plan.lights[i], p, y0, y1);
+            accumulate_light(st.traced, plan.traced[i].mask, *plan.lights[i], p, y0, y1, redo);
     };
 
     // Threads only when there is enough work to pay for starting them.
     long work = 0;
     for (std::size_t k : plan.todo) work += long(plan.traced[k].mask.clip.w) * plan.traced[k].mask.clip.h * 2;
-    for (const TracedLight& t : plan.traced) work += long(t.mask.clip.w) * t.mask.clip.h;
+    for (const TracedLight& t : plan.traced) {
+        const Rect c = redo ? intersect(t.mask.clip, *redo) : t.mask.clip;
+        work += long(c.w) * c.h;
+    }
     const int pool_size = work < 200000 ? 1 : std::max(1, std::min(threads_wanted, std::max(int(n), bands)));
     const auto t0 = Clock::now();
     Clock::time_point t_traced;
@@ -374,23 +386,22 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     rep.ms[int(Stage::trace)] += ms_between(t_traced, t_done);
 }
 
-// What changed in the texture: the areas of lights traced now and of lights
-// gone or moved since (all of it when the texture itself is new).
-Rect dirty_region(const FrameCache& c, const Scene& scene, const LightPlan& plan, Rect tex_rect, bool fresh,
-                  bool must, bool had_lights) {
+// What changed in the texture: the areas of lights traced now, of lights
+// gone or moved since, and of lights whose colour or intensity changed (all
+// of it when the texture itself is new). Known before tracing: it is also
+// where the accumulation is redone.
+Rect dirty_region(const FrameCache& c, const LightPlan& plan, Rect tex_rect, bool fresh, bool must, bool had_lights) {
     if (!had_lights && plan.lights.empty()) return {};
     if (fresh || must) return tex_rect;
     Rect dirty;
     for (std::size_t k : plan.todo) dirty = bounding(dirty, intersect(plan.traced[k].mask.clip, tex_rect));
+    for (std::size_t k : plan.recoloured) dirty = bounding(dirty, intersect(plan.traced[k].mask.clip, tex_rect));
     for (const TracedLight& old : c.lights) {
         bool kept = false;
         for (const TracedLight& now : plan.traced)
-            kept = kept || (now.cx == old.cx && now.cy == old.cy && now.a == old.a && now.b == old.b);
+            kept = kept || (now.cx == old.cx && now.cy == old.cy && now.a == old.a && now.b == old.b &&
+                            now.mask.clip == old.mask.clip);
         if (!kept) dirty = bounding(dirty, intersect(old.mask.clip, tex_rect));
-    }
-    if (c.trace_lights.size() == scene.lights.size() && plan.todo.empty() && dirty.empty()) {
-        // Only colours or intensities changed: the lights' own areas.
-        for (const TracedLight& now : plan.traced) dirty = bounding(dirty, intersect(now.mask.clip, tex_rect));
     }
     return dirty;
 }
@@ -479,8 +490,10 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_
         const bool had_lights = !st.cache.lights.empty();
         if (trace.must) st.cache.lights.clear();  // nothing traced is reusable
         LightPlan plan = plan_lights(st.cache, scene, tex_rect, obstacles.part, rep);
-        trace_and_accumulate(st, world, scene.params, plan, to_clear, tex_rect, rep);
-        rep.dirty = dirty_region(st.cache, scene, plan, tex_rect, fresh, trace.must, had_lights);
+        rep.dirty = dirty_region(st.cache, plan, tex_rect, fresh, trace.must, had_lights);
+        // A kept texture is redone only where lights changed.
+        const bool partial = !fresh && !trace.must && !to_clear.empty();
+        trace_and_accumulate(st, world, scene.params, plan, to_clear, tex_rect, partial ? &rep.dirty : nullptr, rep);
         keep_trace(st, scene, plan, rep);
     }
     if (st.options.cpu_blur_and_composite) update_view(st, scene.params, view, delta, rep);

@@ -19,8 +19,9 @@ Rect light_area(const Light& l, const Params& p) {
 }
 
 void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& light, const Params& p, int row_begin,
-                      int row_end) {
+                      int row_end, const Rect* within) {
     Rect r = intersect(mask.clip, tex.rect);
+    if (within) r = intersect(r, *within);
     const int y0 = std::max(r.y, row_begin), y1 = std::min(r.y + r.h, row_end);
     r.y = y0;
     r.h = y1 - y0;

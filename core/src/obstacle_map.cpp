@@ -97,7 +97,15 @@ Mask noise_filter(const Mask& in, int n) {
     return out;
 }
 
-Mask build_obstacle_map(const Tileset& ts, const PlacedMap& placed, const Params& p, Rect region) {
+std::vector<Mask> sprite_footprints(const Tileset& ts, const Params& p) {
+    std::vector<Mask> out;
+    out.reserve(ts.sprites.size());
+    for (const Sprite& s : ts.sprites) out.push_back(tileset_footprint(ts, s, p));
+    return out;
+}
+
+Mask build_obstacle_map(const Tileset& ts, const PlacedMap& placed, const Params& p, Rect region,
+                        const std::vector<Mask>* footprints) {
     assert(p.delta_y >= 1 && p.noise_window >= 1 && p.opacity_threshold >= 0 && p.opacity_threshold <= 1);
     // Algorithm 1 depends only on the sprite, Δy and the threshold: run it once
     // per sprite, then stamp it at every instance.
@@ -114,11 +122,11 @@ Mask build_obstacle_map(const Tileset& ts, const PlacedMap& placed, const Params
     for (std::uint32_t i : near) {
         const SpriteInstance& in = placed.instances[i];
         const Sprite& s = ts.sprites[in.sprite];
-        if (!done[in.sprite]) {
+        if (!footprints && !done[in.sprite]) {
             per_sprite[in.sprite] = tileset_footprint(ts, s, p);
             done[in.sprite] = 1;
         }
-        const Mask& m = per_sprite[in.sprite];
+        const Mask& m = footprints ? (*footprints)[std::size_t(in.sprite)] : per_sprite[in.sprite];
         Rect r = intersect({in.x + m.x0, in.y + m.y0, m.width, m.height}, grown);
         for (int y = r.y; y < r.y + r.h; ++y)
             for (int x = r.x; x < r.x + r.w; ++x)

@@ -48,8 +48,10 @@ struct FrameOptions {
 // What the last frame was built from: private to render_frame, which reads
 // it to skip the stages whose inputs did not change.
 struct FrameCache {
-    // The obstacle map's inputs and the region it covers.
+    // The obstacle map's inputs and the region it covers, and each sprite's
+    // Algorithm 1 mask (what an edit's partial rebuild stamps).
     bool has_obstacles = false;
+    std::vector<Mask> footprints;
     std::uint64_t world_revision = ~0ull;
     Params obstacle_params;
     Rect obstacle_region;
@@ -61,6 +63,8 @@ struct FrameCache {
         std::int64_t cx = 0, cy = 0;
         int a = 0, b = 0;
         double height = 0;  // read only with rays_over_obstacles
+        std::array<std::uint8_t, 3> colour{255, 255, 255};  // what the light added with: a change re-adds its area
+        double intensity = 1;
         LightMask mask;
     };
     std::vector<TracedLight> lights;

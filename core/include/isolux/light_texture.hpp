@@ -30,9 +30,11 @@ struct LightTexture {
 // min(255, total), whatever the order lights are added in. A white light of
 // intensity 1 adds exactly the paper's 255 / (1 + d) to all three channels.
 // Only rows [row_begin, row_end) of the texture are touched (world y), so
-// threads may add into separate bands of one texture.
+// threads may add into separate bands of one texture; and only `within`
+// when given (world pixels), so a frame re-adds just where lights changed.
 void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& light, const Params& p,
-                      int row_begin = std::numeric_limits<int>::min(), int row_end = std::numeric_limits<int>::max());
+                      int row_begin = std::numeric_limits<int>::min(), int row_end = std::numeric_limits<int>::max(),
+                      const Rect* within = nullptr);
 
 // The paper's inverse translation between retraces: the texture of `view`
 // read from `traced` (a world-anchored texture of an earlier frame). Texels

@@ -2,6 +2,7 @@
 // box-shaped noise reduction, over the world in pixels.
 #pragma once
 #include <vector>
+#include <vector>
 
 #include "isolux/image.hpp"
 #include "isolux/map.hpp"
@@ -35,7 +36,12 @@ Mask noise_filter(const Mask& obstacles, int n);
 // The obstacle map over `region` (world pixels): every overlay instance's
 // Algorithm 1 mask stamped in, then the noise filter. Exact for any region: the
 // filter reads n-1 pixels past the region's right and bottom edges.
+// `footprints`, when given, holds each sprite's Algorithm 1 mask
+// (sprite_footprints) so a small region does not pay for every sprite's.
 Mask build_obstacle_map(const Tileset& tileset, const PlacedMap& placed, const Params& params,
-                        Rect region);
+                        Rect region, const std::vector<Mask>* footprints = nullptr);
+
+// Every sprite's Algorithm 1 mask (tileset_footprint) under `params`.
+std::vector<Mask> sprite_footprints(const Tileset& tileset, const Params& params);
 
 }  // namespace isolux
