@@ -191,22 +191,29 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     // Some room around what is needed, so a panning camera does not rebuild
     // every frame; never more than the map.
     c.obstacle_region = needed.empty() ? needed : intersect(grow(needed, 256), world.placed.bounds);
-    c.footprints = sprite_footprints(world.tileset, p);
+    // Per sprite: its Algorithm 1 mask and its opacity map, which depend on
+    // the tileset and the parameters only (not on a larger region, nor on edits).
+    if (params_changed || c.sprites_built != world.built_revision || world.built_revision == 0 ||
+        c.footprints.size() != world.tileset.sprites.size()) {
+        c.footprints.clear();
+        st.opacity.clear();
+        for (const Sprite& s : world.tileset.sprites) {
+            if (s.kind != SpriteKind::overlay) {  // floors are never obstacles
+                c.footprints.push_back(Mask{});
+                st.opacity.push_back(opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)));
+                continue;
+            }
+            FootprintReport r;
+            c.footprints.push_back(tileset_footprint(world.tileset, s, p, &r));
+            // Opacity maps of the objects alone: a baked ground diamond or a
+            // baked shadow is ground, lit by the light texture, not by the correction.
+            st.opacity.push_back(std::move(r.estimate));
+        }
+        c.sprites_built = world.built_revision;
+    }
     st.obstacles = build_obstacle_map(world.tileset, world.placed, p, c.obstacle_region, &c.footprints);
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
-    // Opacity maps of the objects alone: a baked ground diamond or a baked
-    // shadow is ground, lit by the light texture, not by the correction.
-    st.opacity.clear();
-    for (const Sprite& s : world.tileset.sprites) {
-        if (s.kind != SpriteKind::overlay) {
-            st.opacity.push_back(opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)));
-            continue;
-        }
-        FootprintReport r;
-        tileset_footprint(world.tileset, s, p, &r);
-        st.opacity.push_back(std::move(r.estimate));
-    }
     c.obstacle_params = p;
     c.world_revision = world.revision;
     c.has_obstacles = true;
@@ -491,8 +498,16 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_
         if (trace.must) st.cache.lights.clear();  // nothing traced is reusable
         LightPlan plan = plan_lights(st.cache, scene, tex_rect, obstacles.part, rep);
         rep.dirty = dirty_region(st.cache, plan, tex_rect, fresh, trace.must, had_lights);
-        // A kept texture is redone only where lights changed.
-        const bool partial = !fresh && !trace.must && !to_clear.empty();
+        // A kept texture is redone only where lights changed, when that is
+        // less work than clearing and adding every light again.
+        bool partial = !fresh && !trace.must && !to_clear.empty();
+        if (partial) {
+            auto area = [](Rect r) { return double(r.w) * r.h; };
+            double whole = 0, part = area(rep.dirty);
+            for (const Rect& c : to_clear) whole += area(c);
+            for (const TracedLight& t : plan.traced) whole += area(t.mask.clip), part += area(intersect(t.mask.clip, rep.dirty));
+            partial = part < whole;
+        }
         trace_and_accumulate(st, world, scene.params, plan, to_clear, tex_rect, partial ? &rep.dirty : nullptr, rep);
         keep_trace(st, scene, plan, rep);
     }

@@ -100,7 +100,7 @@ Mask noise_filter(const Mask& in, int n) {
 std::vector<Mask> sprite_footprints(const Tileset& ts, const Params& p) {
     std::vector<Mask> out;
     out.reserve(ts.sprites.size());
-    for (const Sprite& s : ts.sprites) out.push_back(tileset_footprint(ts, s, p));
+    for (const Sprite& s : ts.sprites) out.push_back(s.kind == SpriteKind::overlay ? tileset_footprint(ts, s, p) : Mask{});
     return out;
 }
 

@@ -52,6 +52,7 @@ struct FrameCache {
     // Algorithm 1 mask (what an edit's partial rebuild stamps).
     bool has_obstacles = false;
     std::vector<Mask> footprints;
+    std::uint64_t sprites_built = 0;  // the World::built_revision footprints and opacity maps were made for
     std::uint64_t world_revision = ~0ull;
     Params obstacle_params;
     Rect obstacle_region;

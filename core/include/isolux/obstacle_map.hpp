@@ -41,7 +41,8 @@ Mask noise_filter(const Mask& obstacles, int n);
 Mask build_obstacle_map(const Tileset& tileset, const PlacedMap& placed, const Params& params,
                         Rect region, const std::vector<Mask>* footprints = nullptr);
 
-// Every sprite's Algorithm 1 mask (tileset_footprint) under `params`.
+// Every overlay sprite's Algorithm 1 mask (tileset_footprint) under
+// `params`; floors (never obstacles) get an empty mask.
 std::vector<Mask> sprite_footprints(const Tileset& tileset, const Params& params);
 
 }  // namespace isolux
