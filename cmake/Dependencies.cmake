@@ -6,3 +6,8 @@ find_package(Threads REQUIRED)
 # does not ship unless OpenCV is installed: drop it so configure succeeds.
 find_package(OpenImageIO CONFIG REQUIRED)
 include(cmake/FixOpenImageIO.cmake)
+
+# Tiled maps: XML, and the layer compressions TMX allows.
+find_package(pugixml CONFIG REQUIRED)
+find_package(ZLIB REQUIRED)
+find_package(zstd CONFIG REQUIRED)

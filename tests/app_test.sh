@@ -345,6 +345,29 @@ if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/c
 grep -q '"Unsaved changes"' "$tmp/prompt.json" && ok || bad "New did not ask about unsaved changes"
 [ "$(json "$tmp/after_new.json" "len(d['lights'])")" = "$(( $(json "$tmp/level.json" "len(d['lights'])") + 1 ))" ] && ok || bad "Cancel on the prompt lost the document"
 
+# 9. Tiled: File > Export > Tiled map, then the map opened as a scene that
+#    lights it (saved as JSON naming the map), rendered as isolux-cli does.
+cat >"$tmp/tiled.script" <<SCRIPT
+wait 2
+export-tiled $tmp/tiled/level.tmx
+wait 1
+load-scene $tmp/tiled/level.tmx
+wait 2
+tool floor
+brush floor water
+click-tile 2 2
+wait 2
+save-scene $tmp/tiled/lighting.json
+quit
+SCRIPT
+mkdir -p "$tmp/tiled"
+if timeout 120 "$app" --scene "$tmp/level.json" --script "$tmp/tiled.script" >"$tmp/log" 2>&1; then ok; else bad "tiled run"; cat "$tmp/log"; fi
+[ -f "$tmp/tiled/level.tmx" ] && [ -f "$tmp/tiled/level_overlays.tsx" ] && ok || bad "the app did not export the Tiled map"
+[ "$(json "$tmp/tiled/lighting.json" "d.get('map')")" = "level.tmx" ] && ok || bad "the opened Tiled map is not the scene's map"
+[ "$(json "$tmp/tiled/lighting.json" "len(d.get('edits', []))")" = "0" ] && ok || bad "terrain tools edited a Tiled map's scene"
+"$cli" render --scene "$tmp/tiled/lighting.json" --out "$tmp/tiled/via_scene.png" >/dev/null 2>&1 || bad "isolux-cli could not render the scene of a Tiled map"
+cmp -s "$tmp/tiled/via_scene.png" "$tmp/level_cli.png" && ok || bad "the Tiled map's scene renders differently from the level it came from"
+
 # 6. No display: a clear message and the headless renderer.
 if env -u DISPLAY "$app" --scene "$src/assets/scenes/default.json" --screenshot "$tmp/nodisplay.png" >"$tmp/log" 2>&1 &&
   grep -q "no display" "$tmp/log" && [ -f "$tmp/nodisplay.png" ]; then ok; else bad "no-display fallback"; cat "$tmp/log"; fi

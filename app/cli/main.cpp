@@ -21,6 +21,7 @@
 #include "isolux/composite.hpp"
 #include "isolux/footprint.hpp"
 #include "isolux/tileset_generator.hpp"
+#include "isolux/tiled.hpp"
 #include "isolux/truth.hpp"
 
 using namespace isolux;
@@ -39,7 +40,7 @@ struct ParamArgs {
 };
 
 struct RenderArgs {
-    std::string seed, size, layout, tileset, scene, view, out;
+    std::string seed, size, layout, tileset, scene, map, view, out;
     ParamArgs params;
     std::string layer = "final";
     std::string reference = "3d";
@@ -332,9 +333,29 @@ void print_param_table() {
     }
 }
 
+// A Tiled map's world and scene, with the render flags applied over them.
+std::pair<Scene, World> tiled_from_args(const RenderArgs& a) {
+    if (!a.scene.empty() || !a.seed.empty() || !a.size.empty() || !a.layout.empty() || !a.tileset.empty())
+        throw Error("--map: the map is the level; --scene, --seed, --size, --layout and --tileset do not apply to it");
+    TiledMap t = load_tiled(a.map);
+    for (const auto& w : t.warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
+    std::cout << "map " << a.map << ": " << t.world.placed.instances.size() << " sprites, " << t.scene.lights.size()
+              << " lights; Tiled's pixel (0, 0) is world (" << t.origin_x << ", " << t.origin_y << ")\n";
+    Scene s = t.scene;
+    s.params = params_from_args(a.params, s.params);
+    for (const std::string& text : a.lights) s.lights.push_back(parse_light(text));
+    return {s, std::move(t.world)};
+}
+
 int run_render(const RenderArgs& a) {
-    Scene s = scene_from_args(a);
-    World w = build_world(s, a.scene.empty() ? "scene" : a.scene);
+    Scene s;
+    World w;
+    if (!a.map.empty()) {
+        std::tie(s, w) = tiled_from_args(a);
+    } else {
+        s = scene_from_args(a);
+        w = build_world(s, a.scene.empty() ? "scene" : a.scene);
+    }
     Rect view = view_from_args(a, s, w);
     check_work(trace_work(s, view) * (a.frames > 1 ? std::max(1, a.frames / std::max(1, s.params.trace_every)) : 1),
                a.allow_huge, "this render");
@@ -501,6 +522,7 @@ int main(int argc, char** argv) {
     render->add_option("--layout", ra.layout, "paper, diamond or staggered (default diamond)");
     render->add_option("--tileset", ra.tileset, "Tileset manifest (default: assets/default/tileset.json)");
     render->add_option("--scene", ra.scene, "Scene JSON file; other flags override its fields");
+    render->add_option("--map", ra.map, "A Tiled map (.tmx, isometric or staggered) to render and light in place of a seeded one");
     render->add_option("--layer", ra.layer,
                        "final (default), light, map, obstacles, opacity, truth (lit by --reference) or difference "
                        "(magenta: lit by the model only; cyan: by the reference only)")
@@ -563,6 +585,13 @@ int main(int argc, char** argv) {
                       "What the error is measured against: every_pixel (default; the model's own 4ab rays), "
                       "exact_line, 3d (the sprites' true shapes) or 3d_facing; a comma list measures each");
 
+    std::string export_scene, export_out;
+    bool export_images = false;
+    CLI::App* export_tiled_cmd = app.add_subcommand("export-tiled", "Write a scene's level as a Tiled map (TMX, TSX, images)");
+    export_tiled_cmd->add_option("--scene", export_scene, "Scene JSON file")->required();
+    export_tiled_cmd->add_option("--out", export_out, "The map to write: DIR/NAME.tmx")->required();
+    export_tiled_cmd->add_flag("--images", export_images, "Also the light texture and the final frame as (hidden) image layers");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -577,6 +606,19 @@ int main(int argc, char** argv) {
         if (*render) return run_render(ra);
         if (*sweep) return run_sweep_command(sa);
         if (*check) return run_check_tileset(ca);
+        if (*export_tiled_cmd) {
+            std::vector<std::string> warnings;
+            const Scene scene = load_scene(export_scene, &warnings);
+            for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
+            const World world = build_world(scene, export_scene);
+            TiledExport opt;
+            opt.images = export_images;
+            const auto [ox, oy] = export_tiled(world, scene, export_out, opt);
+            std::cout << "wrote " << export_out << " (" << world.map.width << "x" << world.map.height << " "
+                      << (world.map.layout == Layout::staggered ? "staggered" : "isometric") << ", " << scene.lights.size()
+                      << " lights; Tiled's pixel (0, 0) is world (" << ox << ", " << oy << "))\n";
+            return 0;
+        }
         if (*preset) {
             save_preset(preset_out, params_from_args(pa, Params{}));
             std::cout << "wrote " << preset_out << "\n";

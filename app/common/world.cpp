@@ -5,10 +5,20 @@
 #include "common/assets.hpp"
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
+#include "isolux/tiled.hpp"
 
 namespace isolux::app {
 
 World build_world(const Scene& scene, std::string_view source, std::vector<std::string>* warnings) {
+    if (!scene.map.empty()) {
+        // A Tiled map: its own tileset and sprites (tiled.hpp).
+        TiledMap t = load_tiled(scene.map);
+        for (const std::string& line : t.warnings) {
+            if (warnings) warnings->push_back(line);
+            else std::cerr << "isolux: warning: " << line << "\n";
+        }
+        return std::move(t.world);
+    }
     std::filesystem::path manifest = scene.tileset;
     if (manifest.empty()) {
         manifest = default_tileset_manifest();

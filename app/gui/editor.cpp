@@ -11,6 +11,7 @@
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
 #include "isolux/hash.hpp"
+#include "isolux/tiled.hpp"
 
 namespace fs = std::filesystem;
 
@@ -20,7 +21,7 @@ namespace {
 
 bool same_world_fields(const Scene& a, const Scene& b) {
     return a.seed == b.seed && a.width == b.width && a.height == b.height && a.layout == b.layout &&
-           a.tileset == b.tileset;
+           a.tileset == b.tileset && a.map == b.map;
 }
 
 void remember_file(Editor& e, const fs::path& path, FileKind kind) {
@@ -338,6 +339,10 @@ void fill_rect(Editor& e) {
 
 void begin_stroke(Editor& e, int col, int row) {
     if (e.brush.tool == Tool::lights) return;
+    if (!e.scene.map.empty()) {
+        set_status(e, "this scene lights a Tiled map: edit its tiles in Tiled (the terrain tools edit seeded maps)", true);
+        return;
+    }
     e.stroke = Stroke{true, e.scene, col, row, col, row};
     ++e.strokes;
     if (e.brush.tool == Tool::floor_fill) {
@@ -441,9 +446,19 @@ bool load_scene_impl(Editor& e, const fs::path& path, double now, bool remember)
     std::vector<std::string> warnings;
     Scene loaded;
     try {
-        loaded = load_scene(path, &warnings);
-        // Build first: a scene whose tileset is broken must not replace the document.
-        World w = build_world(loaded, path.string(), &warnings);
+        World w;
+        if (path.extension() == ".tmx") {
+            // A Tiled map: a new scene lighting it (saved as JSON beside it, never over it).
+            TiledMap t = load_tiled(path);
+            loaded = t.scene;
+            loaded.map = path.string();
+            w = std::move(t.world);
+            warnings = t.warnings;
+        } else {
+            loaded = load_scene(path, &warnings);
+            // Build first: a scene whose tileset is broken must not replace the document.
+            w = build_world(loaded, path.string(), &warnings);
+        }
         Scene before = e.scene;
         e.scene = loaded;
         e.world = std::move(w);
@@ -460,7 +475,7 @@ bool load_scene_impl(Editor& e, const fs::path& path, double now, bool remember)
     e.selected = -1;
     e.selection.clear();
     e.fit_pending = e.view.width == 0;  // a scene without a camera: show all of its map
-    e.scene_path = path;
+    e.scene_path = path.extension() == ".tmx" ? fs::path() : path;
     e.dirty = false;
     e.autosave_due = -1;
     if (remember) remember_file(e, path, FileKind::scene);
@@ -757,6 +772,7 @@ FileKind detect_file_kind(const fs::path& path) {
     std::ifstream f(path, std::ios::binary);
     if (!f) throw Error(path.string() + ": cannot open");
     const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    if (path.extension() == ".tmx") return FileKind::scene;  // a Tiled map opens as a scene lighting it
     // By the fields only each kind has; the loader then checks the file whole.
     if (text.find("\"sprites\"") != std::string::npos) return FileKind::tileset;
     for (const char* k : {"\"seed\"", "\"lights\"", "\"edits\"", "\"width\"", "\"preset\"", "\"camera\""})

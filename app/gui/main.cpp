@@ -20,6 +20,7 @@
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
 #include "isolux/edits.hpp"
+#include "isolux/tiled.hpp"
 #include "isolux/tileset_generator.hpp"
 #include "isolux/truth.hpp"
 
@@ -260,6 +261,12 @@ void run_script_step(App& app) {
         }
     } else if (step.op == "export-final") {
         export_image(app, "final", step.args[0]);
+    } else if (step.op == "export-tiled") {
+        try {
+            export_tiled(e.world, e.scene, step.args[0]);
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
     } else if (step.op == "select") {
         // select I[,J...] (1-based, as the panel numbers them)
         select_light(e, -1);

@@ -12,6 +12,7 @@
 #include "isolux/blur.hpp"
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
+#include "isolux/tiled.hpp"
 
 namespace fs = std::filesystem;
 
@@ -100,10 +101,12 @@ const FileAction file_actions[] = {
     {"load-preset", "Load preset", false, 0},         {"save-preset", "Export preset", true, 0},
     {"load-tileset", "Load tileset manifest", false, 0}, {"export-final", "Export final frame", true, 1},
     {"export-light", "Export light texture", true, 1}, {"export-obstacles", "Export obstacle map", true, 1},
+    {"export-tiled", "Export Tiled map (.tmx)", true, 3},
 };
-const FileFilter file_filters[] = {{"JSON files (*.json)", {".json"}},
+const FileFilter file_filters[] = {{"Scenes and Tiled maps (*.json, *.tmx)", {".json", ".tmx"}},
                                    {"Images (*.png, *.exr)", {".png", ".exr"}},
-                                   {"All files", {}}};
+                                   {"All files", {}},
+                                   {"Tiled maps (*.tmx)", {".tmx"}}};
 constexpr int filter_count = int(sizeof file_filters / sizeof file_filters[0]);
 
 const FileAction* find_action(const std::string& id) {
@@ -141,6 +144,14 @@ void run_file_action(App& app, const std::string& action, const std::string& pat
     else if (action == "export-final") export_image(app, "final", path);
     else if (action == "export-light") export_image(app, "light", path);
     else if (action == "export-obstacles") export_image(app, "obstacles", path);
+    else if (action == "export-tiled") {
+        try {
+            export_tiled(e.world, e.scene, path);
+            set_status(e, "exported the level as a Tiled map: " + path);
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
+    }
 }
 
 void save_or_save_as(App& app) {
@@ -165,7 +176,7 @@ void menu_bar(App& app) {
     if (!ImGui::BeginMainMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("New scene", "Ctrl+N")) new_scene_action(app);
-        if (ImGui::MenuItem("Open scene...", "Ctrl+O")) open_file_popup(app, "open-scene", e.scene_path.string());
+        if (ImGui::MenuItem("Open scene or Tiled map...", "Ctrl+O")) open_file_popup(app, "open-scene", e.scene_path.string());
         if (ImGui::MenuItem("Save scene", "Ctrl+S")) save_or_save_as(app);
         if (ImGui::MenuItem("Save scene as...", "Ctrl+Shift+S"))
             open_file_popup(app, "save-scene", e.scene_path.empty() ? "scene.json" : e.scene_path.string());
@@ -185,6 +196,10 @@ void menu_bar(App& app) {
             if (ImGui::MenuItem("Final frame...")) open_file_popup(app, "export-final", "final.png");
             if (ImGui::MenuItem("Light texture...")) open_file_popup(app, "export-light", "light.png");
             if (ImGui::MenuItem("Obstacle map...")) open_file_popup(app, "export-obstacles", "obstacles.png");
+            ImGui::EndMenu();
+        }
+        if (ImGui::BeginMenu("Export")) {
+            if (ImGui::MenuItem("Tiled map...")) open_file_popup(app, "export-tiled", "level.tmx");
             ImGui::EndMenu();
         }
         if (ImGui::BeginMenu("Recent", !e.settings.recent.empty())) {

@@ -30,7 +30,7 @@ Script load_script(const std::filesystem::path& path) {
             {"overlay", 2}, {"sweep", -1}, {"wait-sweep", 0}, {"apply-point", 1}, {"save-sweep", 1},
             {"tool", 1}, {"brush", 2}, {"view", 3}, {"click-tile", 2}, {"drag-tiles", 4}, {"new", 0}, {"fit", 0},
             {"open-dropped", 1}, {"check-glyphs", 1}, {"dump-panels", 1}, {"export-final", 1}, {"select", 1},
-            {"character", -1}, {"show", 1}};
+            {"character", -1}, {"show", 1}, {"export-tiled", 1}};
         bool known = false;
         for (auto [op, n] : arity)
             if (step.op == op) {

@@ -16,7 +16,7 @@
 //   new | fit | open-dropped PATH (as if dropped on the window) |
 //   check-glyphs TEXT (exit 3 unless the font has each) | dump-panels PATH (every
 //   window's rectangle, JSON lines) | export-final PATH | select I[,J...] |
-//   character on|off [X Y] | show accuracy|inspector|help|stats
+//   character on|off [X Y] | show accuracy|inspector|help|stats | export-tiled PATH.tmx
 // Coordinates are window pixels; '#' starts a comment.
 #pragma once
 #include <filesystem>

@@ -648,7 +648,7 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
     Fields f{j, src};
     check_schema(f, warnings, scene_schema_version);
     f.warn_unknown(
-        {"schema_version", "seed", "width", "height", "layout", "tileset", "preset", "lights", "camera", "edits"},
+        {"schema_version", "seed", "width", "height", "layout", "tileset", "map", "preset", "lights", "camera", "edits"},
         warnings);
     Scene s;
     if (f.has("seed")) s.seed = f.text("seed");
@@ -656,6 +656,7 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
     if (f.has("height")) s.height = int(f.integer("height", 1, max_map_side));
     if (f.has("layout")) s.layout = parse_layout(f.text("layout"), src + ": layout");
     if (f.has("tileset")) s.tileset = f.text("tileset");
+    if (f.has("map")) s.map = f.text("map");
     if (f.has("preset")) {
         const json& p = j["preset"];
         if (p.is_string()) {
@@ -737,6 +738,7 @@ std::string scene_to_json(const Scene& s) {
            {"lights", lights},
            {"camera", {{"x", s.camera.x}, {"y", s.camera.y}, {"width", s.camera.width}, {"height", s.camera.height}}}};
     if (!s.edits.empty()) j["edits"] = edits_json(s.edits);
+    if (!s.map.empty()) j["map"] = s.map;
     return j.dump(2) + "\n";
 }
 
@@ -744,16 +746,19 @@ Scene load_scene(const fs::path& path, std::vector<std::string>* warnings) {
     Scene s = scene_from_json(read_text(path), path.string(), warnings);
     if (!s.tileset.empty() && fs::path(s.tileset).is_relative())
         s.tileset = (path.parent_path() / s.tileset).lexically_normal().string();
+    if (!s.map.empty() && fs::path(s.map).is_relative())
+        s.map = (path.parent_path() / s.map).lexically_normal().string();
     return s;
 }
 
 void save_scene(const fs::path& path, const Scene& scene) {
     validate(scene.params, path.string());
     Scene copy = scene;
-    if (!copy.tileset.empty()) {
+    for (std::string* file : {&copy.tileset, &copy.map}) {
+        if (file->empty()) continue;
         fs::path base = fs::absolute(path).parent_path();
-        fs::path rel = fs::absolute(copy.tileset).lexically_relative(base);
-        if (!rel.empty()) copy.tileset = rel.string();
+        fs::path rel = fs::absolute(*file).lexically_relative(base);
+        if (!rel.empty()) *file = rel.string();
     }
     write_file_atomic(path, scene_to_json(copy));
 }

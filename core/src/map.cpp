@@ -336,6 +336,18 @@ PlacedMap place_sprites(const Map& map, const Tileset& ts, const PlacedMap* orig
     return out;
 }
 
+void finish_placed(PlacedMap& p) {
+    p.bounds = live_bounds(p);
+    p.grid_x = p.bounds.x;
+    p.grid_y = p.bounds.y;
+    p.grid_w = (p.bounds.w + p.cell - 1) / p.cell;
+    p.grid_h = (p.bounds.h + p.cell - 1) / p.cell;
+    p.grid.assign(std::size_t(p.grid_w) * p.grid_h, {});
+    for (std::size_t i = 0; i < p.instances.size(); ++i) grid_add(p, std::uint32_t(i));
+    p.tile_instances.clear();
+    p.in_index_order = true;
+}
+
 Rect replace_tile(PlacedMap& p, const Map& map, const Tileset& ts, int col, int row, const Tile& tile) {
     assert(col >= 0 && row >= 0 && col < map.width && row < map.height && tile.floor >= 0);
     const int idx = row * map.width + col;

@@ -112,6 +112,10 @@ void instances_in(const PlacedMap& placed, Rect r, bool overlays_only, std::vect
 // map's, so that its edited copy keeps the same world pixels).
 PlacedMap place_sprites(const Map& map, const Tileset& tileset, const PlacedMap* origin_of = nullptr);
 
+// Completes a PlacedMap built by hand (instances in draw order, floors
+// first): its bounds and grid. Such a map is lit and drawn, not edited.
+void finish_placed(PlacedMap& placed);
+
 // Gives tile (col, row) of `placed` the sprites of `tile`, in place, touching
 // only the grid cells they cover: an edit costs what it touches, not the
 // map's size. `map` holds the tile's placement (layout and tile size).

@@ -51,6 +51,7 @@ struct Scene {
     int width = default_map_side, height = default_map_side;
     Layout layout = Layout::diamond;
     std::string tileset;  // manifest path; empty: the default tileset
+    std::string map;      // a Tiled map (.tmx) this scene lights instead of a seeded one; empty: seeded
     Params params;
     std::vector<Light> lights;
     Camera camera;

@@ -1,0 +1,52 @@
+// Tiled maps (TMX, https://doc.mapeditor.org/en/stable/reference/tmx-map-format/):
+// a level out of isolux into any engine's Tiled importer, and Tiled's
+// isometric and staggered maps into isolux to be lit. File I/O like files.hpp:
+// every reader throws Error naming the file and the element; every writer is
+// atomic. The rules (which layer is the floor, how sprites are anchored, the
+// paper layout's nearest form) are in docs/guide.md, "Tiled maps".
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "isolux/frame.hpp"
+#include "isolux/scene.hpp"
+#include "isolux/world.hpp"
+
+namespace isolux {
+
+struct TiledExport {
+    bool images = false;  // the light texture and the final frame as image layers (PNG beside the map)
+};
+
+// Writes `tmx` (DIR/NAME.tmx) for the scene's level: floors as a tile layer
+// (diamond: an isometric map; staggered: a staggered one; paper: floors as
+// tile objects, the sheared grid having no Tiled form), overlays as tile
+// objects in draw order, an object layer `lights` (one point each, with
+// color, a, b, intensity and height properties), an object layer
+// `obstacles` (the obstacle map as polygons), the preset's parameters as map
+// properties, and the tilesets as external TSX files (NAME_floors.tsx,
+// NAME_overlays.tsx) with their images in NAME_images/. Returns the world
+// pixel that Tiled's map pixel (0, 0) is (also written as the map
+// properties isolux_origin_x and isolux_origin_y).
+std::pair<int, int> export_tiled(const World& world, const Scene& scene, const std::filesystem::path& tmx,
+                                 const TiledExport& options = {});
+
+// A Tiled map loaded as isolux's world: its own tileset (each tile used, as
+// drawn: anchored and flipped as Tiled draws it), the sprites placed exactly
+// where Tiled draws them and in its order, the `lights` layer as lights and
+// the map properties as the preset.
+struct TiledMap {
+    Scene scene;
+    World world;
+    std::vector<std::string> warnings;
+    int origin_x = 0, origin_y = 0;  // the world pixel of Tiled's screen pixel (0, 0)
+};
+TiledMap load_tiled(const std::filesystem::path& tmx);
+
+// Limits a TMX file may not exceed: tiles per layer side, and decoded bytes
+// per layer (a compression bomb is refused, not inflated).
+inline constexpr int max_tiled_side = 4096;
+inline constexpr std::size_t max_tiled_layer_bytes = std::size_t(64) << 20;
+
+}  // namespace isolux
