@@ -70,6 +70,8 @@ def judge(tmx, what, scene=None):
     d = subprocess.run(["idiff", "-fail", "0.0079", "-warn", "0.0079", "-failpercent", "0.5", tiled, ours],
                        capture_output=True, text=True)
     check(d.returncode in (0, 1), f"{what}: isolux and tmxrasterizer differ\n{d.stdout[-600:]}")
+    over = re.search(r"(\d+) pixels \(([0-9.]+)%\) over", d.stdout)
+    print(f"{what}: {w}x{h}, {over.group(1) if over else 0} pixels over 2/255")
 
 
 # ---------------------------------------------------------------- 1, 2: export
@@ -202,6 +204,13 @@ if os.path.exists(example):
     for f in ["isometric_grass_and_water.tmx", "isometric_grass_and_water.png"]:
         shutil.copy(os.path.join(os.path.dirname(example), f), ex)
     judge(os.path.join(ex, "isometric_grass_and_water.tmx"), "tiled_example_isometric")
+
+# Tiled's own orthogonal example is refused by name.
+desert = "/usr/share/doc/tiled/examples/desert.tmx"
+if os.path.exists(desert):
+    p = run(cli, "render", "--map", desert, "--out", os.path.join(tmp, "desert.png"), expect=2)
+    check(p.returncode == 2 and "desert.tmx" in p.stderr and "orthogonal" in p.stderr,
+          "an orthogonal map is refused with a clear message: " + p.stderr)
 
 # ---------------------------------------------------------------- 4: bad maps
 good = hand_map("isometric", "csv")
