@@ -805,12 +805,14 @@ TiledMap load_tiled(const fs::path& tmx) {
     };
     std::vector<Placed> placed;
     bool first_tile_layer = true, overlay_seen = false;
+    int tile_layers = 0;
     std::function<void(const pugi::xml_node&, double, double)> walk = [&](const pugi::xml_node& parent, double ox, double oy) {
         for (pugi::xml_node layer : parent.children()) {
             const std::string type = layer.name();
             if (type != "layer" && type != "objectgroup" && type != "group" && type != "imagelayer") continue;
             if (std::string(layer.attribute("visible").value()) == "0") continue;
             const double lx = ox + real_attr(tmx, layer, "offsetx", 0), ly = oy + real_attr(tmx, layer, "offsety", 0);
+            if (std::abs(lx) > 1e7 || std::abs(ly) > 1e7) fail(tmx, layer, "is offset beyond 1e7 pixels");
             if (type == "group") {
                 walk(layer, lx, ly);
                 continue;
@@ -828,13 +830,17 @@ TiledMap load_tiled(const fs::path& tmx) {
                 first_tile_layer = false;
                 // Tiled's painter order: isometric by screen rows (x + y, then x);
                 // staggered row by row.
+                if (++tile_layers > max_tiled_layers)
+                    fail(tmx, layer, "is one layer too many: at most " + std::to_string(max_tiled_layers) + " tile layers");
                 std::vector<std::pair<int, int>> order;
-                for (int y = 0; y < g.h; ++y)
-                    for (int x = 0; x < g.w; ++x) order.push_back({x, y});
-                if (g.isometric)
-                    std::stable_sort(order.begin(), order.end(), [](auto a, auto b) {
-                        return a.first + a.second != b.first + b.second ? a.first + a.second < b.first + b.second : a.first < b.first;
-                    });
+                order.reserve(std::size_t(g.w) * g.h);
+                if (g.isometric) {
+                    for (int d = 0; d < g.w + g.h - 1; ++d)  // screen rows: x + y = d, x increasing
+                        for (int x = std::max(0, d - (g.h - 1)); x <= std::min(d, g.w - 1); ++x) order.push_back({x, d - x});
+                } else {
+                    for (int y = 0; y < g.h; ++y)
+                        for (int x = 0; x < g.w; ++x) order.push_back({x, y});
+                }
                 for (auto [x, y] : order) {
                     const std::uint32_t raw = gids[std::size_t(y) * g.w + x];
                     if ((raw & gid_mask) == 0) continue;
@@ -873,6 +879,7 @@ TiledMap load_tiled(const fs::path& tmx) {
                 double sx = 0, sy = 0;
                 g.object_to_screen(real_attr(tmx, o, "x", 0), real_attr(tmx, o, "y", 0), sx, sy);
                 sx += lx, sy += ly;
+                if (std::abs(sx) > 1e8 || std::abs(sy) > 1e8) fail(tmx, o, "lies too far from the map (beyond 1e8 pixels)");
                 if (lights) {
                     Light l;
                     l.x = sx, l.y = sy;  // shifted to world pixels below
@@ -940,8 +947,11 @@ TiledMap load_tiled(const fs::path& tmx) {
     for (const Placed& p : placed) x0 = std::min(x0, p.in.x), y0 = std::min(y0, p.in.y);
     // A map isolux exported keeps its world pixels (lights stay where they were).
     if (!property(m, "isolux_origin_x").empty() && !property(m, "isolux_origin_y").empty()) {
-        x0 = -std::atoi(property(m, "isolux_origin_x").c_str());
-        y0 = -std::atoi(property(m, "isolux_origin_y").c_str());
+        const long ox = std::strtol(property(m, "isolux_origin_x").c_str(), nullptr, 10);
+        const long oy = std::strtol(property(m, "isolux_origin_y").c_str(), nullptr, 10);
+        if (std::labs(ox) > 100000000 || std::labs(oy) > 100000000) fail(tmx, m, "isolux_origin lies beyond 1e8 pixels");
+        x0 = -int(ox);
+        y0 = -int(oy);
     }
     PlacedMap& pm = out.world.placed;
     for (const Placed& p : placed)

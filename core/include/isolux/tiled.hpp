@@ -44,9 +44,10 @@ struct TiledMap {
 };
 TiledMap load_tiled(const std::filesystem::path& tmx);
 
-// Limits a TMX file may not exceed: tiles per layer side, and decoded bytes
-// per layer (a compression bomb is refused, not inflated).
-inline constexpr int max_tiled_side = 4096;
-inline constexpr std::size_t max_tiled_layer_bytes = std::size_t(64) << 20;
+// Limits a TMX file may not exceed: tiles per map side (as isolux's own
+// maps), and layers (each is width x height tiles once decoded: a
+// compression bomb is refused at that size, not inflated).
+inline constexpr int max_tiled_side = 1024;
+inline constexpr int max_tiled_layers = 256;
 
 }  // namespace isolux
