@@ -26,6 +26,7 @@ struct Stats {
     int head = 0;
     float frame_ms = 0, fps = 0;
     int lights_traced = 0;
+    Rect last_rebuilt;  // the last frame report's rebuilt rectangle that was not empty (an edit's, or a full rebuild's)
 };
 
 struct Ui {

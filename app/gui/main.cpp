@@ -349,6 +349,7 @@ void push_stats(App& app, const FrameReport& rep, double frame_ms, double dt) {
     s.head = (s.head + 1) % Stats::frames;
     s.last_ran = rep.ran;
     s.lights_traced = rep.lights_traced;
+    if (!rep.rebuilt.empty()) s.last_rebuilt = rep.rebuilt;
     s.frame_ms = s.frame_ms * 0.9f + float(frame_ms) * 0.1f;
     if (dt > 0) s.fps = s.fps * 0.9f + float(1.0 / dt) * 0.1f;
 }

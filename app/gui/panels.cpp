@@ -944,6 +944,10 @@ void stats_panel(App& app) {
     if (!ImGui::Begin("Stats", &app.editor.settings.show_stats)) return ImGui::End();
     const Stats& s = app.stats;
     ImGui::Text("%.1f FPS, %.2f ms a frame, %d lights traced", s.fps, s.frame_ms, s.lights_traced);
+    const Rect& rb = s.last_rebuilt;
+    ImGui::Text("last rebuilt: %d x %d px at (%d, %d)", rb.w, rb.h, rb.x, rb.y);
+    help("The world rectangle whose obstacle map was last rebuilt: around the edited tiles after a terrain edit, the "
+         "whole region the lights need after a change of Δy, n, the threshold or the map.");
     std::string ran = "ran:";
     for (int k = 0; k < stage_count; ++k)
         if (s.last_ran[k]) ran += std::string(" ") + std::string(to_string(Stage(k)));

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
+#include <csignal>
 #include <climits>
 #include <cmath>
 #include <fstream>
@@ -54,6 +56,28 @@ fs::path temp_sibling(const fs::path& path) {
     return tmp;
 }
 
+// Temporary siblings of `path` left by a process that no longer runs (one
+// killed mid-save): removed, so a killed session leaves no litter. Only our
+// own pattern (".STEM.tmpPID_N.EXT") and only dead writers' files.
+void remove_stale_temps(const fs::path& path) {
+    const std::string prefix = "." + path.stem().string() + ".tmp";
+    std::error_code ec;
+    fs::directory_iterator it(path.parent_path().empty() ? fs::path(".") : path.parent_path(), ec);
+    int seen = 0;
+    for (; !ec && it != fs::directory_iterator() && ++seen < 100000; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.rfind(prefix, 0) != 0) continue;
+        const std::size_t digits = name.find('_', prefix.size());
+        if (digits == std::string::npos || digits == prefix.size()) continue;
+        const std::string pid_text = name.substr(prefix.size(), digits - prefix.size());
+        if (pid_text.find_first_not_of("0123456789") != std::string::npos || pid_text.size() > 9) continue;
+        const long pid = std::stol(pid_text);
+        if (pid == ::getpid() || ::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+        std::error_code rm;
+        fs::remove(it->path(), rm);
+    }
+}
+
 // Replaces `path` by the finished temporary file, keeping the old file's
 // permissions (a 600 file stays 600).
 void commit_temp(const fs::path& tmp, const fs::path& path) {
@@ -65,6 +89,7 @@ void commit_temp(const fs::path& tmp, const fs::path& path) {
         fs::remove(tmp, ec);
         throw Error(quoted(path) + ": cannot write: " + ec.message());
     }
+    remove_stale_temps(path);
 }
 
 }  // namespace
