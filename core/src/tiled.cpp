@@ -448,7 +448,7 @@ double real_attr(const fs::path& file, const pugi::xml_node& node, const char* n
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0' || !std::isfinite(v) || std::abs(v) > 1e9)
-        fail(file, node, std::string(name) + "=\"" + text + "\" is not a number");
+        fail(file, node, std::string(name) + "=\"" + text + "\" is not a number in [-1e9, 1e9]");
     return v;
 }
 

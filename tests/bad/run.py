@@ -194,6 +194,49 @@ for name, path, frag in [("fifo", T("fifo.json"), "FIFO"), ("loop", T("loop_a.js
 case("path_tileset_fifo", R + ["--tileset", T("fifo.json")], 2, "FIFO")
 case("path_check_tileset_loop", ["check-tileset", T("loop_a.json")], 2, "loop_a.json")
 
+# 6. Tiled maps (render --map): the TMX reader's refusals, and its paths.
+import base64 as _b64, zlib as _zlib
+def tmx(name, body, attrs='orientation="isometric" width="2" height="2" tilewidth="64" tileheight="32"', frag=None, want=2):
+    path = write(os.path.join("tmx", name + ".tmx"), f'<?xml version="1.0"?><map {attrs}>{body}</map>')
+    case("tmx_" + name, ["render", "--map", path, "--out", T("out.png")], want, name if frag is None else frag)
+TS = '<tileset firstgid="1" name="t" tilewidth="64" tileheight="64" tilecount="1" columns="0"><tile id="0"><image source="t.png" width="2" height="2"/></tile></tileset>'
+write(os.path.join("tmx", "t.png"), png(2, 2))
+L = lambda data: f'<layer name="g" width="2" height="2">{data}</layer>'
+tmx("ok", TS + L('<data encoding="csv">1,1,1,1</data>'), frag="", want=0)
+tmx("orthogonal", TS, attrs='orientation="orthogonal" width="2" height="2" tilewidth="64" tileheight="32"')
+tmx("hexagonal", TS, attrs='orientation="hexagonal" width="2" height="2" tilewidth="64" tileheight="32"')
+tmx("no_map", "", frag="no <map>")
+write(os.path.join("tmx", "no_map.tmx"), "<notamap/>")
+tmx("huge_side", TS, attrs='orientation="isometric" width="100000" height="2" tilewidth="64" tileheight="32"', frag="width")
+tmx("zero_tile", TS, attrs='orientation="isometric" width="2" height="2" tilewidth="0" tileheight="32"', frag="tilewidth")
+tmx("missing_tsx", '<tileset firstgid="1" source="nope.tsx"/>' + L('<data encoding="csv">1,1,1,1</data>'), frag="nope.tsx")
+tmx("missing_image", TS.replace("t.png", "nope.png") + L('<data encoding="csv">1,1,1,1</data>'), frag="nope.png")
+tmx("gid_beyond", TS + L('<data encoding="csv">1,1,1,7</data>'), frag="gid 7")
+tmx("short_csv", TS + L('<data encoding="csv">1,1,1</data>'), frag="holds 3 tiles")
+tmx("long_csv", TS + L('<data encoding="csv">1,1,1,1,1</data>'), frag="holds 5 tiles")
+tmx("csv_junk", TS + L('<data encoding="csv">1,x,1,1</data>'), frag="not a gid")
+tmx("base64_junk", TS + L('<data encoding="base64">@@@@</data>'), frag="base64")
+tmx("unknown_encoding", TS + L('<data encoding="hex">00</data>'), frag="hex")
+tmx("unknown_compression", TS + L('<data encoding="base64" compression="lzma">AAAA</data>'), frag="lzma")
+tmx("zlib_corrupt", TS + L('<data encoding="base64" compression="zlib">AAAAAAAA</data>'), frag="corrupt")
+tmx("zstd_corrupt", TS + L('<data encoding="base64" compression="zstd">AAAAAAAA</data>'), frag="corrupt")
+bomb = _b64.b64encode(_zlib.compress(bytes(256 << 20), 9)).decode()
+tmx("zlib_bomb", TS + L(f'<data encoding="base64" compression="zlib">{bomb}</data>'), frag="bomb")
+tmx("wrong_layer_size", TS + '<layer name="g" width="3" height="2"><data encoding="csv">1,1,1,1,1,1</data></layer>', frag="is 3x2")
+tmx("infinite", TS, attrs='orientation="isometric" infinite="1" width="2" height="2" tilewidth="64" tileheight="32"')
+tmx("chunks", TS + L('<data encoding="csv"><chunk x="0" y="0" width="2" height="2">1,1,1,1</chunk></data>'), frag="chunks")
+tmx("stagger_x", TS, attrs='orientation="staggered" staggeraxis="x" width="2" height="2" tilewidth="64" tileheight="32"')
+tmx("far_object", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup name="o"><object gid="1" x="1e12" y="0"/></objectgroup>', frag="[-1e9, 1e9]")
+tmx("far_object_projected", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup name="o"><object gid="1" x="9e8" y="-9e8"/></objectgroup>', frag="too far")
+tmx("nan_object", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup name="o"><object gid="1" x="nan" y="0"/></objectgroup>', frag="not a number")
+tmx("big_gid", TS + L('<data encoding="csv">1,1,1,99999999999</data>'), frag="not a gid")
+tmx("floor_above_overlay", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup name="o"><object gid="1" x="0" y="0"/></objectgroup>' + '<layer name="f" width="2" height="2"><properties><property name="isolux_kind" value="floor"/></properties><data encoding="csv">1,1,1,1</data></layer>', frag="floor layer above")
+tmx("bad_light", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup name="lights"><object x="1" y="1"><properties><property name="a" value="-5"/></properties><point/></object></objectgroup>', frag="property a")
+tmx("malformed", TS + "<layer", frag="malformed XML")
+case("tmx_fifo", ["render", "--map", T("fifo.json"), "--out", T("out.png")], 2, "FIFO")
+case("tmx_loop", ["render", "--map", T("loop_a.json"), "--out", T("out.png")], 2, "loop_a.json")
+case("tmx_with_seed", ["render", "--map", T(os.path.join("tmx", "ok.tmx")), "--seed", "x", "--out", T("out.png")], 2, "do not apply")
+
 # Run them all.
 failures = []
 worst_s = worst_mb = 0.0
