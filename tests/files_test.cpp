@@ -387,7 +387,7 @@ TEST(Tileset, footprintsAreReadAndBadOnesNameTheEntry) {
     }
 }
 
-TEST(Files, savingThroughASymlinkKeepsTheLinkAndTheModeAndAFullDiskKeepsTheOldFile) {
+TEST(Files, savingThroughASymlinkKeepsTheLinkAndTheModeAndALoopIsRefused) {
     TempDir d;
     fs::create_directories(d.path / "real");
     const fs::path target = d.path / "real" / "scene.json", link = d.path / "scene.json";
