@@ -151,13 +151,22 @@ TEST(Files, droppedFilesOpenAsWhatTheyAre) {
     EXPECT_EQ(detect_file_kind(d.dir / "level.json"), FileKind::scene);
     EXPECT_EQ(detect_file_kind(d.dir / "tuned.json"), FileKind::preset);
     EXPECT_EQ(detect_file_kind(std::string(ISOLUX_ASSETS_DIR) + "/default/tileset.json"), FileKind::tileset);
-    ASSERT_TRUE(open_dropped(e, d.dir / "tuned.json", 1)) << e.status;
+    // As the app opens a dropped file: as the kind it detects.
+    auto drop = [&](const fs::path& path, double now) {
+        return open_recent(e, RecentFile{path.string(), detect_file_kind(path)}, now);
+    };
+    ASSERT_TRUE(drop(d.dir / "tuned.json", 1)) << e.status;
     EXPECT_EQ(e.scene.params.delta_y, 17);
-    ASSERT_TRUE(open_dropped(e, d.dir / "level.json", 2)) << e.status;
+    ASSERT_TRUE(drop(d.dir / "level.json", 2)) << e.status;
     EXPECT_EQ(e.scene.seed, "dropped");
     // A folder or a missing file is a message naming it, not a crash.
-    EXPECT_FALSE(open_dropped(e, d.dir, 3));
-    EXPECT_NE(e.status.find(d.dir.string()), std::string::npos) << e.status;
+    std::string message;
+    try {
+        drop(d.dir, 3);
+    } catch (const Error& err) {
+        message = err.what();
+    }
+    EXPECT_NE(message.find(d.dir.string()), std::string::npos) << message;
     EXPECT_EQ(e.scene.seed, "dropped");
 }
 

@@ -33,6 +33,13 @@ void remember_file(Editor& e, const fs::path& path, FileKind kind) {
     }
 }
 
+// A new world: the frame's caches start over, its options stay.
+void fresh_frame(Editor& e) {
+    const FrameOptions keep = e.frame.options;
+    e.frame = FrameState{};
+    e.frame.options = keep;
+}
+
 // A scene's camera becomes the view; the document keeps none while editing.
 void take_camera(Editor& e) {
     e.view.x = e.scene.camera.x;
@@ -106,9 +113,7 @@ bool sync_world(Editor& e) {
         World w = build_world(e.scene, "edits", &warnings);
         e.world = std::move(w);
         e.world_source = e.scene;
-        FrameOptions keep = e.frame.options;
-        e.frame = FrameState{};
-        e.frame.options = keep;
+        fresh_frame(e);
         return true;
     } catch (const Error& err) {
         set_status(e, err.what(), true);
@@ -463,9 +468,7 @@ bool load_scene_impl(Editor& e, const fs::path& path, double now, bool remember)
         e.scene = loaded;
         e.world = std::move(w);
         e.world_source = loaded;
-        FrameOptions keep = e.frame.options;
-        e.frame = FrameState{};
-        e.frame.options = keep;
+        fresh_frame(e);
         take_camera(e);
         commit_edit(e, before, now);
     } catch (const Error& err) {
@@ -748,9 +751,7 @@ void new_scene(Editor& e, double now) {
     e.scene = fresh;
     e.world = std::move(w);
     e.world_source = fresh;
-    FrameOptions keep = e.frame.options;
-    e.frame = FrameState{};
-    e.frame.options = keep;
+    fresh_frame(e);
     commit_edit(e, before, now);  // New can be undone
     e.scene_path.clear();
     e.dirty = false;
@@ -778,17 +779,6 @@ FileKind detect_file_kind(const fs::path& path) {
     for (const char* k : {"\"seed\"", "\"lights\"", "\"edits\"", "\"width\"", "\"preset\"", "\"camera\""})
         if (text.find(k) != std::string::npos) return FileKind::scene;
     return FileKind::preset;
-}
-
-bool open_dropped(Editor& e, const fs::path& path, double now) {
-    FileKind kind;
-    try {
-        kind = detect_file_kind(path);
-    } catch (const Error& err) {
-        set_status(e, err.what(), true);
-        return false;
-    }
-    return open_recent(e, RecentFile{path.string(), kind}, now);
 }
 
 void fit_view(View& v, Rect world, Rect area) {

@@ -236,10 +236,9 @@ void new_scene(Editor& e, double now);
 std::string window_title(const Editor& e);
 // What a JSON file is, from its fields: a scene (seed, lights, edits, ...),
 // a tileset manifest (sprites) or a preset (parameters only). Throws Error
-// naming the file when it is none of them or unreadable.
+// naming the file when it is none of them or unreadable. A file dropped on
+// the window opens as what this says (open_recent).
 FileKind detect_file_kind(const std::filesystem::path& path);
-// Opens a file dropped on the window as what it is.
-bool open_dropped(Editor& e, const std::filesystem::path& path, double now);
 
 // The zoom and position that show `world` whole and centred in the window
 // rectangle `area` (window pixels), zoom within [min_zoom, max_zoom].

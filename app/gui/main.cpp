@@ -593,16 +593,20 @@ int main(int argc, char** argv) {
         run_script_step(app);
         ImGui::NewFrame();
         for (const std::string& path : std::vector<std::string>(std::move(app.ui.dropped))) {
-            // A dropped scene replaces the document: ask first when it is unsaved.
+            FileKind kind;
             try {
-                if (detect_file_kind(path) == FileKind::scene) {
-                    guard_unsaved(app, "opening " + fs::path(path).filename().string(),
-                                  [&app, path] { open_dropped(app.editor, path, app.now); });
-                    continue;
-                }
-            } catch (const Error&) {
+                kind = detect_file_kind(path);
+            } catch (const Error& err) {
+                set_status(app.editor, err.what(), true);
+                continue;
             }
-            open_dropped(app.editor, path, app.now);  // reports what is wrong
+            const RecentFile file{path, kind};
+            // A dropped scene replaces the document: ask first when it is unsaved.
+            if (kind == FileKind::scene)
+                guard_unsaved(app, "opening " + fs::path(path).filename().string(),
+                              [&app, file] { open_recent(app.editor, file, app.now); });
+            else
+                open_recent(app.editor, file, app.now);
         }
         app.ui.dropped.clear();
         if (!screenshot_mode) {

@@ -75,14 +75,6 @@ Rect grow(Rect r, int by) { return {r.x - by, r.y - by, r.w + 2 * by, r.h + 2 * 
 
 bool covers(Rect outer, Rect inner) { return intersect(outer, inner) == inner; }
 
-Rect bounding(Rect a, Rect b) {
-    if (a.empty()) return b;
-    if (b.empty()) return a;
-    const int x0 = std::min(a.x, b.x), y0 = std::min(a.y, b.y);
-    const int x1 = std::max(a.x + a.w, b.x + b.w), y1 = std::max(a.y + a.h, b.y + b.h);
-    return {x0, y0, x1 - x0, y1 - y0};
-}
-
 // Whether a parameter that `stage` reads changed from `before` to `now`.
 bool params_changed_for(Stage stage, const Params& before, const Params& now) {
     return !(before == now) && stages_changed(before, now).has(stage);  // equal: the still frame's fast answer
@@ -340,13 +332,13 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     };
     const int bands = std::max(1, std::min(threads_wanted * 8, tex_rect.h / 32));
     std::atomic<int> next_band{0};
+    // Only where lights changed (`redo`), when the rest of the texture still
+    // holds the sum of unchanged lights; everything they covered otherwise.
+    const std::vector<Rect> clear = redo ? std::vector<Rect>{*redo} : to_clear;
     auto accumulate_band = [&](int k) {
         const int y0 = tex_rect.y + int(std::int64_t(tex_rect.h) * k / bands);
         const int y1 = tex_rect.y + int(std::int64_t(tex_rect.h) * (k + 1) / bands);
-        // Only where lights changed (`redo`), when the rest of the texture
-        // still holds the sum of unchanged lights; everything they covered otherwise.
-        const std::vector<Rect> only_redo = redo ? std::vector<Rect>{*redo} : std::vector<Rect>{};
-        for (const Rect& c : redo ? only_redo : to_clear) {
+        for (const Rect& c : clear) {
             const Rect z = intersect(intersect(c, tex_rect), Rect{tex_rect.x, y0, tex_rect.w, y1 - y0});
             for (int y = z.y; y < z.y + z.h; ++y)
                 std::memset(&st.traced.rgb[(std::size_t(y - tex_rect.y) * tex_rect.w + (z.x - tex_rect.x)) * 3], 0,

@@ -179,14 +179,6 @@ SpriteInstance make_instance(const Tileset& ts, int sprite, int gx, int gy, int 
 
 Rect rect_of(const SpriteInstance& in) { return {in.x, in.y, in.w, in.h}; }
 
-Rect bounding(Rect a, Rect b) {
-    if (a.empty()) return b;
-    if (b.empty()) return a;
-    const int x0 = std::min(a.x, b.x), y0 = std::min(a.y, b.y);
-    const int x1 = std::max(a.x + a.w, b.x + b.w), y1 = std::max(a.y + a.h, b.y + b.h);
-    return {x0, y0, x1 - x0, y1 - y0};
-}
-
 // The grid cells a world rectangle meets, clamped to the grid.
 struct CellRange {
     int x0 = 0, y0 = 0, x1 = -1, y1 = -1;

@@ -97,13 +97,6 @@ Mask noise_filter(const Mask& in, int n) {
     return out;
 }
 
-std::vector<Mask> sprite_footprints(const Tileset& ts, const Params& p) {
-    std::vector<Mask> out;
-    out.reserve(ts.sprites.size());
-    for (const Sprite& s : ts.sprites) out.push_back(s.kind == SpriteKind::overlay ? tileset_footprint(ts, s, p) : Mask{});
-    return out;
-}
-
 Mask build_obstacle_map(const Tileset& ts, const PlacedMap& placed, const Params& p, Rect region,
                         const std::vector<Mask>* footprints) {
     assert(p.delta_y >= 1 && p.noise_window >= 1 && p.opacity_threshold >= 0 && p.opacity_threshold <= 1);

@@ -732,14 +732,19 @@ TiledMap load_tiled(const fs::path& tmx) {
     ts.tile_height = g.th;
     ts.source = tmx.string();
     // One isolux sprite per (gid with its flips, kind), made when first used.
+    // The tileset a gid (flags removed) falls in: the last one starting at or below it.
+    auto set_of = [&](std::uint32_t gid) -> const TiledTileset* {
+        const TiledTileset* set = nullptr;
+        for (const TiledTileset& s : sets)
+            if (std::uint32_t(s.firstgid) <= gid) set = &s;
+        return set;
+    };
     std::map<std::pair<std::uint32_t, bool>, int> sprite_of;
     auto sprite_for = [&](const pugi::xml_node& where, std::uint32_t raw, bool floor) -> int {
         auto key = std::make_pair(raw & ~rotate_hex, floor);
         if (auto it = sprite_of.find(key); it != sprite_of.end()) return it->second;
         const std::uint32_t gid = raw & gid_mask;
-        const TiledTileset* set = nullptr;
-        for (const TiledTileset& s : sets)
-            if (std::uint32_t(s.firstgid) <= gid) set = &s;
+        const TiledTileset* set = set_of(gid);
         const int id = set ? int(gid - std::uint32_t(set->firstgid)) : -1;
         if (!set || !set->images.count(id))
             fail(tmx, where, "gid " + std::to_string(gid) + " is beyond the tilesets (" + std::to_string(sets.size()) + " of them)");
@@ -769,8 +774,8 @@ TiledMap load_tiled(const fs::path& tmx) {
             s.anchor_x = integer(get("isolux_anchor_x"), s.anchor_x);
             s.anchor_y = integer(get("isolux_anchor_y"), s.anchor_y);
             if (!get("isolux_name").empty()) s.name = get("isolux_name");
-            for (std::size_t pos = 0; !get("isolux_tags").empty() && pos <= get("isolux_tags").size();) {
-                const std::string tags = get("isolux_tags");
+            const std::string tags = get("isolux_tags");
+            for (std::size_t pos = 0; !tags.empty() && pos <= tags.size();) {
                 const std::size_t end = std::min(tags.find(',', pos), tags.size());
                 s.tags.push_back(tags.substr(pos, end - pos));
                 pos = end + 1;
@@ -790,12 +795,10 @@ TiledMap load_tiled(const fs::path& tmx) {
     };
     auto kind_of = [&](std::uint32_t raw) -> std::string {
         const std::uint32_t gid = raw & gid_mask;
-        for (auto it = sets.rbegin(); it != sets.rend(); ++it)
-            if (std::uint32_t(it->firstgid) <= gid) {
-                auto k = it->kinds.find(int(gid - std::uint32_t(it->firstgid)));
-                return k != it->kinds.end() ? k->second : it->kind;
-            }
-        return "";
+        const TiledTileset* set = set_of(gid);
+        if (!set) return "";
+        auto k = set->kinds.find(int(gid - std::uint32_t(set->firstgid)));
+        return k != set->kinds.end() ? k->second : set->kind;
     };
 
     // The layers, in Tiled's order (groups flattened, their offsets added).
@@ -911,9 +914,7 @@ TiledMap load_tiled(const fs::path& tmx) {
                 const int sprite = sprite_for(o, raw, false);
                 overlay_seen = true;
                 const Sprite& s = ts.sprites[std::size_t(sprite)];
-                const TiledTileset* set = nullptr;
-                for (const TiledTileset& t : sets)
-                    if (std::uint32_t(t.firstgid) <= (raw & gid_mask)) set = &t;
+                const TiledTileset* set = set_of(raw & gid_mask);
                 const double w = real_attr(tmx, o, "width", s.image.width), h = real_attr(tmx, o, "height", s.image.height);
                 if (std::abs(w - s.image.width) > 0.01 || std::abs(h - s.image.height) > 0.01)
                     out.warnings.push_back(where_of(tmx, o) + ": scaled tile objects are drawn at their image's size");

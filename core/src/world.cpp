@@ -15,14 +15,6 @@ std::atomic<std::uint64_t> next_revision{1};
 // Changes remembered for caches; older ones make a cache rebuild everything.
 constexpr std::size_t max_changes = 4096;
 
-Rect bounding(Rect a, Rect b) {
-    if (a.empty()) return b;
-    if (b.empty()) return a;
-    const int x0 = std::min(a.x, b.x), y0 = std::min(a.y, b.y);
-    const int x1 = std::max(a.x + a.w, b.x + b.w), y1 = std::max(a.y + a.h, b.y + b.h);
-    return {x0, y0, x1 - x0, y1 - y0};
-}
-
 }  // namespace
 
 void touch(World& w) {

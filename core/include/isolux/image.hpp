@@ -18,6 +18,9 @@ struct Rect {
 // Intersection of two rectangles (empty when they do not meet).
 Rect intersect(const Rect& a, const Rect& b);
 
+// The smallest rectangle holding both (an empty one counts as nothing).
+Rect bounding(const Rect& a, const Rect& b);
+
 // An 8-bit RGBA image, row-major, straight (not premultiplied) alpha.
 struct Image {
     int width = 0, height = 0;

@@ -36,13 +36,9 @@ Mask noise_filter(const Mask& obstacles, int n);
 // The obstacle map over `region` (world pixels): every overlay instance's
 // Algorithm 1 mask stamped in, then the noise filter. Exact for any region: the
 // filter reads n-1 pixels past the region's right and bottom edges.
-// `footprints`, when given, holds each sprite's Algorithm 1 mask
-// (sprite_footprints) so a small region does not pay for every sprite's.
+// `footprints`, when given, holds each sprite's Algorithm 1 mask (the
+// frame keeps them), so a small region does not pay for every sprite's.
 Mask build_obstacle_map(const Tileset& tileset, const PlacedMap& placed, const Params& params,
                         Rect region, const std::vector<Mask>* footprints = nullptr);
-
-// Every overlay sprite's Algorithm 1 mask (tileset_footprint) under
-// `params`; floors (never obstacles) get an empty mask.
-std::vector<Mask> sprite_footprints(const Tileset& tileset, const Params& params);
 
 }  // namespace isolux
