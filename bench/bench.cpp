@@ -18,6 +18,7 @@
 #include "isolux/light_trace.hpp"
 #include "isolux/truth.hpp"
 #include "edits.hpp"
+#include "whole_frame.hpp"
 #include "scenes.hpp"
 
 using namespace isolux;
@@ -382,6 +383,7 @@ int main(int argc, char** argv) {
     register_frames();
     register_truth();
     bench::register_edits();
+    bench::register_whole_frames();
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--ratios") == 0) return ratios(argc, argv);
     benchmark::Initialize(&argc, argv);

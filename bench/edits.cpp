@@ -13,6 +13,7 @@
 
 #include "isolux/files.hpp"
 #include "isolux/frame.hpp"
+#include "ratio.hpp"
 
 namespace isolux::bench {
 
@@ -98,31 +99,6 @@ void full_rebuild(const EditScene& e) {
     benchmark::DoNotOptimize(render_frame(fs, w, e.scene, e.camera, 0));
 }
 
-double seconds(const auto& work, int times) {
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int i = 0; i < times; ++i) work();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / times;
-}
-
-struct Ratio {
-    double median = 0, low = 0, high = 0;
-    int pairs = 0;
-};
-
-// A over B, measured A, B, A, B, ...: a load that comes and goes hits both.
-template <class A, class B>
-Ratio interleaved(const A& a, int a_times, const B& b, int b_times, int pairs) {
-    std::vector<double> r;
-    a();
-    b();  // warm
-    for (int i = 0; i < pairs; ++i) {
-        const double ta = seconds(a, a_times), tb = seconds(b, b_times);
-        r.push_back(ta / tb);
-    }
-    std::sort(r.begin(), r.end());
-    return {r[r.size() / 2], r.front(), r.back(), pairs};
-}
-
 }  // namespace
 
 void register_edits() {
@@ -153,11 +129,9 @@ void print_edit_ratios() {
     EditScene& large = edit_scene(256);
     EditScene& whole = edit_scene(64, true);
     const Ratio map = interleaved([&] { edit_once(large); }, 40, [&] { edit_once(small); }, 40, 15);
-    std::printf("edit_cost_map_ratio %.3f (median of %d interleaved pairs, spread %.3f-%.3f; target <= 1.5)\n",
-                map.median, map.pairs, map.low, map.high);
+    print_ratio("edit_cost_map_ratio", map, "<= 1.5");
     const Ratio full = interleaved([&] { edit_once(whole); }, 20, [&] { full_rebuild(whole); }, 1, 15);
-    std::printf("edit_cost_vs_full %.4f (median of %d interleaved pairs, spread %.4f-%.4f; target <= 0.05)\n",
-                full.median, full.pairs, full.low, full.high);
+    print_ratio("edit_cost_vs_full", full, "<= 0.05", 4);
 }
 
 }  // namespace isolux::bench

@@ -88,6 +88,28 @@ void run_on_threads(int count, Work& work) {
     work();
 }
 
+int threads_wanted(const FrameOptions& o) {
+    return o.threads > 0 ? o.threads : std::max(1, int(std::thread::hardware_concurrency()));
+}
+
+// Runs band(rows) over `region` split into bands of rows, on up to `threads`
+// threads (one for small regions: starting threads would cost more).
+template <class Band>
+void in_row_bands(Rect region, int threads, const Band& band) {
+    if (region.empty()) return;
+    const int count = long(region.w) * region.h < 150000 ? 1 : std::max(1, std::min(threads, region.h));
+    const int bands = count == 1 ? 1 : std::min(region.h, count * 4);
+    std::atomic<int> next{0};
+    auto work = [&] {
+        for (int k; (k = next++) < bands;) {
+            const int y0 = region.y + int(std::int64_t(region.h) * k / bands);
+            const int y1 = region.y + int(std::int64_t(region.h) * (k + 1) / bands);
+            band(Rect{region.x, y0, region.w, y1 - y0});
+        }
+    };
+    run_on_threads(count, work);
+}
+
 // ---------------------------------------------------------------- the steps
 
 // The view's sprites (drawn by the GPU in the app).
@@ -113,12 +135,14 @@ void draw_view_sprites(FrameState& st, const World& world, Rect view, const Worl
     Timer t{rep, Stage::sprites};
     if (!delta.partial || !same_view) {
         st.sprites = render_sprites(world.tileset, world.placed, view);
+        rep.touched[int(Stage::sprites)] = view;
         return;
     }
     // An edit: redraw only its rectangle (each pixel is drawn from every
     // sprite over it, so the part equals the whole's).
     const Rect r = intersect(delta.region, view);
     if (r.empty()) return;
+    rep.touched[int(Stage::sprites)] = r;
     const Image part = render_sprites(world.tileset, world.placed, r);
     for (int y = 0; y < r.h; ++y)
         std::copy_n(part.at(0, y), std::size_t(r.w) * 4, st.sprites.at(r.x - view.x, r.y + y - view.y));
@@ -175,9 +199,11 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
                                                (ch.part.x - st.obstacles.x0)]);
             if (p.rays_over_obstacles)
                 st.obstacle_heights = build_obstacle_heights(world.tileset, world.placed, p, st.obstacles);
+            repaint_ground_lines(c.ground, world.placed, st.opacity, ch.part);
         }
         c.world_revision = world.revision;
         rep.rebuilt = ch.part;
+        rep.touched[int(Stage::obstacle_map)] = ch.part;
         return ch;
     }
     // Some room around what is needed, so a panning camera does not rebuild
@@ -206,12 +232,14 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     st.obstacles = build_obstacle_map(world.tileset, world.placed, p, c.obstacle_region, &c.footprints);
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
+    c.ground = ground_lines(world.placed, st.opacity, c.obstacle_region);
     c.obstacle_params = p;
     c.world_revision = world.revision;
     c.has_obstacles = true;
     ObstacleChange ch;
     ch.all = changed;
     if (changed) rep.rebuilt = c.obstacle_region;
+    rep.touched[int(Stage::obstacle_map)] = c.obstacle_region;
     return ch;
 }
 
@@ -303,8 +331,7 @@ std::vector<Rect> prepare_texture(FrameState& st, Rect tex_rect, bool& fresh) {
 // so the bytes do not depend on the thread count.
 void trace_and_accumulate(FrameState& st, const World& world, const Params& p, LightPlan& plan,
                           const std::vector<Rect>& to_clear, Rect tex_rect, const Rect* redo, FrameReport& rep) {
-    const int threads_wanted =
-        st.options.threads > 0 ? st.options.threads : std::max(1, int(std::thread::hardware_concurrency()));
+    const int threads = threads_wanted(st.options);
     const bool correct = st.options.opacity_correction && p.mode != Mode::flat;
     const bool over = p.rays_over_obstacles && p.mode != Mode::shadow;
     const std::size_t n = plan.todo.size();
@@ -324,13 +351,17 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
                 tl.mask = trace_light(st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
                                       area_is_clear(st.obstacles, area));
             const auto t1 = Clock::now();
-            if (correct) touched[k] = correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
+            // The ground lines when every sprite's ground fits them; the reference otherwise.
+            if (correct)
+                touched[k] = st.cache.ground.exact
+                                 ? correct_with_ground_lines(tl.mask, st.cache.ground, world.placed, st.opacity)
+                                 : correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
             if (shaped(p)) shape_light(tl.mask, p);  // beyond the paper: round lights, a fade to the border
             trace_ms[k] = ms_between(t0, t1);
             correct_ms[k] = ms_between(t1, Clock::now());
         }
     };
-    const int bands = std::max(1, std::min(threads_wanted * 8, tex_rect.h / 32));
+    const int bands = std::max(1, std::min(threads * 8, tex_rect.h / 32));
     std::atomic<int> next_band{0};
     // Only where lights changed (`redo`), when the rest of the texture still
     // holds the sum of unchanged lights; everything they covered otherwise.
@@ -355,7 +386,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
         const Rect c = redo ? intersect(t.mask.clip, *redo) : t.mask.clip;
         work += long(c.w) * c.h;
     }
-    const int pool_size = work < 200000 ? 1 : std::max(1, std::min(threads_wanted, std::max(int(n), bands)));
+    const int pool_size = work < 200000 ? 1 : std::max(1, std::min(threads, std::max(int(n), bands)));
     const auto t0 = Clock::now();
     Clock::time_point t_traced;
     std::barrier sync(pool_size, [&]() noexcept { t_traced = Clock::now(); });
@@ -380,6 +411,10 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
         }
         rep.lights_traced = int(n);
         for (int t : touched) rep.sprites_corrected += t;
+        Rect traced;
+        for (std::size_t k : plan.todo) traced = bounding(traced, plan.traced[k].mask.clip);
+        if (correct) rep.touched[int(Stage::opacity_correction)] = traced;
+        rep.touched[int(Stage::trace)] = traced;
     }
     rep.ran[int(Stage::trace)] = true;
     rep.ms[int(Stage::trace)] += ms_between(t_traced, t_done);
@@ -414,48 +449,64 @@ void keep_trace(FrameState& st, const Scene& scene, LightPlan& plan, FrameReport
     c.trace_params = scene.params;
     c.trace_lights = scene.lights;
     c.has_blur = false;
+    c.blur_pending = bounding(c.blur_pending, rep.dirty);
     rep.retraced = !rep.dirty.empty();
+    rep.touched[int(Stage::trace)] = bounding(rep.touched[int(Stage::trace)], rep.dirty);
     if (!rep.retraced) {
         // No light now and none before: the texture stayed empty, nothing to
         // upload or blur again.
         rep.ran[int(Stage::trace)] = false;
         rep.ms[int(Stage::trace)] = 0;
-        if (!(c.blurred.rect == st.traced.rect)) c.blurred = st.traced;  // all zero
-        c.has_blur = true;
-        c.blur_params = scene.params;
+        c.has_blur = false;  // the blur follows: cheap when nothing is pending
     }
 }
 
-// Paper 3.2 and Algorithm 3 on the CPU: the blur, the inverse translation of
-// the world-anchored texture to the view, and the composite.
+// Paper 3.2 and Algorithm 3 on the CPU: the blur, and the composite reading
+// the world-anchored blurred texture at the view (the paper's inverse
+// translation between retraces). Each redoes only the part the light or the
+// view changed when the rest still holds, in bands of rows across threads.
 void update_view(FrameState& st, const Params& p, Rect view, const WorldDelta& delta, FrameReport& rep) {
     FrameCache& c = st.cache;
-    bool light_changed = false;
-    if (!c.has_blur || params_changed_for(Stage::blur, c.blur_params, p)) {
-        if (p.blur_radius > 0) {
+    const int threads = threads_wanted(st.options);
+    const Rect tex = st.traced.rect;
+    const LightTexture& light = p.blur_radius > 0 ? c.blurred : st.traced;
+    Rect changed;  // world pixels whose blurred light changed
+    const bool radius_changed = c.blur_params.blur_radius != p.blur_radius;
+    if (!c.has_blur || radius_changed) {
+        // The whole texture when it is new or the radius changed; else what
+        // was traced since, grown by the radius (every texel it reaches).
+        const bool whole = radius_changed || !(c.blurred.rect == tex) || (p.blur_radius > 0 && c.blurred.rgb.empty());
+        changed = whole ? tex : intersect(grow(c.blur_pending, p.blur_radius), tex);
+        if (p.blur_radius > 0 && !changed.empty()) {
             Timer t{rep, Stage::blur};
-            c.blurred = box_blur(st.traced, p.blur_radius);
-        } else {
-            c.blurred = st.traced;
+            if (!(c.blurred.rect == tex) || c.blurred.rgb.size() != st.traced.rgb.size()) c.blurred = LightTexture(tex);
+            in_row_bands(changed, threads, [&](Rect band) { box_blur_into(st.traced, p.blur_radius, band, c.blurred); });
+            rep.touched[int(Stage::blur)] = changed;
+        } else if (p.blur_radius == 0) {
+            c.blurred = LightTexture{};
+            c.blurred.rect = tex;  // what the texture was "blurred" for: itself
         }
         c.has_blur = true;
         c.blur_params = p;
-        light_changed = true;
+        c.blur_pending = {};
     }
-    if (light_changed || !(st.light.rect == view)) {
-        // Between retraces this is the paper's inverse translation: the
-        // world-anchored texture read at the moved view.
+    if (st.options.view_light_texture && (!changed.empty() || !(st.light.rect == view))) {
         Timer t{rep, Stage::shift};
-        st.light = shift_light_texture(c.blurred, view);
-        light_changed = true;
+        st.light = shift_light_texture(light, view);
+        rep.touched[int(Stage::shift)] = view;
     }
-    if (light_changed || !c.has_final || !(st.view == view) || delta.changed ||
-        params_changed_for(Stage::composite, c.composite_params, p)) {
+    const bool whole = !c.has_final || !(st.view == view) || delta.changed ||
+                       params_changed_for(Stage::composite, c.composite_params, p) || st.final.width != view.w ||
+                       st.final.height != view.h;
+    const Rect region = whole ? view : intersect(changed, view);
+    if (!region.empty()) {
         Timer t{rep, Stage::composite};
-        st.final = composite(st.sprites, view, st.light, p);
-        c.composite_params = p;
-        c.has_final = true;
+        if (st.final.width != view.w || st.final.height != view.h) st.final = Image(view.w, view.h);
+        in_row_bands(region, threads, [&](Rect band) { composite_into(st.sprites, view, light, p, band, st.final); });
+        rep.touched[int(Stage::composite)] = region;
     }
+    c.composite_params = p;
+    c.has_final = true;
 }
 
 }  // namespace

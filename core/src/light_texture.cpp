@@ -30,10 +30,10 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
     // A white light's value v becomes round(v * intensity * colour / 255) per channel.
     std::uint8_t lut[3][256];
     const std::uint8_t colour[3] = {light.r, light.g, light.b};
-    for (int v = 0; v < 256; ++v)
-        for (int k = 0; k < 3; ++k)
-            lut[k][v] = white ? std::uint8_t(v)
-                              : std::uint8_t(std::min(255.0, std::floor(v * light.intensity * colour[k] / 255.0 + 0.5)));
+    if (!white)
+        for (int v = 0; v < 256; ++v)
+            for (int k = 0; k < 3; ++k)
+                lut[k][v] = std::uint8_t(std::min(255.0, std::floor(v * light.intensity * colour[k] / 255.0 + 0.5)));
     const bool shadow = p.mode == Mode::shadow;
     std::vector<std::uint8_t> by_x;
     if (shadow) {
@@ -58,12 +58,15 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
         }
         // The row's RGB contributions, then one contiguous saturating add
         // (the compiler vectorises it).
-        for (int x = 0; x < r.w; ++x) {
-            const std::uint8_t val = v[x];
-            rgb[std::size_t(x) * 3 + 0] = lut[0][val];
-            rgb[std::size_t(x) * 3 + 1] = lut[1][val];
-            rgb[std::size_t(x) * 3 + 2] = lut[2][val];
-        }
+        if (white)  // the value itself in all three channels: no lookups
+            for (int x = 0; x < r.w; ++x) rgb[std::size_t(x) * 3 + 0] = rgb[std::size_t(x) * 3 + 1] = rgb[std::size_t(x) * 3 + 2] = v[x];
+        else
+            for (int x = 0; x < r.w; ++x) {
+                const std::uint8_t val = v[x];
+                rgb[std::size_t(x) * 3 + 0] = lut[0][val];
+                rgb[std::size_t(x) * 3 + 1] = lut[1][val];
+                rgb[std::size_t(x) * 3 + 2] = lut[2][val];
+            }
         std::uint8_t* out = &tex.rgb[(std::size_t(y - tex.rect.y) * tex.rect.w + (r.x - tex.rect.x)) * 3];
         const std::uint8_t* add = rgb.data();
         const std::size_t n = std::size_t(r.w) * 3;

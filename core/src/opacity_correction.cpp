@@ -49,3 +49,84 @@ int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const st
 }
 
 }  // namespace isolux
+
+namespace isolux {
+
+namespace {
+
+void paint(GroundLines& lines, const PlacedMap& placed, const std::vector<Mask>& opacity, Rect part) {
+    part = intersect(part, lines.rect);
+    if (part.empty()) return;
+    const int w = lines.rect.w;
+    for (int y = part.y; y < part.y + part.h; ++y)
+        std::fill_n(&lines.below[std::size_t(y - lines.rect.y) * w + (part.x - lines.rect.x)], part.w, GroundLines::none);
+    std::vector<std::uint32_t> near;
+    instances_in(placed, part, true, near);
+    for (std::uint32_t k : near) {  // draw order: the sprite in front decides
+        const SpriteInstance& in = placed.instances[k];
+        const Mask& op = opacity[in.sprite];
+        const Rect r = intersect({in.x, in.y, op.width, op.height}, part);
+        for (int y = r.y; y < r.y + r.h; ++y) {
+            const std::int64_t d = std::int64_t(in.ground_y) - y;
+            if (d <= GroundLines::none || d >= INT16_MAX) lines.exact = false;
+            const std::int16_t below = std::int16_t(std::clamp<std::int64_t>(d, GroundLines::none + 1, INT16_MAX - 1));
+            const std::uint8_t* src = &op.bits[std::size_t(y - in.y) * op.width + (r.x - in.x)];
+            std::int16_t* dst = &lines.below[std::size_t(y - lines.rect.y) * w + (r.x - lines.rect.x)];
+            for (int x = 0; x < r.w; ++x)
+                if (src[x]) dst[x] = below;
+        }
+    }
+}
+
+}  // namespace
+
+GroundLines ground_lines(const PlacedMap& placed, const std::vector<Mask>& opacity, Rect region) {
+    GroundLines lines;
+    lines.rect = region.empty() ? Rect{} : region;
+    lines.below.assign(std::size_t(std::max(0, lines.rect.w)) * std::max(0, lines.rect.h), GroundLines::none);
+    paint(lines, placed, opacity, lines.rect);
+    return lines;
+}
+
+void repaint_ground_lines(GroundLines& lines, const PlacedMap& placed, const std::vector<Mask>& opacity, Rect part) {
+    paint(lines, placed, opacity, part);
+}
+
+int correct_with_ground_lines(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
+                              const std::vector<Mask>& opacity) {
+    const Rect clip = mask.clip;
+    // The count the report shows: sprites whose opacity map meets the mask.
+    int touched = 0;
+    std::vector<std::uint32_t> near;
+    instances_in(placed, clip, true, near);
+    for (std::uint32_t k : near) {
+        const SpriteInstance& in = placed.instances[k];
+        touched += !intersect({in.x, in.y, opacity[in.sprite].width, opacity[in.sprite].height}, clip).empty();
+    }
+    const Rect r = intersect(clip, lines.rect);
+    if (r.empty() || touched == 0) return touched;
+    // falloff(max(|dx|, |dy|)) = min(falloff(|dx|), falloff(|dy|)): it never increases.
+    std::vector<std::uint8_t> by_x(std::size_t(r.w));
+    for (int x = 0; x < r.w; ++x) by_x[std::size_t(x)] = falloff(std::llabs(r.x + x - mask.cx), mask.falloff_scale);
+    const bool shadow = !mask.reached.empty();
+    for (int y = r.y; y < r.y + r.h; ++y) {
+        const std::int16_t* below = &lines.below[std::size_t(y - lines.rect.y) * lines.rect.w + (r.x - lines.rect.x)];
+        const std::size_t m = std::size_t(y - clip.y) * clip.w + std::size_t(r.x - clip.x);
+        std::uint8_t* value = &mask.value[m];
+        const std::uint8_t vy = falloff(std::llabs(y - mask.cy), mask.falloff_scale);
+        // A sprite stands above the centre when ground_y < cy, i.e. below < cy - y.
+        const std::int16_t above = std::int16_t(std::clamp<std::int64_t>(mask.cy - y, GroundLines::none + 1, INT16_MAX));
+        for (int x = 0; x < r.w; ++x) {
+            const std::int16_t b = below[x];
+            const std::uint8_t lit = b < above ? std::min(by_x[std::size_t(x)], vy) : std::uint8_t(0);
+            value[x] = b == GroundLines::none ? value[x] : lit;
+        }
+        if (shadow) {
+            std::uint8_t* reached = &mask.reached[m];
+            for (int x = 0; x < r.w; ++x) reached[x] = below[x] == GroundLines::none ? reached[x] : std::uint8_t(1);
+        }
+    }
+    return touched;
+}
+
+}  // namespace isolux

@@ -11,4 +11,15 @@ namespace isolux {
 // larger than the texture included. O(1) per texel.
 LightTexture box_blur(const LightTexture& tex, int radius);
 
+// The same values written into `out` (resized to `tex`'s rectangle when it
+// differs; kept otherwise, so a frame reuses its buffer) for the texels of
+// `region` (world pixels) only: a band of rows for one thread, or where the
+// light changed. Row-major exact integer running sums, a few rows of scratch.
+void box_blur_into(const LightTexture& tex, int radius, Rect region, LightTexture& out);
+
+// The rule stated as plainly as possible: per texel, per channel, the sum of
+// its clamped window and one rounded division. The oracle box_blur is tested
+// against.
+LightTexture box_blur_reference(const LightTexture& tex, int radius);
+
 }  // namespace isolux

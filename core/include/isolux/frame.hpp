@@ -11,6 +11,7 @@
 #include "isolux/height_rays.hpp"
 #include "isolux/image.hpp"
 #include "isolux/light_texture.hpp"
+#include "isolux/opacity_correction.hpp"
 #include "isolux/scene.hpp"
 #include "isolux/stage.hpp"
 #include "isolux/world.hpp"
@@ -29,6 +30,10 @@ struct FrameReport {
     // (set_edits): only there, and only the lights meeting it were retraced.
     // Empty when no edit arrived; the whole obstacle region on a full rebuild.
     Rect rebuilt;
+    // World pixels each stage wrote this frame, by Stage (empty: it did not
+    // run): the traced lights' areas, the texture's redone part (trace:
+    // clearing and adding lights), the blurred and composited parts.
+    std::array<Rect, stage_count> touched{};
     bool ran_stage(Stage s) const { return ran[int(s)]; }
 };
 
@@ -43,6 +48,11 @@ struct FrameOptions {
     // core. The output is the same bytes for any count: each light is traced
     // on its own and the saturating sum does not depend on order.
     int threads = 1;
+    // FrameState::light, the view's own copy of the blurred texture (the
+    // paper's inverse translation): the composite reads the world-anchored
+    // blurred texture in place, so only callers that show or save the light
+    // layer need the copy.
+    bool view_light_texture = true;
 };
 
 // What the last frame was built from: private to render_frame, which reads
@@ -76,10 +86,17 @@ struct FrameCache {
     Params trace_params;
     std::vector<Light> trace_lights;
 
-    // The blurred light texture and its inputs (the blur re-runs after every trace).
+    // The opacity correction's per-pixel ground lines over the obstacle
+    // region, built with the obstacle map (opacity_correction.hpp).
+    GroundLines ground;
+
+    // The blurred light texture and its inputs (the blur re-runs after every
+    // trace, over the part the trace changed when the rest still holds). Empty
+    // with radius 0: the composite reads the traced texture.
     bool has_blur = false;
     Params blur_params;
     LightTexture blurred;
+    Rect blur_pending;  // texels traced since the last blur
 
     // The final image's inputs.
     bool has_final = false;

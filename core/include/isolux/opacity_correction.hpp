@@ -1,6 +1,7 @@
 // Paper 3.2, Figures 6 and 7: opacity maps added to or subtracted from a
 // light's traced pixels.
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "isolux/light_trace.hpp"
@@ -26,5 +27,28 @@ inline bool opacity_map_added(const SpriteInstance& sprite, std::int64_t light_c
 }
 
 int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const std::vector<Mask>& opacity);
+
+// The same correction from a structure built once per world: for each pixel,
+// where the sprite that decides it (the last drawn overlay opaque there)
+// meets the ground, stored as ground_y - y in 16 bits (`none`: no opaque
+// sprite). The rule above then reads, per pixel, "none: keep; stands above
+// the light's centre: its intensity; otherwise: unlit", one branch-free pass
+// over the light's area whatever the number of sprites.
+struct GroundLines {
+    static constexpr std::int16_t none = INT16_MIN;
+    Rect rect;                          // world pixels it covers (elsewhere: none)
+    std::vector<std::int16_t> below;    // ground_y - y per pixel, or none
+    bool exact = true;                  // false when a sprite's ground is 32766+ rows from its pixels
+};
+
+// Paints the overlays' opacity maps over `region` in draw order.
+GroundLines ground_lines(const PlacedMap& placed, const std::vector<Mask>& opacity, Rect region);
+// Paints `part` again (after an edit), within the lines' rectangle.
+void repaint_ground_lines(GroundLines& lines, const PlacedMap& placed, const std::vector<Mask>& opacity, Rect part);
+
+// correct_with_opacity_maps's bytes from the ground lines (which must be
+// exact). Returns how many sprites met the mask, as it does.
+int correct_with_ground_lines(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
+                              const std::vector<Mask>& opacity);
 
 }  // namespace isolux

@@ -1,0 +1,197 @@
+#include "whole_frame.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "isolux/blur.hpp"
+#include "isolux/composite.hpp"
+#include "isolux/hash.hpp"
+#include "isolux/opacity_correction.hpp"
+#include "ratio.hpp"
+#include "scenes.hpp"
+
+namespace isolux::bench {
+
+namespace {
+
+// The frame: a 1920x1080 view in the middle of a 64x64-tile map, 32
+// lights of a = b = 128 spread over it, blur radius 2, everything on the CPU.
+struct ScreenScene {
+    const World* world = nullptr;
+    Scene scene;
+    Camera camera;
+    FrameState frame;
+    long f = 0;
+    std::vector<std::uint8_t> floor_src, floor_dst;  // memcpy's bytes
+};
+
+std::unique_ptr<ScreenScene> make_screen(const std::string& map, int threads, int lights = 32) {
+    auto s = std::make_unique<ScreenScene>();
+    s->world = &world(map, 64);
+    const Rect b = s->world->placed.bounds;
+    s->camera = Camera{double(b.x + (b.w - 1920) / 2), double(b.y + (b.h - 1080) / 2), 1920, 1080};
+    s->scene.params.area_a = s->scene.params.area_b = 128;
+    s->scene.params.blur_radius = 2;
+    Pcg32 rng(17);
+    for (int i = 0; i < lights; ++i)
+        s->scene.lights.push_back(Light{s->camera.x + rng.below(1920) + 0.5, s->camera.y + rng.below(1080) + 0.5});
+    s->frame.options.threads = threads;
+    s->frame.options.view_light_texture = false;  // nobody reads the view's copy: the composite reads in place
+    render_frame(s->frame, *s->world, s->scene, s->camera, s->f++);
+    return s;
+}
+
+ScreenScene& screen(const std::string& map, int threads) {
+    static std::map<std::pair<std::string, int>, std::unique_ptr<ScreenScene>> cache;
+    auto& s = cache[{map, threads}];
+    if (!s) s = make_screen(map, threads);
+    return *s;
+}
+
+// One frame in which `moved` of the lights (the first ones) moved a pixel.
+FrameReport step(ScreenScene& s, std::size_t moved) {
+    const double dx = (s.f % 2) ? 1 : -1;
+    for (std::size_t i = 0; i < moved && i < s.scene.lights.size(); ++i) s.scene.lights[i].x += dx;
+    return render_frame(s.frame, *s.world, s.scene, s.camera, s.f++);
+}
+
+std::size_t area_bytes(const ScreenScene& s) {
+    std::size_t n = 0;
+    for (const Light& l : s.scene.lights) {
+        const Rect r = light_area(l, s.scene.params);
+        n += std::size_t(r.w) * r.h;
+    }
+    return n;
+}
+
+// memcpy of n bytes into a buffer of its own (kept between calls, as the
+// frame keeps its buffers).
+struct Copy {
+    mutable std::vector<std::uint8_t> src, dst;
+    explicit Copy(std::size_t n) : src(n, 1), dst(n, 0) {}
+    void operator()() const {
+        std::memcpy(dst.data(), src.data(), src.size());
+        benchmark::DoNotOptimize(dst.data());
+    }
+};
+struct Set {
+    mutable std::vector<std::uint8_t> dst;
+    explicit Set(std::size_t n) : dst(n, 0) {}
+    void operator()() const {
+        std::memset(dst.data(), int(dst[0] ^ 1), dst.size());
+        benchmark::DoNotOptimize(dst.data());
+    }
+};
+
+void stage_counters(benchmark::State& st, const std::array<double, stage_count>& ms, double n) {
+    for (int k = 0; k < stage_count; ++k)
+        if (ms[std::size_t(k)] > 0) st.counters[std::string(to_string(Stage(k))) + "_ms"] = ms[std::size_t(k)] / n;
+}
+
+}  // namespace
+
+void register_whole_frames() {
+    for (const char* map : {"default", "forest"})
+        for (int threads : {1, 2})
+            for (int moved : {32, 1}) {
+                const std::string name = std::string("whole_frame/") + map + "/moved:" + std::to_string(moved) +
+                                         "_of_32/threads:" + std::to_string(threads);
+                benchmark::RegisterBenchmark(name.c_str(), [map, threads, moved](benchmark::State& st) {
+                    ScreenScene& s = screen(map, threads);
+                    std::array<double, stage_count> ms{};
+                    double n = 0;
+                    for (auto _ : st) {
+                        const FrameReport r = step(s, std::size_t(moved));
+                        for (int k = 0; k < stage_count; ++k) ms[std::size_t(k)] += r.ms[std::size_t(k)];
+                        ++n;
+                    }
+                    stage_counters(st, ms, n);
+                })->Unit(benchmark::kMillisecond)->UseRealTime();
+            }
+    // Each stage alone on the frame's own buffers, one thread.
+    benchmark::RegisterBenchmark("stage/blur/radius:2", [](benchmark::State& st) {
+        ScreenScene& s = screen("default", 1);
+        LightTexture out(s.frame.traced.rect);
+        for (auto _ : st) box_blur_into(s.frame.traced, 2, s.frame.traced.rect, out);
+    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("stage/composite", [](benchmark::State& st) {
+        ScreenScene& s = screen("default", 1);
+        Image out(s.frame.view.w, s.frame.view.h);
+        for (auto _ : st)
+            composite_into(s.frame.sprites, s.frame.view, s.frame.cache.blurred, s.scene.params, s.frame.view, out);
+    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("stage/correction/forest", [](benchmark::State& st) {
+        ScreenScene& s = screen("forest", 1);
+        std::vector<LightMask> masks;
+        for (const auto& t : s.frame.cache.lights) masks.push_back(t.mask);
+        for (auto _ : st)
+            for (LightMask& m : masks) correct_with_ground_lines(m, s.frame.cache.ground, s.world->placed, s.frame.opacity);
+    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("stage/correction_reference/forest", [](benchmark::State& st) {
+        ScreenScene& s = screen("forest", 1);
+        std::vector<LightMask> masks;
+        for (const auto& t : s.frame.cache.lights) masks.push_back(t.mask);
+        for (auto _ : st)
+            for (LightMask& m : masks) correct_with_opacity_maps(m, s.world->placed, s.frame.opacity);
+    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("stage/floor/memcpy_traced", [](benchmark::State& st) {
+        Copy copy(screen("default", 1).frame.traced.rgb.size());
+        for (auto _ : st) copy();
+    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("whole_frame/floor/memcpy_final_memset_areas", [](benchmark::State& st) {
+        ScreenScene& s = screen("default", 1);
+        Copy copy(s.frame.final.rgba.size());
+        Set set(area_bytes(s));
+        for (auto _ : st) copy(), set();
+    })->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+
+void print_floor_ratios() {
+    ScreenScene& one = screen("default", 1);
+    ScreenScene& two = screen("default", 2);
+    ScreenScene& forest = screen("forest", 1);
+    const int pairs = 11;
+
+    Copy final_copy(one.frame.final.rgba.size());
+    Set areas_set(area_bytes(one));
+    print_ratio("frame_times_floor", interleaved([&] { step(one, 32); }, 3, [&] { final_copy(), areas_set(); }, 30, pairs),
+                "<= 12", 2);
+
+    // Each stage alone, one thread, into the buffer the frame keeps.
+    const LightTexture& traced = one.frame.traced;
+    LightTexture blurred(traced.rect);
+    Copy traced_copy(traced.rgb.size());
+    print_ratio("blur_times_floor",
+                interleaved([&] { box_blur_into(traced, 2, traced.rect, blurred); }, 5, traced_copy, 30, pairs), "<= 4",
+                2);
+
+    // The composite reads the view's sprites (RGBA) and the light at the view (RGB).
+    const Rect view = one.frame.view;
+    Copy composite_copy(std::size_t(view.w) * view.h * 7);
+    Image out(view.w, view.h);
+    print_ratio("composite_times_floor", interleaved([&] {
+                    composite_into(one.frame.sprites, view, blurred, one.scene.params, view, out);
+                }, 5, composite_copy, 30, pairs), "<= 4", 2);
+
+    // The correction of the forest's 32 lights, on their traced masks.
+    std::vector<LightMask> masks;
+    for (const auto& t : forest.frame.cache.lights) masks.push_back(t.mask);
+    Set forest_areas(area_bytes(forest));
+    print_ratio("correction_times_floor", interleaved([&] {
+                    for (LightMask m : masks)  // a copy, corrected
+                        correct_with_ground_lines(m, forest.frame.cache.ground, forest.world->placed,
+                                                  forest.frame.opacity);
+                }, 3, forest_areas, 30, pairs), "<= 4", 2);
+
+    print_ratio("threads2_frame_speedup", interleaved([&] { step(one, 32); }, 3, [&] { step(two, 32); }, 3, pairs),
+                ">= 1.6", 2);
+    print_ratio("one_light_moved_cost", interleaved([&] { step(one, 1); }, 10, [&] { step(one, 32); }, 3, pairs),
+                "<= 0.1", 3);
+}
+
+}  // namespace isolux::bench

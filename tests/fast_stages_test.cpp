@@ -1,0 +1,241 @@
+// The fast CPU stages (issue: the whole frame near its memory floor) held to
+// the plainest statements of their rules, byte for byte: box_blur against
+// box_blur_reference, composite against composite_reference, the ground-line
+// opacity correction against the per-sprite one, and a frame that redoes only
+// what changed against one built from nothing.
+#include <gtest/gtest.h>
+
+#include "isolux/blur.hpp"
+#include "isolux/composite.hpp"
+#include "isolux/frame.hpp"
+#include "isolux/hash.hpp"
+#include "isolux/light_trace.hpp"
+#include "isolux/opacity_correction.hpp"
+#include "test_util.hpp"
+
+using namespace isolux;
+
+namespace {
+
+// Texels mostly dark with bright patches and full-white runs: the sums reach
+// their maximum and every rounding case appears.
+LightTexture random_texture(Rect r, std::uint64_t seed) {
+    LightTexture t(r);
+    Pcg32 rng(seed);
+    for (std::size_t i = 0; i < t.rgb.size(); ++i) {
+        const std::uint32_t k = rng.below(10);
+        t.rgb[i] = k < 4 ? 0 : k < 6 ? 255 : std::uint8_t(rng.below(256));
+    }
+    return t;
+}
+
+}  // namespace
+
+TEST(FastBlur, EqualsTheReferenceForEveryRadiusAndSize) {
+    const Rect sizes[] = {{0, 0, 1, 1}, {-3, 5, 2, 7}, {10, -4, 17, 5}, {0, 0, 64, 40}, {-100, -50, 33, 29}};
+    int checked = 0;
+    for (const Rect& r : sizes)
+        for (int radius : {0, 1, 2, 3, 4, 5, 7, 8, 20, 62, 63, 100}) {
+            if (radius > 20 && r.w * r.h > 1200) continue;  // the reference is O(r^2) per texel
+            const LightTexture t = random_texture(r, std::uint64_t(r.w * 131 + radius));
+            EXPECT_EQ(box_blur(t, radius).rgb, box_blur_reference(t, radius).rgb) << r.w << "x" << r.h << " r " << radius;
+            ++checked;
+        }
+    EXPECT_GE(checked, 50);
+}
+
+TEST(FastBlur, ARegionWritesOnlyItsTexelsAndTheirFullValues) {
+    const Rect r{-20, 7, 61, 45};
+    const LightTexture t = random_texture(r, 9);
+    for (int radius : {1, 2, 5, 9}) {
+        const LightTexture whole = box_blur_reference(t, radius);
+        Pcg32 rng{std::uint64_t(radius)};
+        for (int k = 0; k < 12; ++k) {
+            const Rect region{r.x - 5 + int(rng.below(50)), r.y - 5 + int(rng.below(40)), 1 + int(rng.below(40)),
+                              1 + int(rng.below(30))};
+            LightTexture out(r);
+            std::fill(out.rgb.begin(), out.rgb.end(), std::uint8_t(77));
+            box_blur_into(t, radius, region, out);
+            for (int y = r.y; y < r.y + r.h; ++y)
+                for (int x = r.x; x < r.x + r.w; ++x)
+                    for (int c = 0; c < 3; ++c) {
+                        const std::uint8_t want = region.contains(x, y) ? whole.at(x, y)[c] : 77;
+                        ASSERT_EQ(out.at(x, y)[c], want) << x << "," << y << " r " << radius;
+                    }
+        }
+    }
+}
+
+TEST(FastComposite, EqualsTheReferenceInEveryModeAndClarity) {
+    const Rect view{-7, 3, 97, 61};
+    Image colour(view.w, view.h);
+    Pcg32 rng(4);
+    for (std::uint8_t& v : colour.rgba) v = std::uint8_t(rng.below(256));
+    for (int i = 0; i < view.w * view.h; i += 5) colour.rgba[std::size_t(i) * 4 + 3] = 0;  // some transparent
+    // A light texture covering part of the view only: the rest reads unlit.
+    const LightTexture light = random_texture({view.x + 20, view.y - 10, 60, 50}, 5);
+    int configs = 0;
+    for (Mode mode : {Mode::light, Mode::shadow, Mode::flat})
+        for (LightMix mix : {LightMix::luminance, LightMix::surface})
+            for (bool dark : {false, true})
+                for (double ac : {0.0, 0.16, 0.4, 0.5, 0.77, 1.0}) {
+                    Params p;
+                    p.mode = mode;
+                    p.light_mix = mix;
+                    p.dark_unlit = dark;
+                    p.ambient_clarity = ac;
+                    EXPECT_EQ(composite(colour, view, light, p).rgba, composite_reference(colour, view, light, p).rgba)
+                        << to_string(mode) << " mix " << int(mix) << " dark " << dark << " ac " << ac;
+                    ++configs;
+                }
+    EXPECT_EQ(configs, 72);
+}
+
+TEST(FastComposite, EveryColourAndLightPairAtTheDefaults) {
+    // All 256 x 256 (colour, light) values in each channel, with the other
+    // channels varied: every rounding boundary of the default settings.
+    const Rect view{0, 0, 256, 256};
+    Image colour(256, 256);
+    LightTexture light(view);
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) {
+            std::uint8_t* c = colour.at(x, y);
+            c[0] = std::uint8_t(x), c[1] = std::uint8_t(255 - x), c[2] = std::uint8_t((x * 7 + y) & 255), c[3] = 255;
+            std::uint8_t* l = &light.rgb[(std::size_t(y) * 256 + x) * 3];
+            l[0] = std::uint8_t(y), l[1] = std::uint8_t((y * 3) & 255), l[2] = std::uint8_t(255 - y);
+        }
+    for (double ac : {0.4, 0.25, 0.9}) {
+        Params p;
+        p.ambient_clarity = ac;
+        EXPECT_EQ(composite(colour, view, light, p).rgba, composite_reference(colour, view, light, p).rgba) << ac;
+    }
+}
+
+TEST(FastCorrection, GroundLinesEqualThePerSpriteCorrection) {
+    const Tileset ts = test::default_tileset();
+    for (const char* kind : {"default", "forest"}) {
+        Scene s;
+        s.width = s.height = 12;
+        World w = make_world(ts, s);
+        if (std::string(kind) == "forest") {
+            const std::vector<int> trees = w.tileset.find(SpriteKind::overlay, "tree");
+            for (std::size_t i = 0; i < w.map.tiles.size(); ++i) {
+                Tile& t = w.map.tiles[i];
+                t.overlay_count = 2;
+                t.overlays[0] = {trees[i % trees.size()], -20, 0};
+                t.overlays[1] = {trees[(i + 1) % trees.size()], 20, 4};
+            }
+            w.placed = place_sprites(w.map, w.tileset);
+        }
+        // The opacity maps the frame uses, and its obstacle map.
+        FrameState st;
+        s.lights = {Light{double(w.placed.bounds.x + w.placed.bounds.w / 2), double(w.placed.bounds.y + w.placed.bounds.h / 2)}};
+        render_frame(st, w, s, Camera{}, 0);
+        ASSERT_FALSE(st.opacity.empty());
+        const GroundLines lines = ground_lines(w.placed, st.opacity, w.placed.bounds);
+        ASSERT_TRUE(lines.exact);
+        Pcg32 rng(8);
+        int compared = 0, changed = 0;
+        for (Mode mode : {Mode::light, Mode::shadow})
+            for (int k = 0; k < 40; ++k) {
+                Params p;
+                p.mode = mode;
+                const int a = 20 + int(rng.below(120)), b = 20 + int(rng.below(120));
+                const std::int64_t cx = w.placed.bounds.x + std::int64_t(rng.below(std::uint32_t(w.placed.bounds.w)));
+                const std::int64_t cy = w.placed.bounds.y + std::int64_t(rng.below(std::uint32_t(w.placed.bounds.h)));
+                Rect clip{int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1};
+                if (k % 5 == 0) clip = intersect(clip, {int(cx) - a / 2, int(cy) - b, a, b});  // clipped by a view
+                const LightMask traced = trace_light(st.obstacles, cx, cy, a, b, p, clip);
+                LightMask want = traced, got = traced;
+                const int n_want = correct_with_opacity_maps(want, w.placed, st.opacity);
+                const int n_got = correct_with_ground_lines(got, lines, w.placed, st.opacity);
+                EXPECT_EQ(n_got, n_want);
+                EXPECT_EQ(got.value, want.value) << kind << " light " << cx << "," << cy;
+                EXPECT_EQ(got.reached, want.reached) << kind << " light " << cx << "," << cy;
+                changed += want.value != traced.value;
+                ++compared;
+            }
+        EXPECT_EQ(compared, 80);
+        EXPECT_GT(changed, 20) << "the corrections must have done something to compare";
+    }
+}
+
+namespace {
+
+Scene moving_scene(const World& w, int lights) {
+    Scene s;
+    s.params.area_a = s.params.area_b = 90;
+    s.params.blur_radius = 2;
+    Pcg32 rng(21);
+    const Rect b = w.placed.bounds;
+    for (int i = 0; i < lights; ++i)
+        s.lights.push_back(Light{b.x + double(rng.below(std::uint32_t(b.w))) + 0.5, b.y + double(rng.below(std::uint32_t(b.h))) + 0.5});
+    return s;
+}
+
+}  // namespace
+
+TEST(OnlyWhatChanged, OneMovedLightRedoesItsAreasAndEqualsAFreshFrame) {
+    Scene base;
+    base.width = base.height = 16;
+    const World w = make_world(test::default_tileset(), base);
+    for (int threads : {1, 2}) {
+        Scene s = moving_scene(w, 12);
+        const Camera cam{double(w.placed.bounds.x + 100), double(w.placed.bounds.y + 50), 700, 400};
+        for (int i = 0; i < 3; ++i) s.lights[std::size_t(i)] = Light{cam.x + 150 + 200.0 * i, cam.y + 100 + 90.0 * i};
+        FrameState st;
+        st.options.threads = threads;
+        render_frame(st, w, s, cam, 0);
+        for (long f = 1; f <= 6; ++f) {
+            s.lights[std::size_t(f % 3)].x += 7;  // one light moves
+            const FrameReport r = render_frame(st, w, s, cam, f);
+            FrameState fresh;
+            render_frame(fresh, w, s, cam, 0);
+            ASSERT_EQ(st.traced.rgb, fresh.traced.rgb) << "frame " << f;
+            ASSERT_EQ(st.light.rgb, fresh.light.rgb) << "frame " << f;
+            ASSERT_EQ(st.final.rgba, fresh.final.rgba) << "frame " << f << ", " << threads << " threads";
+            EXPECT_EQ(r.lights_traced, 1);
+            // The blur and composite touched a part, not the whole texture or view.
+            const Rect blurred = r.touched[int(Stage::blur)], composited = r.touched[int(Stage::composite)];
+            EXPECT_FALSE(blurred.empty());
+            EXPECT_LT(double(blurred.w) * blurred.h, 0.8 * st.traced.rect.w * st.traced.rect.h);
+            EXPECT_LT(double(composited.w) * composited.h, 0.8 * cam.width * cam.height);
+            EXPECT_EQ(intersect(composited, r.touched[int(Stage::blur)]), composited);
+        }
+        // Nothing moved: nothing redone.
+        const FrameReport still = render_frame(st, w, s, cam, 7);
+        EXPECT_TRUE(still.touched[int(Stage::blur)].empty());
+        EXPECT_TRUE(still.touched[int(Stage::composite)].empty());
+    }
+}
+
+TEST(OnlyWhatChanged, RadiusAndModeChangesRedoEverything) {
+    Scene base;
+    base.width = base.height = 10;
+    const World w = make_world(test::default_tileset(), base);
+    Scene s = moving_scene(w, 5);
+    FrameState st;
+    render_frame(st, w, s, Camera{}, 0);
+    for (int radius : {0, 3, 0, 1}) {
+        s.params.blur_radius = radius;
+        s.lights[0].y += 3;
+        render_frame(st, w, s, Camera{}, 1);
+        FrameState fresh;
+        render_frame(fresh, w, s, Camera{}, 0);
+        EXPECT_EQ(st.final.rgba, fresh.final.rgba) << "radius " << radius;
+        EXPECT_EQ(st.light.rgb, fresh.light.rgb) << "radius " << radius;
+    }
+}
+
+TEST(Accumulate, WhiteLightsAddTheirValueToEveryChannelSaturating) {
+    LightMask m;
+    m.clip = {0, 0, 4, 1};
+    m.value = {0, 100, 200, 255};
+    LightTexture tex({0, 0, 4, 1});
+    Params p;
+    const Light white{0, 0};
+    accumulate_light(tex, m, white, p);
+    accumulate_light(tex, m, white, p);
+    const std::vector<std::uint8_t> want = {0, 0, 0, 200, 200, 200, 255, 255, 255, 255, 255, 255};
+    EXPECT_EQ(tex.rgb, want);
+}
