@@ -172,5 +172,19 @@ check out_is_a_folder 2 "is a folder" -- render --size 3x3 --out "$tmp/adir.json
 check huge_area 2 "allow-huge" -- render --size 3x3 --light 100,100 --area 4096,4096 --rays every_pixel --out "$tmp/x.png"
 check huge_quality 2 "allow-huge" -- render --size 3x3 --light 100,100 --preset quality --area 4096,4096 --out "$tmp/x.png"
 
+# --stats: every stage that ran, with its time and rectangle; two threads
+# give the same pixels as one.
+check stats 0 "" -- render --size 8x8 --view 100,50,400,300 --light 200,150 --light 420,280 --frames 2 \
+  --camera-step 0,0 --stats --out "$tmp/s1.png"
+if grep -q "^frame 0: .* ms; 2 lights traced" "$tmp/out" && grep -qE "^  blur +[0-9.]+ ms  touched [0-9]+x[0-9]+ at " "$tmp/out" \
+  && grep -qE "^  composite +[0-9.]+ ms  touched 400x300 at 100,50" "$tmp/out"; then
+  pass=$((pass + 1))
+else
+  echo "FAIL stats_lines: --stats output lacks a stage line"; cat "$tmp/out"; fail=$((fail + 1))
+fi
+check threads_two 0 "" -- render --size 8x8 --view 100,50,400,300 --light 200,150 --light 420,280 --threads 2 --out "$tmp/s2.png"
+if cmp -s "$tmp/s1.png" "$tmp/s2.png"; then pass=$((pass + 1)); else echo "FAIL threads_same_pixels"; fail=$((fail + 1)); fi
+check threads_range 2 "threads" -- render --size 3x3 --threads 999 --out "$tmp/x.png"
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1,5 +1,6 @@
 // isolux-cli: the headless front end. Everything here runs with no display and
 // no GL context; it only parses arguments and calls isolux::core.
+#include <chrono>
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -49,6 +50,8 @@ struct RenderArgs {
     std::string camera_step;
     bool no_opacity_correction = false;
     bool allow_huge = false;
+    bool stats = false;
+    int threads = 1;
 };
 
 // Refuses work beyond what finishes in seconds, with the estimate and the
@@ -347,6 +350,24 @@ std::pair<Scene, World> tiled_from_args(const RenderArgs& a) {
     return {s, std::move(t.world)};
 }
 
+// --stats: each stage that ran, its time and the world rectangle it wrote.
+void print_frame_stats(std::ostream& out, int frame, const FrameReport& rep, double wall_ms) {
+    char line[200];
+    std::snprintf(line, sizeof line, "frame %d: %.2f ms; %d lights traced, %d reused\n", frame, wall_ms,
+                  rep.lights_traced, rep.lights_reused);
+    out << line;
+    for (int k = 0; k < stage_count; ++k) {
+        if (!rep.ran[std::size_t(k)]) continue;
+        const Rect r = rep.touched[std::size_t(k)];
+        std::snprintf(line, sizeof line, "  %-19s %8.2f ms  touched %s\n", std::string(to_string(Stage(k))).c_str(),
+                      rep.ms[std::size_t(k)],
+                      r.empty() ? "nothing"
+                                : (std::to_string(r.w) + "x" + std::to_string(r.h) + " at " + std::to_string(r.x) + "," +
+                                   std::to_string(r.y)).c_str());
+        out << line;
+    }
+}
+
 int run_render(const RenderArgs& a) {
     Scene s;
     World w;
@@ -373,6 +394,8 @@ int run_render(const RenderArgs& a) {
             throw Error("--camera-step \"" + a.camera_step + "\": expected DX,DY");
         FrameState st;
         st.options.opacity_correction = !a.no_opacity_correction;
+        st.options.threads = a.threads;
+        st.options.view_light_texture = a.layer == "light";  // the composite reads the blurred texture in place
         Camera cam = s.camera;
         cam.x = view.x;
         cam.y = view.y;
@@ -382,8 +405,12 @@ int run_render(const RenderArgs& a) {
             Camera c = cam;
             c.x += step[0] * f;
             c.y += step[1] * f;
+            const auto t0 = std::chrono::steady_clock::now();
             FrameReport rep = render_frame(st, w, s, c, f);
-            if (a.frames > 1) {
+            const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            if (a.stats) {
+                print_frame_stats(std::cout, f, rep, wall);
+            } else if (a.frames > 1) {
                 std::cout << "frame " << f << ":";
                 for (int k = 0; k < stage_count; ++k)
                     if (rep.ran[k]) std::cout << " " << to_string(Stage(k));
@@ -536,6 +563,11 @@ int main(int argc, char** argv) {
     render->add_option("--frames", ra.frames, "Frames to run; the last is written (default 1)")
         ->check(CLI::Range(1, 100000));
     render->add_option("--camera-step", ra.camera_step, "Camera movement per frame DX,DY (pixels)");
+    render->add_flag("--stats", ra.stats,
+                     "Print each frame's stages: time (ms) and the world rectangle each wrote (WxH at X,Y)");
+    render->add_option("--threads", ra.threads, "Threads for the frame's stages, 0: one per core (default 1); the "
+                                                "pixels are the same for any count")
+        ->check(CLI::Range(0, 256));
     render->add_flag("--no-opacity-correction", ra.no_opacity_correction,
                      "Skip the opacity-map correction (shows the paper's Figure 6 problem)");
     add_param_flags(*render, ra.params);
