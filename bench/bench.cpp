@@ -18,6 +18,8 @@
 #include "isolux/light_trace.hpp"
 #include "isolux/truth.hpp"
 #include "edits.hpp"
+#include "gpu_trace.hpp"
+#include "ratio.hpp"
 #include "whole_frame.hpp"
 #include "scenes.hpp"
 
@@ -270,19 +272,6 @@ void register_frames() {
 
 // ------------------------------------------------------------------ --ratios
 
-struct Collector : benchmark::BenchmarkReporter {
-    std::map<std::string, double> median_ns;
-    std::map<std::string, std::map<std::string, double>> counters;
-    bool ReportContext(const Context&) override { return true; }
-    void ReportRuns(const std::vector<Run>& runs) override {
-        for (const Run& r : runs)
-            if (r.run_type == Run::RT_Aggregate && r.aggregate_name == "median") {
-                median_ns[r.run_name.function_name] = r.GetAdjustedRealTime();  // in the run's unit (ns)
-                for (const auto& [name, c] : r.counters) counters[r.run_name.function_name][name] = c.value;
-            }
-    }
-};
-
 // The truth (truth.hpp): the 3D reference of the default scene (two lights,
 // 257x257 areas, the whole map in view), and a sweep of 48 settings against it.
 // Targets: <= 2 s and <= 3 minutes on one core (docs/accuracy.md).
@@ -305,9 +294,13 @@ void register_truth() {
     })->Unit(benchmark::kMillisecond)->Iterations(1);
 }
 
-int ratios(int argc, char** argv) {
+// Every figure of docs/performance.md, each the median of ratios of its two
+// sides measured interleaved (A, B, A, B, ...) in this one run, with the
+// spread over the pairs: a load that comes and goes hits both sides.
+int ratios() {
     const char* ratio_scene = "default";
     const int a = 128;
+    const int pairs = 11;
     // Byte-identical at k = 1: isolux's texture against the transcription's.
     const TraceScene& s = trace_scene(ratio_scene);
     LightMask ours;
@@ -324,55 +317,117 @@ int ratios(int argc, char** argv) {
             if (s.obstacles.get(int(r.x), int(r.y))) break;
         }
     const bool identical = ours.value == paper;
-
-    const std::string sfx = std::string("/") + ratio_scene + "/257";
-    const std::vector<std::string> wanted = {
-        "trace/isolux" + sfx, "trace/paper" + sfx, "trace/tcod_basic" + sfx, "trace/tcod_shadowcast" + sfx,
-        "trace/floor" + sfx, "frame/lights:16/threads:1/real_time", "frame/lights:16/threads:2/real_time", "frame/walk/trace_every:1",
-        "frame/walk/trace_every:4", "frame/offscreen/lights:8", "frame/offscreen/lights:1000", "frame/static",
-        "frame/full_retrace"};
-    std::string filter = "^(";
-    for (std::size_t i = 0; i < wanted.size(); ++i) filter += (i ? "|" : "") + wanted[i];
-    filter += ")$";
-    std::vector<std::string> args = {argv[0], "--benchmark_filter=" + filter, "--benchmark_repetitions=5",
-                                     "--benchmark_min_time=0.15", "--benchmark_report_aggregates_only=true"};
-    for (int i = 1; i < argc; ++i)
-        if (std::strcmp(argv[i], "--ratios") != 0) args.push_back(argv[i]);
-    std::vector<char*> cargs;
-    for (std::string& x : args) cargs.push_back(x.data());
-    int n = int(cargs.size());
-    benchmark::Initialize(&n, cargs.data());
-    Collector c;
-    benchmark::RunSpecifiedBenchmarks(&c);
-    auto t = [&](const std::string& name) {
-        auto it = c.median_ns.find(name);
-        return it == c.median_ns.end() ? 0.0 : it->second;
-    };
-    auto c_of = [&](const std::string& name) { return c.counters[name]; };
-    auto c_at = [](const std::map<std::string, double>& m, const char* k) {
-        auto it = m.find(k);
-        return it == m.end() ? 0.0 : it->second;
-    };
-    const double ours_ns = t("trace/isolux" + sfx);
     const double pixels = double(2 * a + 1) * (2 * a + 1);
-    std::printf("speedup_vs_paper %.2f\n", t("trace/paper" + sfx) / ours_ns);
-    std::printf("speedup_vs_tcod_basic %.2f\n", t("trace/tcod_basic" + sfx) / ours_ns);
-    std::printf("speedup_vs_tcod_shadowcast %.2f\n", t("trace/tcod_shadowcast" + sfx) / ours_ns);
-    std::printf("times_floor %.2f\n", ours_ns / t("trace/floor" + sfx));
-    std::printf("threads2_speedup %.2f\n",
-                t("frame/lights:16/threads:1") / t("frame/lights:16/threads:2"));
-    auto counter = [&](const std::string& name, const char* c) { return c_at(c_of(name), c); };
-    std::printf("trace_every4_cost %.3f\n", counter("frame/walk/trace_every:4", "tracing_ms_per_frame") /
-                                                 counter("frame/walk/trace_every:1", "tracing_ms_per_frame"));
-    std::printf("offscreen_lights_cost %.3f\n", t("frame/offscreen/lights:1000") / t("frame/offscreen/lights:8"));
-    std::printf("static_frame_cost %.4f\n", t("frame/static") / t("frame/full_retrace"));
-    std::printf("ns_per_area_pixel %.3f\n", ours_ns / pixels);
+
+    // The tracer against the transcription, libtcod and the floor.
+    auto isolux = [&] { trace_isolux(s, a, 1, ours); benchmark::DoNotOptimize(ours.value.data()); };
+    auto transcription = [&] { trace_paper(s, a, 1, paper); benchmark::DoNotOptimize(paper.data()); };
+    bench::print_ratio("speedup_vs_paper", bench::interleaved(transcription, 10, isolux, 10, pairs), ">= 8", 2);
+    std::vector<std::uint8_t> tex(std::size_t(2 * a + 1) * (2 * a + 1));
+    TcodArea& tcod = tcod_area(s, a);
+    for (auto [name, algo] : {std::pair{"tcod_basic", FOV_BASIC}, {"tcod_shadowcast", FOV_SYMMETRIC_SHADOWCAST}}) {
+        // libtcod's field of view alone, and with the write of the same intensities (an out-of-line
+        // TCOD_map_is_in_fov call per pixel, which alone costs more than isolux's whole trace).
+        auto fov = [&, algo = algo] { TCOD_map_compute_fov(tcod.map, a, a, 0, false, algo); };
+        auto fov_and_write = [&, algo = algo] { trace_tcod(tcod, algo, tex); benchmark::DoNotOptimize(tex.data()); };
+        bench::print_ratio(("speedup_vs_" + std::string(name) + "_fov_only").c_str(),
+                           bench::interleaved(fov, 10, isolux, 10, pairs), nullptr, 2);
+        bench::print_ratio(("speedup_vs_" + std::string(name)).c_str(),
+                           bench::interleaved(fov_and_write, 10, isolux, 10, pairs), nullptr, 2);
+    }
+    // The floor: memset of the light's area, the bytes its texture must be written with.
+    std::vector<std::uint8_t> area_bytes(tex.size());
+    auto floor_memset = [&] { std::memset(area_bytes.data(), area_bytes[0] ^ 1, area_bytes.size()); benchmark::DoNotOptimize(area_bytes.data()); };
+    bench::print_ratio("tracer_times_floor", bench::interleaved(isolux, 10, floor_memset, 100, pairs), nullptr, 1);
+    std::vector<std::uint8_t> table;
+    for (int d = 0; d <= a; ++d) table.push_back(falloff(d, 1.0));
+    auto scalar_fill = [&] { fill_floor(a, table, tex); benchmark::DoNotOptimize(tex.data()); };
+    bench::print_ratio("times_scalar_fill", bench::interleaved(isolux, 10, scalar_fill, 10, pairs), "<= 20", 2);
+
+    // Frames (the app's split: the CPU traces, the GPU blurs and composites).
+    struct Moving {
+        const World& w = bench::world("default", 24);
+        Scene scene;
+        FrameState st;
+        long f = 0;
+        Moving(int n, int threads) : scene(lights_scene(w, n, 7)), st(lighting_state(threads)) { render_frame(st, w, scene, Camera{}, f++); }
+        void operator()() {
+            for (Light& l : scene.lights) l.x += (f % 2) ? 1 : -1;
+            render_frame(st, w, scene, Camera{}, f++);
+        }
+    };
+    Moving one(16, 1), two(16, 2);
+    bench::print_ratio("threads2_speedup", bench::interleaved([&] { one(); }, 5, [&] { two(); }, 5, pairs), ">= 1.7", 2);
+
+    // Tracing time per frame (trace, drawing into the texture, correction, from the frame report)
+    // of a walking camera carrying a light, tracing every 4 frames against every frame.
+    auto walk = [](int l) {
+        return [l, st = lighting_state(1), f = long(0), s = lights_scene(bench::world("default", 24), 8, 11)]() mutable {
+            const World& w = bench::world("default", 24);
+            s.params.trace_every = l;
+            double ms = 0;
+            for (int i = 0; i < 16; ++i, ++f) {
+                const Camera cam{300.0 + 6.0 * (f % 64), 200.0 + 3.0 * (f % 64), 960, 540};
+                Scene sf = s;
+                sf.lights.push_back(Light{cam.x + 480.5, cam.y + 270.5});
+                const FrameReport r = render_frame(st, w, sf, cam, f);
+                ms += r.ms[int(Stage::trace)] + r.ms[int(Stage::opacity_correction)];
+            }
+            return ms;
+        };
+    };
+    auto walk4 = walk(4), walk1 = walk(1);
+    bench::print_ratio("trace_every4_cost", bench::interleaved_costs(walk4, walk1, pairs), "<= 0.3");
+
+    // 1000 lights of which 8 are in view, against those 8 alone (the 8 move each frame).
+    auto offscreen = [](bool more) {
+        const World& w = bench::world("default", 64);
+        const Camera cam{3000, 1500, 960, 540};
+        Scene sc;
+        sc.params.blur_radius = 0;
+        Pcg32 rng(5);
+        for (int i = 0; i < 8; ++i) sc.lights.push_back(Light{cam.x + 100 + 100.0 * i, cam.y + 100 + 40.0 * i});
+        while (more && sc.lights.size() < 1000) {
+            const double x = rng.below(std::uint32_t(w.placed.bounds.w)), y = rng.below(std::uint32_t(w.placed.bounds.h));
+            if (x > cam.x - 400 && x < cam.x + 1400 && y > cam.y - 400 && y < cam.y + 1000) continue;
+            sc.lights.push_back(Light{x, y});
+        }
+        return [&w, cam, sc, st = lighting_state(1), f = long(0)]() mutable {
+            for (std::size_t i = 0; i < 8; ++i) sc.lights[i].x += (f % 2) ? 1 : -1;
+            render_frame(st, w, sc, cam, f++);
+        };
+    };
+    auto with_1000 = offscreen(true), with_8 = offscreen(false);
+    bench::print_ratio("offscreen_lights_cost", bench::interleaved(with_1000, 5, with_8, 5, pairs), "<= 1.2");
+
+    // A frame where nothing changed against a full retrace frame (sprites, blur, composite on the CPU).
+    const World& w24 = bench::world("default", 24);
+    Scene still_scene = lights_scene(w24, 16, 3);
+    still_scene.params.blur_radius = 2;
+    FrameState still_state, full_state;
+    long f_still = 0, f_full = 0;
+    render_frame(still_state, w24, still_scene, Camera{}, f_still++);
+    render_frame(full_state, w24, still_scene, Camera{}, f_full++);
+    bench::print_ratio("static_frame_cost", bench::interleaved([&] { render_frame(still_state, w24, still_scene, Camera{}, f_still++); }, 1000, [&] {
+        full_state.cache.lights.clear(), full_state.cache.trace_lights.clear();  // forget the traces: all again
+        render_frame(full_state, w24, still_scene, Camera{}, f_full++);
+    }, 1, pairs), "<= 0.05", 5);
+
+    bench::print_floor_ratios();
+    bench::print_edit_ratios();
+    bench::print_gpu_figures();
+
+    std::printf("ns_per_area_pixel %.3f (median of %d runs of 10)\n", [&] {
+        std::vector<double> t;
+        for (int i = 0; i < pairs; ++i) t.push_back(bench::seconds_per(isolux, 10) * 1e9 / pixels);
+        std::sort(t.begin(), t.end());
+        return t[t.size() / 2];
+    }(), pairs);
     std::printf("bresenham_steps_per_pixel %.3f\n", steps / pixels);
     std::printf("paper_bresenham_steps_per_pixel %.3f\n", paper_steps / pixels);
     std::printf("identical_to_paper_at_k1 %d\n", identical ? 1 : 0);
-    bench::print_edit_ratios();
-    std::printf("# scene %s, area %dx%d, one light, k = 1, %u hardware threads\n", ratio_scene, 2 * a + 1, 2 * a + 1,
-                std::thread::hardware_concurrency());
+    std::printf("# tracer figures: scene %s, area %dx%d, one light, k = 1; %u hardware threads\n", ratio_scene, 2 * a + 1,
+                2 * a + 1, std::thread::hardware_concurrency());
     return identical ? 0 : 1;
 }
 
@@ -385,7 +440,7 @@ int main(int argc, char** argv) {
     bench::register_edits();
     bench::register_whole_frames();
     for (int i = 1; i < argc; ++i)
-        if (std::strcmp(argv[i], "--ratios") == 0) return ratios(argc, argv);
+        if (std::strcmp(argv[i], "--ratios") == 0) return ratios();
     benchmark::Initialize(&argc, argv);
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();

@@ -16,7 +16,7 @@ struct Ratio {
 
 // Seconds per call of `work`, over `times` calls.
 template <class Work>
-double seconds_per(const Work& work, int times) {
+double seconds_per(Work&& work, int times) {
     const auto t0 = std::chrono::steady_clock::now();
     for (int i = 0; i < times; ++i) work();
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / times;
@@ -24,13 +24,28 @@ double seconds_per(const Work& work, int times) {
 
 // A over B: each pair times `a_times` calls of A, then `b_times` of B.
 template <class A, class B>
-Ratio interleaved(const A& a, int a_times, const B& b, int b_times, int pairs) {
+Ratio interleaved(A&& a, int a_times, B&& b, int b_times, int pairs) {
     std::vector<double> r;
     a();
     b();  // warm
     for (int i = 0; i < pairs; ++i) {
         const double ta = seconds_per(a, a_times), tb = seconds_per(b, b_times);
         r.push_back(ta / tb);
+    }
+    std::sort(r.begin(), r.end());
+    return {r[r.size() / 2], r.front(), r.back(), pairs};
+}
+
+// A over B for costs the two sides report themselves (e.g. a stage's own
+// time from the frame report): each pair calls a() then b().
+template <class A, class B>
+Ratio interleaved_costs(A&& a, B&& b, int pairs) {
+    std::vector<double> r;
+    a();
+    b();  // warm
+    for (int i = 0; i < pairs; ++i) {
+        const double ca = a(), cb = b();
+        r.push_back(ca / cb);
     }
     std::sort(r.begin(), r.end());
     return {r[r.size() / 2], r.front(), r.back(), pairs};

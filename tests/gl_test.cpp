@@ -5,10 +5,13 @@
 
 #include <GLFW/glfw3.h>
 
+#include "gui/gpu_tracer.hpp"
 #include "gui/renderer.hpp"
 #include "gui/window.hpp"
 #include "isolux/blur.hpp"
 #include "isolux/frame.hpp"
+#include "isolux/hash.hpp"
+#include "isolux/obstacle_map.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -143,4 +146,112 @@ TEST(Gl, theWholeGpuFrameMatchesTheCpuFrame) {
     renderer_draw(r, cpu.view, s.params, CompositeOptions{});
     // Sprites too: the atlas is straight alpha, premultiplied in float.
     EXPECT_LE(max_diff(renderer_read_final(r), cpu.final), 2);
+}
+
+// ------------------------------------------------------------ the GPU tracer
+
+namespace {
+
+// The obstacle maps the tracer is held to: the default seed's map, a forest
+// (every tile three trees) and hand-made walls with doorways.
+struct TraceCase {
+    std::string name;
+    Mask obstacles;
+};
+
+std::vector<TraceCase> trace_cases() {
+    std::vector<TraceCase> cases;
+    const Tileset ts = test::default_tileset();
+    for (const char* kind : {"default", "forest"}) {
+        Scene s;
+        s.width = s.height = 10;
+        World w = make_world(ts, s);
+        if (std::string(kind) == "forest") {
+            const std::vector<int> trees = w.tileset.find(SpriteKind::overlay, "tree");
+            for (std::size_t i = 0; i < w.map.tiles.size(); ++i) {
+                Tile& t = w.map.tiles[i];
+                t.overlay_count = 3;
+                const int slots[3][2] = {{0, 0}, {-25, 0}, {25, 0}};
+                for (int k = 0; k < 3; ++k) t.overlays[k] = {trees[(i + k) % trees.size()], slots[k][0], slots[k][1]};
+            }
+            w.placed = place_sprites(w.map, w.tileset);
+        }
+        cases.push_back({kind, build_obstacle_map(w.tileset, w.placed, Params{}, w.placed.bounds)});
+    }
+    Mask walls(Rect{-50, -30, 400, 300});
+    for (int y = -20; y < 270; y += 40)
+        for (int x = -50; x < 350; ++x)
+            if (((x + 50) % 90) > 20) walls.set(x, y), walls.set(x, y + 1);
+    cases.push_back({"walls", walls});
+    return cases;
+}
+
+}  // namespace
+
+TEST(Gl, theGpuTracerGivesTheCpuTracersBytes) {
+    ASSERT_NE(gl().window, nullptr) << "no GL context (run under xvfb-run): " << gl().error;
+    GpuTracer tracer;
+    std::string error;
+    ASSERT_TRUE(gpu_tracer_init(tracer, error)) << "compute shaders are required (Mesa's llvmpipe has them): " << error;
+    int compared = 0, lit_pixels = 0;
+    std::uint64_t revision = 0;
+    for (const TraceCase& c : trace_cases()) {
+        ++revision;  // a new obstacle map: uploaded again
+        const Rect b = c.obstacles.rect();
+        Pcg32 rng(3);
+        for (Mode mode : {Mode::light, Mode::shadow, Mode::flat})
+            for (int variant = 0; variant < 6; ++variant) {
+                Params p;
+                p.mode = mode;
+                p.ray_skip = variant % 3 == 0 ? 1 : variant % 3 == 1 ? 2 : 5;
+                if (variant == 5) p.rays = Rays::every_pixel;
+                if (variant == 4) p.falloff_scale = 2.5;
+                const int a = variant == 5 ? 15 + int(rng.below(20)) : 10 + int(rng.below(150));
+                const int bb = variant == 5 ? 15 + int(rng.below(20)) : 10 + int(rng.below(150));
+                // Centres inside the map, near its edge, and just outside it.
+                const std::int64_t cx = b.x - 20 + std::int64_t(rng.below(std::uint32_t(b.w + 40)));
+                const std::int64_t cy = b.y - 20 + std::int64_t(rng.below(std::uint32_t(b.h + 40)));
+                Rect clip{int(cx) - a, int(cy) - bb, 2 * a + 1, 2 * bb + 1};
+                if (variant == 3) clip = intersect(clip, {int(cx) - a / 3, int(cy) - bb, a, 2 * bb});  // a view cuts it
+                const LightMask want = trace_light(c.obstacles, cx, cy, a, bb, p, clip);
+                LightMask got;
+                got.clip = clip, got.cx = cx, got.cy = cy, got.a = a, got.b = bb;
+                const std::size_t n = std::size_t(clip.w) * clip.h;
+                got.value.assign(n, 0);
+                got.reached.assign(mode == Mode::shadow ? n : 0, 0);
+                std::vector<LightMask*> masks{&got};
+                ASSERT_TRUE(gpu_trace(tracer, c.obstacles, revision, masks, p));
+                EXPECT_EQ(got.value, want.value) << c.name << " " << to_string(mode) << " variant " << variant << " at "
+                                                 << cx << "," << cy << " a " << a << " b " << bb;
+                EXPECT_EQ(got.reached, want.reached) << c.name << " " << to_string(mode) << " variant " << variant;
+                for (std::uint8_t v : want.value) lit_pixels += v != 0;
+                ++compared;
+            }
+    }
+    EXPECT_EQ(compared, 54);
+    EXPECT_GT(lit_pixels, 100000) << "the cases must light something";
+    gpu_tracer_free(tracer);
+}
+
+TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
+    ASSERT_NE(gl().window, nullptr) << "no GL context (run under xvfb-run): " << gl().error;
+    GpuTracer tracer;
+    std::string error;
+    ASSERT_TRUE(gpu_tracer_init(tracer, error)) << error;
+    Scene s;
+    s.lights = {Light{120.5, 90.5}, Light{300.5, 160.5, 60, 40}};
+    FrameState cpu, gpu;
+    gpu.options.tracer = [&](const Mask& ob, std::uint64_t rev, const std::vector<LightMask*>& masks, const Params& p) {
+        return gpu_trace(tracer, ob, rev, masks, p) ? std::string_view("gpu") : std::string_view();
+    };
+    for (long f = 0; f < 3; ++f) {
+        s.lights[0].x += 9;
+        const FrameReport rc = render_frame(cpu, world(), s, Camera{}, f);
+        const FrameReport rg = render_frame(gpu, world(), s, Camera{}, f);
+        EXPECT_EQ(rc.tracer, "cpu");
+        EXPECT_EQ(rg.tracer, "gpu");
+        EXPECT_EQ(gpu.traced.rgb, cpu.traced.rgb) << "frame " << f;
+        EXPECT_EQ(gpu.final.rgba, cpu.final.rgba) << "frame " << f;
+    }
+    gpu_tracer_free(tracer);
 }

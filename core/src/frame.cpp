@@ -200,6 +200,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
             if (p.rays_over_obstacles)
                 st.obstacle_heights = build_obstacle_heights(world.tileset, world.placed, p, st.obstacles);
             repaint_ground_lines(c.ground, world.placed, st.opacity, ch.part);
+            ++st.obstacles_revision;
         }
         c.world_revision = world.revision;
         rep.rebuilt = ch.part;
@@ -233,6 +234,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
     c.ground = ground_lines(world.placed, st.opacity, c.obstacle_region);
+    ++st.obstacles_revision;
     c.obstacle_params = p;
     c.world_revision = world.revision;
     c.has_obstacles = true;
@@ -338,6 +340,26 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     std::vector<double> trace_ms(n, 0), correct_ms(n, 0);
     std::vector<int> touched(n, 0);
 
+    // Another tracer (the app's GPU) first, on this thread, when one is set.
+    bool traced_elsewhere = false;
+    if (st.options.tracer && !over && n > 0) {
+        const auto t0 = Clock::now();
+        std::vector<LightMask*> masks;
+        for (std::size_t k : plan.todo) {
+            TracedLight& tl = plan.traced[k];
+            LightMask& m = tl.mask;
+            m.cx = tl.cx, m.cy = tl.cy, m.a = tl.a, m.b = tl.b, m.falloff_scale = p.falloff_scale;
+            const std::size_t size = std::size_t(std::max(0, m.clip.w)) * std::max(0, m.clip.h);
+            m.value.assign(size, 0);
+            m.reached.assign(p.mode == Mode::shadow ? size : 0, 0);
+            masks.push_back(&m);
+        }
+        rep.tracer = st.options.tracer(st.obstacles, st.obstacles_revision, masks, p);
+        traced_elsewhere = !rep.tracer.empty();
+        if (traced_elsewhere) rep.ms[int(Stage::trace)] += ms_between(t0, Clock::now());
+    }
+    if (!traced_elsewhere && n > 0) rep.tracer = "cpu";
+
     std::atomic<std::size_t> next_light{0};
     auto trace_lights = [&] {
         for (std::size_t k; (k = next_light++) < n;) {
@@ -347,7 +369,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             if (over)  // beyond the paper: rays over low obstacles
                 tl.mask = trace_light_over(st.obstacles, st.obstacle_heights, tl.cx, tl.cy, tl.a, tl.b, tl.height, p,
                                            tl.mask.clip);
-            else
+            else if (!traced_elsewhere)
                 tl.mask = trace_light(st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
                                       area_is_clear(st.obstacles, area));
             const auto t1 = Clock::now();

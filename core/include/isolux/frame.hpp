@@ -5,6 +5,7 @@
 #pragma once
 #include <array>
 #include <chrono>
+#include <functional>
 #include <string_view>
 #include <vector>
 
@@ -34,8 +35,20 @@ struct FrameReport {
     // run): the traced lights' areas, the texture's redone part (trace:
     // clearing and adding lights), the blurred and composited parts.
     std::array<Rect, stage_count> touched{};
+    // Which tracer traced this frame's lights: "cpu", or the name a
+    // FrameOptions::tracer gave ("gpu" in the app); empty when none was traced.
+    std::string_view tracer;
     bool ran_stage(Stage s) const { return ran[int(s)]; }
 };
+
+// A tracer other than the CPU's (the app's GPU compute tracer, app/gui/
+// gpu_tracer.hpp): fills `masks` (clip, centre, a, b set; value, and reached
+// in shadow mode, sized and zero) with exactly trace_light's bytes for these
+// obstacles and parameters, and returns its name; or returns "" to leave
+// them to the CPU. Called on the frame's own thread, before the opacity
+// correction; `obstacles_revision` changes whenever the obstacle map does.
+using LightTracer = std::function<std::string_view(const Mask& obstacles, std::uint64_t obstacles_revision,
+                                                   const std::vector<LightMask*>& masks, const Params& p)>;
 
 struct FrameOptions {
     int margin = 64;                  // light texture = view + margin on each side (the paper's "slightly greater")
@@ -53,6 +66,9 @@ struct FrameOptions {
     // blurred texture in place, so only callers that show or save the light
     // layer need the copy.
     bool view_light_texture = true;
+    // Traces the lights instead of the CPU when set and it accepts them
+    // (never for rays_over_obstacles, a CPU-only extension).
+    LightTracer tracer;
 };
 
 // What the last frame was built from: private to render_frame, which reads
@@ -110,6 +126,7 @@ struct FrameState {
 
     // Outputs, valid after render_frame (those of stages an option turns off stay empty).
     Mask obstacles;              // the obstacle map over the region lights need (paper 3.1)
+    std::uint64_t obstacles_revision = 0;  // changes whenever `obstacles` does
     std::vector<Mask> opacity;   // each tileset sprite's opacity map, by sprite index
     ObstacleHeights obstacle_heights;  // with rays_over_obstacles: the obstacles' estimated heights
     LightTexture traced;         // the last trace: corrected light texture, world-anchored
