@@ -26,6 +26,16 @@ if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --frames 3 --scr
 # Within 2/255 on every pixel and channel.
 if idiff -fail 0.0079 -warn 0.0079 "$tmp/shot.png" "$tmp/cli.png" >"$tmp/idiff" 2>&1; then ok; else bad "screenshot differs from isolux-cli"; cat "$tmp/idiff"; fi
 
+# 1b. The tracer: the GPU's compute shader (--tracer gpu; llvmpipe has
+# compute shaders) gives the CPU's pixels; the automatic choice takes the CPU
+# on a software renderer, and says so.
+timeout 120 "$app" --scene "$src/assets/scenes/default.json" --frames 3 --tracer gpu --screenshot "$tmp/gpu.png" >"$tmp/log_gpu" 2>&1 || { bad "gpu tracer run"; cat "$tmp/log_gpu"; }
+timeout 120 "$app" --scene "$src/assets/scenes/default.json" --frames 3 --tracer cpu --screenshot "$tmp/cpu.png" >"$tmp/log_cpu" 2>&1 || { bad "cpu tracer run"; cat "$tmp/log_cpu"; }
+if grep -q "^isolux: tracer: gpu (setting gpu; GPU tracer on " "$tmp/log_gpu" && grep -q "^isolux: tracer: cpu (setting cpu" "$tmp/log_cpu" \
+  && grep -q "^isolux: tracer: cpu (setting auto; GPU tracer on llvmpipe" "$tmp/log" \
+  && grep -q "traced by the gpu$" "$tmp/log_gpu" && grep -q "traced by the cpu$" "$tmp/log_cpu"; then ok; else bad "tracer choice"; cat "$tmp/log_gpu" "$tmp/log_cpu" "$tmp/log"; fi
+if cmp -s "$tmp/gpu.png" "$tmp/cpu.png"; then ok; else bad "the GPU tracer's frame differs from the CPU tracer's"; fi
+
 # 2. Scripted input: place a light, move a slider, undo it, save.
 cat >"$tmp/edit.script" <<SCRIPT
 wait 2

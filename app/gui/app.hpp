@@ -9,6 +9,7 @@
 
 #include "gui/accuracy_panel.hpp"
 #include "gui/editor.hpp"
+#include "gui/gpu_tracer.hpp"
 #include "gui/layout.hpp"
 #include "gui/renderer.hpp"
 #include "gui/script.hpp"
@@ -26,6 +27,7 @@ struct Stats {
     int head = 0;
     float frame_ms = 0, fps = 0;
     int lights_traced = 0;
+    std::string tracer;  // which tracer traced the last traced frame: "cpu" or "gpu"
     Rect last_rebuilt;  // the last frame report's rebuilt rectangle that was not empty (an edit's, or a full rebuild's)
 };
 
@@ -69,6 +71,9 @@ struct Ui {
 
 struct App {
     Renderer renderer;
+    GpuTracer gpu_tracer;      // Algorithm 2 as a compute shader (gpu_tracer.hpp)
+    std::string gpu_tracer_error;  // why it is not available ("" when it is)
+    std::string tracer_override;   // --tracer: wins over the saved setting, not saved
     Editor editor;
     Ui ui;
     Stats stats;

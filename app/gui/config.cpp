@@ -41,6 +41,10 @@ Settings load_settings(const fs::path& dir, std::string* warning) {
                 }
             }
         if (j.contains("show_stats") && j["show_stats"].is_boolean()) s.show_stats = j["show_stats"].get<bool>();
+        if (j.contains("tracer") && j["tracer"].is_string()) {
+            const std::string t = j["tracer"].get<std::string>();
+            if (t == "auto" || t == "cpu" || t == "gpu") s.tracer = t;
+        }
     } catch (const std::exception&) {
         if (warning) *warning = (dir / "settings.json").string() + ": unreadable, using defaults";
     }
@@ -52,7 +56,7 @@ void save_settings(const fs::path& dir, const Settings& s) {
     fs::create_directories(dir, ec);
     nlohmann::json recent = nlohmann::json::array();
     for (const RecentFile& f : s.recent) recent.push_back({{"path", f.path}, {"kind", std::string(to_string(f.kind))}});
-    nlohmann::json j{{"schema_version", 1}, {"recent", recent}, {"show_stats", s.show_stats}};
+    nlohmann::json j{{"schema_version", 1}, {"recent", recent}, {"show_stats", s.show_stats}, {"tracer", s.tracer}};
     write_file_atomic(dir / "settings.json", j.dump(2) + "\n");
 }
 

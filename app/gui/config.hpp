@@ -24,6 +24,10 @@ struct RecentFile {
 struct Settings {
     std::vector<RecentFile> recent;  // most recent first, at most 8
     bool show_stats = true;
+    // Which tracer the app runs (View › Tracer): "auto" (the GPU's compute
+    // shader unless the GL driver is a software rasteriser, where the CPU is
+    // faster), "cpu" or "gpu". The pixels are the same either way.
+    std::string tracer = "auto";
 };
 
 // Reads settings.json from `dir`; a missing or bad file gives the defaults

@@ -334,6 +334,22 @@ void run_script_step(App& app) {
     }
 }
 
+// The tracer the setting asks for (config.hpp: Settings::tracer): the GPU's
+// compute shader for "gpu", and for "auto" when the driver is not a software
+// rasteriser; the CPU otherwise, or when the GPU one is not available.
+bool gpu_tracer_chosen(const App& app) {
+    const std::string& want = app.tracer_override.empty() ? app.editor.settings.tracer : app.tracer_override;
+    if (!app.gpu_tracer.program || want == "cpu") return false;
+    return want == "gpu" || !gpu_tracer_is_software(app.gpu_tracer);
+}
+
+LightTracer chosen_tracer(App& app) {
+    if (!gpu_tracer_chosen(app)) return {};
+    return [&app](const Mask& obstacles, std::uint64_t revision, const std::vector<LightMask*>& masks, const Params& p) {
+        return gpu_trace(app.gpu_tracer, obstacles, revision, masks, p) ? std::string_view("gpu") : std::string_view();
+    };
+}
+
 // One frame's figures: the stages that ran, their times, and the frame's own
 // time (the pipeline's, `frame_ms`) and rate (the whole loop's, `dt`).
 void push_stats(App& app, const FrameReport& rep, double frame_ms, double dt) {
@@ -349,6 +365,7 @@ void push_stats(App& app, const FrameReport& rep, double frame_ms, double dt) {
     s.head = (s.head + 1) % Stats::frames;
     s.last_ran = rep.ran;
     s.lights_traced = rep.lights_traced;
+    if (!rep.tracer.empty()) s.tracer = std::string(rep.tracer);
     if (!rep.rebuilt.empty()) s.last_rebuilt = rep.rebuilt;
     s.frame_ms = s.frame_ms * 0.9f + float(frame_ms) * 0.1f;
     if (dt > 0) s.fps = s.fps * 0.9f + float(1.0 / dt) * 0.1f;
@@ -398,6 +415,7 @@ FrameReport render(App& app, bool screenshot_mode) {
         app.view_x = (app.view.x - e.view.x) * e.view.zoom;
         app.view_y = (app.view.y - e.view.y) * e.view.zoom;
     }
+    e.frame.options.tracer = chosen_tracer(app);
     FrameReport rep = render_frame(e.frame, e.world, scene, cam, e.frame_number);
     if (rep.retraced) renderer_upload_light(app.renderer, e.frame.traced, rep.dirty);  // only what changed
     CompositeOptions opts;
@@ -465,7 +483,7 @@ FrameReport render(App& app, bool screenshot_mode) {
 
 int main(int argc, char** argv) {
     CLI::App cli{"isolux: level editor and lighting previewer for seeded isometric maps"};
-    std::string scene_file, seed, screenshot, script_file, size, headless_out = "isolux.png";
+    std::string scene_file, seed, screenshot, script_file, size, tracer_choice, headless_out = "isolux.png";
     long frames = 0;
     int width = 1600, height = 900;
     cli.add_option("--scene", scene_file, "Scene JSON to open");
@@ -474,6 +492,8 @@ int main(int argc, char** argv) {
     cli.add_option("--frames", frames, "Render N frames, then quit (with --screenshot)")->check(CLI::Range(1L, 1000000L));
     cli.add_option("--screenshot", screenshot, "Write the final frame (the viewport, no panels) to this PNG");
     cli.add_option("--script", script_file, "Scripted input, one command a frame (see app/gui/script.hpp)");
+    cli.add_option("--tracer", tracer_choice, "auto, cpu or gpu: which tracer to run (overrides View › Tracer)")
+        ->check(CLI::IsMember({"auto", "cpu", "gpu"}));
     cli.add_option("--headless-out", headless_out, "With no display: where the headless render goes (default isolux.png)");
     cli.add_option("--width", width, "Window width")->check(CLI::Range(320, 8192));
     cli.add_option("--height", height, "Window height")->check(CLI::Range(240, 8192));
@@ -544,6 +564,12 @@ int main(int argc, char** argv) {
         close_window(window);
         return 1;
     }
+    app.tracer_override = tracer_choice;
+    if (!gpu_tracer_init(app.gpu_tracer, app.gpu_tracer_error)) gpu_tracer_free(app.gpu_tracer);
+    std::cout << "isolux: tracer: " << (gpu_tracer_chosen(app) ? "gpu" : "cpu") << " (setting "
+              << (tracer_choice.empty() ? app.editor.settings.tracer : tracer_choice) << "; GPU tracer "
+              << (app.gpu_tracer.program ? "on " + app.gpu_tracer.renderer : "unavailable: " + app.gpu_tracer_error)
+              << ")\n";
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -667,11 +693,13 @@ int main(int argc, char** argv) {
     } else {
         discard_autosave(app.editor);
     }
+    if (!app.stats.tracer.empty()) std::cout << "isolux: the last traced frame was traced by the " << app.stats.tracer << "\n";
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
     if (app.character_tex) glDeleteTextures(1, &app.character_tex);
     renderer_shutdown(app.renderer);
+    gpu_tracer_free(app.gpu_tracer);
     close_window(window);
     return app.exit_code;
 }

@@ -236,6 +236,18 @@ void menu_bar(App& app) {
         if (ImGui::MenuItem("Actual size", "Ctrl+0")) zoom_at(app, 1.0, app.window_w / 2.0, app.window_h / 2.0);
         ImGui::Separator();
         ImGui::MenuItem("Stats", nullptr, &e.settings.show_stats);
+        if (ImGui::BeginMenu("Tracer")) {
+            // The same pixels either way (tests/gl_test.cpp); only the time differs.
+            static const char* const choices[3][2] = {
+                {"auto", "Automatic (GPU unless its driver is a software renderer)"}, {"cpu", "CPU"}, {"gpu", "GPU (compute shader)"}};
+            for (const auto& c : choices)
+                if (ImGui::MenuItem(c[1], nullptr, e.settings.tracer == c[0], c[0] != std::string("gpu") || app.gpu_tracer.program)) {
+                    e.settings.tracer = c[0];
+                    app.tracer_override.clear();
+                }
+            if (!app.gpu_tracer.program) ImGui::TextDisabled("GPU tracer unavailable: %s", app.gpu_tracer_error.c_str());
+            ImGui::EndMenu();
+        }
         ImGui::MenuItem("Accuracy", nullptr, &app.accuracy.open);
         ImGui::MenuItem("Tileset inspector", nullptr, &app.ui.inspector_open);
         ImGui::EndMenu();
@@ -944,6 +956,10 @@ void stats_panel(App& app) {
     if (!ImGui::Begin("Stats", &app.editor.settings.show_stats)) return ImGui::End();
     const Stats& s = app.stats;
     ImGui::Text("%.1f FPS, %.2f ms a frame, %d lights traced", s.fps, s.frame_ms, s.lights_traced);
+    ImGui::Text("tracer: %s", s.tracer.empty() ? "none yet" : s.tracer == "gpu" ? "GPU (compute shader)" : "CPU");
+    help("Which tracer traced the last traced frame: set under View › Tracer. Automatic takes the GPU's compute shader "
+         "unless the GL driver is a software renderer (Mesa's llvmpipe), where the CPU is faster. Both give the same "
+         "pixels.");
     const Rect& rb = s.last_rebuilt;
     ImGui::Text("last rebuilt: %d x %d px at (%d, %d)", rb.w, rb.h, rb.x, rb.y);
     help("The world rectangle whose obstacle map was last rebuilt: around the edited tiles after a terrain edit, the "
