@@ -3,6 +3,8 @@
 #include "isolux/blur.hpp"
 
 #include <algorithm>
+#include <array>
+#include <type_traits>
 #include <cassert>
 #include <cstring>
 #include <vector>
@@ -19,23 +21,68 @@ bool valid(const LightTexture& tex) {
 // The exact quotient's fraction is a multiple of 1/n, so after adding 1/2 it
 // stays 1/(2n) away from an integer; float's error (< 4e-5 at 256) is below
 // that while n < 16000 (radius <= 62), double's for every radius.
-template <class Real>
-void divide_row(const std::uint32_t* sum, std::size_t count, std::uint32_t n, std::uint8_t* out) {
+template <class Real, class Sum>
+void divide_row(const Sum* sum, std::size_t count, std::uint32_t n, std::uint8_t* out) {
     const Real inv = Real(1) / Real(n), half = Real(n) * Real(0.5);
     for (std::size_t j = 0; j < count; ++j) out[j] = std::uint8_t(std::int32_t((Real(std::int32_t(sum[j])) + half) * inv));
 }
 
+// round(v / n) in 16-bit integers, for the 16-bit sums (radius <= 7): the
+// high half of (v + (n-1)/2) * M, shifted right by `shift` (a multiply-high
+// per lane). M and the shift are chosen per n and checked against the
+// division for every sum that can occur, once; a radius they fail for uses
+// divide_row.
+struct Reciprocal {
+    std::uint16_t m = 0;
+    int shift = 0;
+    bool exact = false;
+};
+
+const Reciprocal& reciprocal_for(int radius) {
+    static const auto table = [] {
+        std::array<Reciprocal, 8> t{};
+        for (int r = 1; r <= 7; ++r) {
+            const std::uint32_t n = std::uint32_t(2 * r + 1) * std::uint32_t(2 * r + 1);
+            Reciprocal& c = t[std::size_t(r)];
+            for (c.shift = 0; (1u << (c.shift + 1)) < n; ++c.shift) {
+            }
+            const std::uint64_t m = ((std::uint64_t(1) << (16 + c.shift)) + n - 1) / n;
+            if (m > 0xFFFF) continue;
+            c.m = std::uint16_t(m);
+            c.exact = true;
+            for (std::uint32_t v = 0; v <= 255 * n && c.exact; ++v) {
+                const std::uint32_t x = v + (n - 1) / 2;
+                c.exact = ((x * c.m) >> 16 >> c.shift) == x / n;
+            }
+        }
+        return t;
+    }();
+    return table[std::size_t(std::clamp(radius, 0, 7))];
+}
+
+void divide_row_16(const std::uint16_t* sum, std::size_t count, std::uint16_t half, const Reciprocal& k,
+                   std::uint8_t* out) {
+    const std::uint16_t m = k.m;
+    const int shift = k.shift;
+    for (std::size_t j = 0; j < count; ++j) {
+        const std::uint16_t x = std::uint16_t(sum[j] + half);
+        const std::uint16_t high = std::uint16_t((std::uint32_t(x) * m) >> 16);
+        out[j] = std::uint8_t(high >> shift);
+    }
+}
+
 // One row's horizontal window sums over local columns [x0, x0 + w) of a
 // texture `width` wide: each the sum of 2r+1 texels, clamped at the edges.
+template <class Sum>
 struct RowSums {
     int r, width, x0, w;
-    std::vector<std::uint32_t> pad, prefix;
+    std::vector<Sum> pad, prefix;
 
     RowSums(int radius, int tex_width, int col0, int cols)
         : r(radius), width(tex_width), x0(col0), w(cols), pad(std::size_t(cols + 2 * radius) * 3),
           prefix(radius > 3 ? pad.size() + 3 : 0) {}
 
-    void operator()(const std::uint8_t* row, std::uint32_t* out) {
+    void operator()(const std::uint8_t* row, Sum* out) {
         // The row with its clamped border: pad[i] is texel x0 - r + i.
         const int n = w + 2 * r;
         const int inner0 = std::clamp(r - x0, 0, n), inner1 = std::clamp(width + r - x0, inner0, n);
@@ -46,21 +93,125 @@ struct RowSums {
         for (int i = inner1; i < n; ++i)
             for (int c = 0; c < 3; ++c) pad[std::size_t(i) * 3 + c] = row[std::size_t(width - 1) * 3 + c];
         const std::size_t m = std::size_t(w) * 3;
-        if (r <= 3) {  // a few shifted adds, each a vector loop
-            std::memcpy(out, pad.data(), m * sizeof(std::uint32_t));
-            for (int t = 1; t <= 2 * r; ++t) {
-                const std::uint32_t* p = pad.data() + std::size_t(t) * 3;
-                for (std::size_t j = 0; j < m; ++j) out[j] += p[j];
-            }
-            return;
+        // Small windows: the 2r+1 shifted rows added in one vector loop.
+        const Sum* p = pad.data();
+        switch (r) {
+            case 1:
+                for (std::size_t j = 0; j < m; ++j) out[j] = Sum(p[j] + p[j + 3] + p[j + 6]);
+                return;
+            case 2:
+                for (std::size_t j = 0; j < m; ++j) out[j] = Sum(p[j] + p[j + 3] + p[j + 6] + p[j + 9] + p[j + 12]);
+                return;
+            case 3:
+                for (std::size_t j = 0; j < m; ++j)
+                    out[j] = Sum(p[j] + p[j + 3] + p[j + 6] + p[j + 9] + p[j + 12] + p[j + 15] + p[j + 18]);
+                return;
+            default: break;
         }
-        // Wider windows: differences of running sums (prefix[k + 3] = sum of pad[<= k] per channel).
+        // Wider windows: differences of running sums (prefix[k + 3] = sum of
+        // pad[<= k] per channel), exact modulo 2^bits since a window's sum fits.
         prefix[0] = prefix[1] = prefix[2] = 0;
-        for (std::size_t k = 0; k < pad.size(); ++k) prefix[k + 3] = prefix[k] + pad[k];
+        for (std::size_t k = 0; k < pad.size(); ++k) prefix[k + 3] = Sum(prefix[k] + pad[k]);
         const std::size_t span = std::size_t(2 * r + 1) * 3;
-        for (std::size_t j = 0; j < m; ++j) out[j] = prefix[j + span] - prefix[j];
+        for (std::size_t j = 0; j < m; ++j) out[j] = Sum(prefix[j + span] - prefix[j]);
     }
 };
+
+// The window sums in 16 bits while (2r+1)^2 * 255 fits (r <= 7: twice the
+// texels per vector instruction), else 32.
+template <class Sum>
+void blur_region(const LightTexture& tex, int radius, Rect z, LightTexture& out) {
+    const int w = tex.rect.w, h = tex.rect.h;
+    const int x0 = z.x - tex.rect.x, y0 = z.y - tex.rect.y;
+    const std::size_t m = std::size_t(z.w) * 3;
+    // Rows are visited top to bottom; the 2r+1 rows of horizontal sums in the
+    // window live in a ring (slot of window row i: i mod 2r+1) and their
+    // column sums are updated as the window slides: new row in, old row out.
+    const int span = 2 * radius + 1;
+    const std::uint32_t n = std::uint32_t(span) * std::uint32_t(span);
+    RowSums<Sum> row_sums(radius, w, x0, z.w);
+    const Reciprocal& reciprocal = reciprocal_for(radius);
+    std::vector<Sum> ring(std::size_t(span) * m), column(m, 0), incoming(m);
+    auto slot = [&](int i) { return &ring[std::size_t(((i % span) + span) % span) * m]; };
+    auto texel_row = [&](int i) { return &tex.rgb[std::size_t(std::clamp(i, 0, h - 1)) * w * 3]; };
+    for (int i = y0 - radius; i <= y0 + radius; ++i) {
+        Sum* s = slot(i);
+        row_sums(texel_row(i), s);
+        for (std::size_t j = 0; j < m; ++j) column[j] = Sum(column[j] + s[j]);
+    }
+    for (int y = y0; y < y0 + z.h; ++y) {
+        std::uint8_t* dst = &out.rgb[(std::size_t(y) * w + x0) * 3];
+        if constexpr (std::is_same_v<Sum, std::uint16_t>) {
+            if (reciprocal.exact) {
+                divide_row_16(column.data(), m, std::uint16_t((n - 1) / 2), reciprocal, dst);
+            } else {
+                divide_row<float>(column.data(), m, n, dst);
+            }
+        } else if (n < 16000) {
+            divide_row<float>(column.data(), m, n, dst);
+        } else {
+            divide_row<double>(column.data(), m, n, dst);
+        }
+        if (y + 1 == y0 + z.h) break;
+        Sum* s = slot(y - radius);  // leaves the window; y + r + 1 takes its slot
+        row_sums(texel_row(y + radius + 1), incoming.data());
+        for (std::size_t j = 0; j < m; ++j) {
+            column[j] = Sum(column[j] + incoming[j] - s[j]);
+            s[j] = incoming[j];
+        }
+    }
+}
+
+// Radius 1 to 3, the common case: each row one fused pass (the new row's
+// horizontal sums from its bytes, the column sums slid, the divide, the
+// store), the clamped edge texels from a padded copy.
+template <int R>
+void blur_region_small(const LightTexture& tex, Rect z, LightTexture& out) {
+    constexpr int span = 2 * R + 1;
+    const int w = tex.rect.w, h = tex.rect.h;
+    const int x0 = z.x - tex.rect.x, y0 = z.y - tex.rect.y;
+    const std::size_t m = std::size_t(z.w) * 3;
+    const Reciprocal& k = reciprocal_for(R);
+    const std::uint16_t half = std::uint16_t((span * span - 1) / 2), mul = k.m;
+    const int shift = k.shift;
+    RowSums<std::uint16_t> edge_sums(R, w, x0, z.w);  // the edges: clamped through the padded copy
+    std::vector<std::uint16_t> ring(std::size_t(span) * m), column(m, 0), edge(m);
+    auto slot = [&](int i) { return &ring[std::size_t(((i % span) + span) % span) * m]; };
+    auto texel_row = [&](int i) { return &tex.rgb[std::size_t(std::clamp(i, 0, h - 1)) * w * 3]; };
+    // Columns [a, b) of the region read no clamped texel: x - R >= 0, x + R < w.
+    const std::size_t a = std::size_t(std::clamp(R - x0, 0, z.w)) * 3;
+    const std::size_t b = std::max(a, std::size_t(std::clamp(w - R - x0, 0, z.w)) * 3);
+    // Texel row i comes in: its horizontal sums replace those in slot `s`
+    // (the row leaving the window, or zeros) and the column sums move by the
+    // difference; with Write, the column then gives output row `dst`.
+    auto row_in = [&]<bool Write>(int i, std::uint16_t* __restrict s, std::uint8_t* __restrict dst) {
+        const std::uint8_t* __restrict src = texel_row(i) + std::size_t(x0) * 3;
+        std::uint16_t* __restrict col = column.data();
+        auto put = [&](std::size_t j, std::uint16_t v) {
+            const std::uint16_t c = std::uint16_t(col[j] + v - s[j]);
+            col[j] = c;
+            s[j] = v;
+            if constexpr (Write) dst[j] = std::uint8_t(std::uint16_t((std::uint32_t(std::uint16_t(c + half)) * mul) >> 16) >> shift);
+        };
+        if (a > 0 || b < m) {
+            edge_sums(texel_row(i), edge.data());
+            for (std::size_t j = 0; j < a; ++j) put(j, edge[j]);
+            for (std::size_t j = b; j < m; ++j) put(j, edge[j]);
+        }
+        for (std::size_t j = a; j < b; ++j) {
+            std::uint16_t v = 0;
+            for (int t = -R; t <= R; ++t) v = std::uint16_t(v + src[std::ptrdiff_t(j) + 3 * t]);
+            const std::uint16_t c = std::uint16_t(col[j] + v - s[j]);
+            col[j] = c;
+            s[j] = v;
+            if constexpr (Write) dst[j] = std::uint8_t(std::uint16_t((std::uint32_t(std::uint16_t(c + half)) * mul) >> 16) >> shift);
+        }
+    };
+    for (int i = y0 - R; i < y0 + R; ++i) row_in.template operator()<false>(i, slot(i), nullptr);
+    // Row y + R comes in (into the slot of row y - R - 1, which leaves), and row y is written.
+    for (int y = y0; y < y0 + z.h; ++y)
+        row_in.template operator()<true>(y + R, slot(y + R), &out.rgb[(std::size_t(y) * w + x0) * 3]);
+}
 
 }  // namespace
 
@@ -69,42 +220,22 @@ void box_blur_into(const LightTexture& tex, int radius, Rect region, LightTextur
     if (!(out.rect == tex.rect) || !valid(out)) out = LightTexture(tex.rect);
     const Rect z = intersect(region, tex.rect);
     if (z.empty()) return;
-    const int w = tex.rect.w, h = tex.rect.h;
+    const int w = tex.rect.w;
     const int x0 = z.x - tex.rect.x, y0 = z.y - tex.rect.y;
-    const std::size_t m = std::size_t(z.w) * 3;
     if (radius == 0) {
         for (int y = y0; y < y0 + z.h; ++y)
-            std::memcpy(&out.rgb[(std::size_t(y) * w + x0) * 3], &tex.rgb[(std::size_t(y) * w + x0) * 3], m);
+            std::memcpy(&out.rgb[(std::size_t(y) * w + x0) * 3], &tex.rgb[(std::size_t(y) * w + x0) * 3],
+                        std::size_t(z.w) * 3);
         return;
     }
-    // Rows are visited top to bottom; the 2r+1 rows of horizontal sums in the
-    // window live in a ring (slot of window row i: i mod 2r+1) and their
-    // column sums are updated as the window slides: new row in, old row out.
-    const int span = 2 * radius + 1;
-    const std::uint32_t n = std::uint32_t(span) * std::uint32_t(span);
-    RowSums row_sums(radius, w, x0, z.w);
-    std::vector<std::uint32_t> ring(std::size_t(span) * m), column(m, 0), incoming(m);
-    auto slot = [&](int i) { return &ring[std::size_t(((i % span) + span) % span) * m]; };
-    auto texel_row = [&](int i) { return &tex.rgb[std::size_t(std::clamp(i, 0, h - 1)) * w * 3]; };
-    for (int i = y0 - radius; i <= y0 + radius; ++i) {
-        std::uint32_t* s = slot(i);
-        row_sums(texel_row(i), s);
-        for (std::size_t j = 0; j < m; ++j) column[j] += s[j];
-    }
-    for (int y = y0; y < y0 + z.h; ++y) {
-        std::uint8_t* dst = &out.rgb[(std::size_t(y) * w + x0) * 3];
-        if (n < 16000)
-            divide_row<float>(column.data(), m, n, dst);
-        else
-            divide_row<double>(column.data(), m, n, dst);
-        if (y + 1 == y0 + z.h) break;
-        std::uint32_t* s = slot(y - radius);  // leaves the window; y + r + 1 takes its slot
-        row_sums(texel_row(y + radius + 1), incoming.data());
-        for (std::size_t j = 0; j < m; ++j) {
-            column[j] += incoming[j] - s[j];
-            s[j] = incoming[j];
-        }
-    }
+    if (radius <= 3 && reciprocal_for(radius).exact) {
+        if (radius == 1) blur_region_small<1>(tex, z, out);
+        if (radius == 2) blur_region_small<2>(tex, z, out);
+        if (radius == 3) blur_region_small<3>(tex, z, out);
+    } else if (std::int64_t(2 * radius + 1) * (2 * radius + 1) * 255 < 65536)
+        blur_region<std::uint16_t>(tex, radius, z, out);
+    else
+        blur_region<std::uint32_t>(tex, radius, z, out);
 }
 
 LightTexture box_blur(const LightTexture& tex, int radius) {

@@ -116,10 +116,14 @@ int correct_with_ground_lines(LightMask& mask, const GroundLines& lines, const P
         const std::uint8_t vy = falloff(std::llabs(y - mask.cy), mask.falloff_scale);
         // A sprite stands above the centre when ground_y < cy, i.e. below < cy - y.
         const std::int16_t above = std::int16_t(std::clamp<std::int64_t>(mask.cy - y, GroundLines::none + 1, INT16_MAX));
-        for (int x = 0; x < r.w; ++x) {
+        const std::uint8_t* fx = by_x.data();
+        for (int x = 0; x < r.w; ++x) {  // branch-free, so that it vectorises
             const std::int16_t b = below[x];
-            const std::uint8_t lit = b < above ? std::min(by_x[std::size_t(x)], vy) : std::uint8_t(0);
-            value[x] = b == GroundLines::none ? value[x] : lit;
+            std::uint8_t f = fx[x];
+            f = f < vy ? f : vy;
+            const std::uint8_t keep = std::uint8_t(-std::uint8_t(b == GroundLines::none));
+            const std::uint8_t lit = std::uint8_t(-std::uint8_t(b < above));
+            value[x] = std::uint8_t((value[x] & keep) | (f & lit & std::uint8_t(~keep)));
         }
         if (shadow) {
             std::uint8_t* reached = &mask.reached[m];
