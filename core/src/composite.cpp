@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace isolux {
 
@@ -50,6 +53,8 @@ void exact_pixel(const std::uint8_t* s, const std::uint8_t* l, const Params& p, 
 // redone exactly. One branch-free loop per mode, which the compiler
 // vectorises.
 struct ShadeConstants {
+    const Params* params;  // for the pixels redone exactly
+    const std::uint8_t* light_end;  // the end of the light buffer the row reads (wide loads stop 16 bytes short)
     float tex_scale, inv_denom;
     float unit[256];  // v / 255
 };
@@ -58,8 +63,7 @@ struct ShadeConstants {
 // loop over plain float arrays (vectorised): spread the bytes into floats
 // (table lookups, no conversions), shade, gather the bytes back.
 template <bool Shadow, bool Surface, bool DarkUnlit>
-void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k, std::uint8_t* d,
-               std::uint8_t* unsure) {
+void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k, std::uint8_t* d) {
     constexpr int run = 256;
     constexpr float near = 1.0f / 256.0f, round_magic = 8388608.0f;  // 2^23: adding it rounds to an integer
     alignas(16) float c[3][run], L[3][run], t[3][run];
@@ -106,21 +110,95 @@ void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeC
             const std::uint8_t keep = alpha != 0 ? 0xFF : 0x00;  // transparent: all zero
             for (int ch = 0; ch < 3; ++ch) dp[4 * i + ch] = std::uint8_t(std::uint8_t(std::int32_t(t[ch][i])) & keep);
             dp[4 * i + 3] = alpha;
-            unsure[i0 + i] = std::uint8_t(bad[i] & keep & 1);
+            if (bad[i] & keep & 1) exact_pixel(sp + 4 * i, lp + 3 * i, *k.params, dp + 4 * i);
         }
     }
 }
 
-using ShadeRow = void (*)(const std::uint8_t*, const std::uint8_t*, int, const ShadeConstants&, std::uint8_t*,
-                          std::uint8_t*);
+#if defined(__SSE2__)
+// The same arithmetic four pixels at a time in SSE2 (every x86-64 has it):
+// the bytes spread into lanes by shifts and masks, shaded, packed back. The
+// last n % 4 pixels take shade_row.
+template <bool Shadow, bool Surface, bool DarkUnlit>
+void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k, std::uint8_t* d) {
+    const __m128i bytes = _mm_set1_epi32(0xFF), rgb_bytes = _mm_set1_epi32(0xFFFFFF), zero = _mm_setzero_si128();
+    const std::uint8_t* l_end = k.light_end ? k.light_end : l;
+    const __m128 inv255 = _mm_set1_ps(1.0f / 255.0f), scale = _mm_set1_ps(255.0f), top = _mm_set1_ps(255.0f),
+                 half = _mm_set1_ps(0.5f), magic = _mm_set1_ps(8388608.0f), near = _mm_set1_ps(1.0f / 256.0f),
+                 minus_near = _mm_set1_ps(-1.0f / 256.0f), one = _mm_set1_ps(1.0f), three_quarters = _mm_set1_ps(0.75f),
+                 ts = _mm_set1_ps(k.tex_scale), inv_denom = _mm_set1_ps(k.inv_denom), kr = _mm_set1_ps(0.349f),
+                 kg = _mm_set1_ps(0.114f), kb = _mm_set1_ps(0.537f), fzero = _mm_setzero_ps();
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+        const __m128i sp = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + std::size_t(i) * 4));
+        const std::uint8_t* lp = l + std::size_t(i) * 3;
+        // Four RGB texels into four lanes: one 16-byte load where the
+        // buffer has 4 bytes to spare past them, byte shifts and unpacks.
+        __m128i lv;
+        if (lp + 16 <= l_end) {
+            const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(lp));
+            const __m128i t01 = _mm_unpacklo_epi32(v, _mm_srli_si128(v, 3));
+            const __m128i t23 = _mm_unpacklo_epi32(_mm_srli_si128(v, 6), _mm_srli_si128(v, 9));
+            lv = _mm_and_si128(_mm_unpacklo_epi64(t01, t23), rgb_bytes);
+        } else {
+            auto texel = [&](int q) {
+                return int(std::uint32_t(lp[3 * q]) | std::uint32_t(lp[3 * q + 1]) << 8 | std::uint32_t(lp[3 * q + 2]) << 16);
+            };
+            lv = _mm_set_epi32(texel(3), texel(2), texel(1), texel(0));
+        }
+        __m128 c[3], L[3];
+        for (int ch = 0; ch < 3; ++ch) {
+            c[ch] = _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(_mm_srli_epi32(sp, 8 * ch), bytes)), inv255);
+            L[ch] = _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(_mm_srli_epi32(lv, 8 * ch), bytes)), inv255);
+        }
+        const __m128i alpha = _mm_srli_epi32(sp, 24);
+        const __m128 luminance = _mm_add_ps(_mm_add_ps(_mm_mul_ps(c[0], kr), _mm_mul_ps(c[1], kg)), _mm_mul_ps(c[2], kb));
+        __m128 bad = fzero;
+        __m128i packed = _mm_slli_epi32(alpha, 24);
+        for (int ch = 0; ch < 3; ++ch) {
+            __m128 v;
+            if constexpr (Surface && Shadow) {
+                v = _mm_mul_ps(_mm_mul_ps(c[ch], ts), _mm_sub_ps(one, _mm_mul_ps(three_quarters, L[ch])));
+            } else {
+                const __m128 light_factor = _mm_mul_ps(_mm_mul_ps(Surface ? c[ch] : luminance, L[ch]), inv_denom);
+                __m128 tex_factor = _mm_mul_ps(c[ch], ts);
+                if constexpr (DarkUnlit) tex_factor = _mm_mul_ps(tex_factor, Shadow ? _mm_sub_ps(one, L[ch]) : L[ch]);
+                v = Shadow ? _mm_sub_ps(tex_factor, light_factor) : _mm_add_ps(tex_factor, light_factor);
+            }
+            const __m128 x = _mm_add_ps(_mm_min_ps(_mm_max_ps(_mm_mul_ps(v, scale), fzero), top), half);
+            const __m128 off = _mm_sub_ps(x, _mm_sub_ps(_mm_add_ps(x, magic), magic));
+            bad = _mm_or_ps(bad, _mm_and_ps(_mm_cmplt_ps(off, near), _mm_cmpgt_ps(off, minus_near)));
+            packed = _mm_or_si128(packed, _mm_slli_epi32(_mm_cvttps_epi32(x), 8 * ch));
+        }
+        // Transparent pixels: all zero, and never redone.
+        const __m128i transparent = _mm_cmpeq_epi32(alpha, zero);
+        packed = _mm_andnot_si128(transparent, packed);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(d + std::size_t(i) * 4), packed);
+        const int redo = _mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(transparent), bad));
+        if (redo)
+            for (int q = 0; q < 4; ++q)
+                if ((redo >> q) & 1) exact_pixel(s + std::size_t(i + q) * 4, lp + 3 * q, *k.params, d + std::size_t(i + q) * 4);
+    }
+    if (i < n) shade_row<Shadow, Surface, DarkUnlit>(s + std::size_t(i) * 4, l + std::size_t(i) * 3, n - i, k,
+                                                      d + std::size_t(i) * 4);
+}
+#endif
+
+using ShadeRow = void (*)(const std::uint8_t*, const std::uint8_t*, int, const ShadeConstants&, std::uint8_t*);
 
 ShadeRow shade_row_for(const Params& p) {
     const bool shadow = p.mode == Mode::shadow, surface = p.light_mix == LightMix::surface;
+#if defined(__SSE2__)
+#define ISOLUX_SHADE shade_row_sse2
+#else
+#define ISOLUX_SHADE shade_row
+#endif
     static constexpr ShadeRow table[2][2][2] = {
-        {{shade_row<false, false, false>, shade_row<false, false, true>},
-         {shade_row<false, true, false>, shade_row<false, true, true>}},
-        {{shade_row<true, false, false>, shade_row<true, false, true>},
-         {shade_row<true, true, false>, shade_row<true, true, true>}}};
+        {{ISOLUX_SHADE<false, false, false>, ISOLUX_SHADE<false, false, true>},
+         {ISOLUX_SHADE<false, true, false>, ISOLUX_SHADE<false, true, true>}},
+        {{ISOLUX_SHADE<true, false, false>, ISOLUX_SHADE<true, false, true>},
+         {ISOLUX_SHADE<true, true, false>, ISOLUX_SHADE<true, true, true>}}};
+#undef ISOLUX_SHADE
     return table[shadow][surface][p.dark_unlit];
 }
 
@@ -133,10 +211,11 @@ void composite_into(const Image& colour, Rect view, const LightTexture& light, c
     const Rect z = intersect(region, view);
     if (z.empty()) return;
     const double ac = p.ambient_clarity;
-    ShadeConstants k{float(std::sqrt(ac)), float(1.0 / (ac * ac + 0.1)), {}};
+    ShadeConstants k{&p, nullptr, float(std::sqrt(ac)), float(1.0 / (ac * ac + 0.1)), {}};
     for (int v = 0; v < 256; ++v) k.unit[v] = float(v / 255.0);
     const ShadeRow shade = shade_row_for(p);
-    std::vector<std::uint8_t> unlit(std::size_t(z.w) * 3, 0), unsure(std::size_t(z.w));
+    std::vector<std::uint8_t> unlit(std::size_t(z.w) * 3 + 16, 0);
+    const std::uint8_t* light_end = light.rgb.data() + light.rgb.size();
     // Where the light texture covers each row (the rest reads 0, unlit).
     const int lx0 = std::clamp(light.rect.x, z.x, z.x + z.w), lx1 = std::clamp(light.rect.x + light.rect.w, lx0, z.x + z.w);
     for (int wy = z.y; wy < z.y + z.h; ++wy) {
@@ -145,15 +224,11 @@ void composite_into(const Image& colour, Rect view, const LightTexture& light, c
         const bool row_lit = wy >= light.rect.y && wy < light.rect.y + light.rect.h && lx0 < lx1;
         // Three runs: unlit left of the texture, over it, unlit right of it.
         const int cut0 = row_lit ? lx0 - z.x : z.w, cut1 = row_lit ? lx1 - z.x : z.w;
-        if (cut0 > 0) shade(s, unlit.data(), cut0, k, d, unsure.data());
-        if (cut1 > cut0) shade(s + std::size_t(cut0) * 4, light.at(lx0, wy), cut1 - cut0, k, d + std::size_t(cut0) * 4, unsure.data() + cut0);
-        if (z.w > cut1) shade(s + std::size_t(cut1) * 4, unlit.data(), z.w - cut1, k, d + std::size_t(cut1) * 4, unsure.data() + cut1);
-        for (int i = 0; i < z.w; ++i)
-            if (unsure[std::size_t(i)]) {
-                const int wx = z.x + i;
-                const bool lit = row_lit && wx >= lx0 && wx < lx1;
-                exact_pixel(s + std::size_t(i) * 4, lit ? light.at(wx, wy) : nullptr, p, d + std::size_t(i) * 4);
-            }
+        k.light_end = unlit.data() + unlit.size();
+        if (cut0 > 0) shade(s, unlit.data(), cut0, k, d);
+        if (z.w > cut1) shade(s + std::size_t(cut1) * 4, unlit.data(), z.w - cut1, k, d + std::size_t(cut1) * 4);
+        k.light_end = light_end;
+        if (cut1 > cut0) shade(s + std::size_t(cut0) * 4, light.at(lx0, wy), cut1 - cut0, k, d + std::size_t(cut0) * 4);
     }
 }
 
