@@ -72,8 +72,7 @@ void paint(GroundLines& lines, const PlacedMap& placed, const std::vector<Mask>&
             const std::int16_t below = std::int16_t(std::clamp<std::int64_t>(d, GroundLines::none + 1, INT16_MAX - 1));
             const std::uint8_t* src = &op.bits[std::size_t(y - in.y) * op.width + (r.x - in.x)];
             std::int16_t* dst = &lines.below[std::size_t(y - lines.rect.y) * w + (r.x - lines.rect.x)];
-            for (int x = 0; x < r.w; ++x)
-                if (src[x]) dst[x] = below;
+            for (int x = 0; x < r.w; ++x) dst[x] = src[x] ? below : dst[x];  // a select: vectorised
         }
     }
 }
