@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <fstream>
+#include <sys/stat.h>
 
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
@@ -405,4 +406,35 @@ TEST(Files, savingThroughASymlinkKeepsTheLinkAndTheModeAndALoopIsRefused) {
     fs::create_symlink("loop_b.json", d.path / "loop_a.json");
     fs::create_symlink("loop_a.json", d.path / "loop_b.json");
     EXPECT_MENTIONS(error_of([&] { write_file_atomic(d.path / "loop_a.json", "x"); }), "loop_a.json");
+}
+
+TEST(Files, savingAFileWithHardLinksKeepsThemAndItsInode) {
+    TempDir d;
+    const fs::path a = d.path / "scene.json", b = d.path / "also_scene.json";
+    write_file_atomic(a, "old contents, longer than the new");
+    fs::create_hard_link(a, b);
+    struct stat before {};
+    ASSERT_EQ(::stat(a.c_str(), &before), 0);
+    write_file_atomic(a, "new");
+    struct stat after {};
+    ASSERT_EQ(::stat(a.c_str(), &after), 0);
+    EXPECT_EQ(after.st_ino, before.st_ino);
+    EXPECT_EQ(after.st_nlink, 2u);
+    for (const fs::path& p : {a, b}) {
+        std::ifstream in(p);
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        EXPECT_EQ(text, "new") << p;
+    }
+    // No temporary file is left beside them.
+    int files = 0;
+    for (const auto& e : fs::directory_iterator(d.path)) files += e.is_regular_file();
+    EXPECT_EQ(files, 2);
+    // An image too.
+    Image im(3, 2);
+    for (std::uint8_t& v : im.rgba) v = 200;
+    save_image(d.path / "shot.png", im);
+    fs::create_hard_link(d.path / "shot.png", d.path / "shot_link.png");
+    im.rgba[0] = 7;
+    save_image(d.path / "shot.png", im);
+    EXPECT_EQ(load_image(d.path / "shot_link.png").rgba, im.rgba);
 }

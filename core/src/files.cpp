@@ -16,9 +16,11 @@
 #include <sstream>
 #include <system_error>
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstring>
 
 #include "isolux/error.hpp"
 #include "isolux/footprint.hpp"
@@ -78,9 +80,65 @@ void remove_stale_temps(const fs::path& path) {
     }
 }
 
+// Creates the temporary sibling (empty) so that a folder where nothing can be
+// written says why (read-only file system, permission denied, no space)
+// before any writer library hides the reason.
+void create_temp(const fs::path& tmp, const fs::path& path) {
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0)
+        throw Error(quoted(path) + ": cannot write: " + std::strerror(errno) + " (creating a temporary file beside it)");
+    ::close(fd);
+}
+
+// Writes all of `data` to `fd`; false (errno set) on a short or failed write.
+bool write_all(int fd, const char* data, std::size_t size) {
+    while (size > 0) {
+        const ssize_t n = ::write(fd, data, size);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return false;
+        data += n;
+        size -= std::size_t(n);
+    }
+    return true;
+}
+
+// A file with other hard links keeps them: the finished temporary file's
+// bytes are copied into it in place (a rename would leave the other names on
+// the old contents). Space is reserved first, so a full disk fails before
+// any old byte changes; then the old file takes the new bytes and its size.
+// False when the file has one name (the caller renames) or the space cannot
+// be had (the caller renames too: the other names keep the old contents).
+bool copy_into_linked(const fs::path& tmp, const fs::path& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_nlink < 2) return false;
+    std::ifstream in(tmp, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) return false;
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0) return false;
+    if (!bytes.empty() && ::posix_fallocate(fd, 0, off_t(bytes.size())) != 0) {
+        ::close(fd);
+        return false;
+    }
+    const bool ok = write_all(fd, bytes.data(), bytes.size()) && ::ftruncate(fd, off_t(bytes.size())) == 0 &&
+                    ::fsync(fd) == 0;
+    const int err = errno;
+    ::close(fd);
+    if (!ok)  // the new contents stay in the temporary file
+        throw Error(quoted(path) + ": cannot write in place: " + std::strerror(err) + "; the new contents are in " +
+                    quoted(tmp));
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    return true;
+}
+
 // Replaces `path` by the finished temporary file, keeping the old file's
-// permissions (a 600 file stays 600).
+// permissions (a 600 file stays 600) and its hard links.
 void commit_temp(const fs::path& tmp, const fs::path& path) {
+    if (copy_into_linked(tmp, path)) {
+        remove_stale_temps(path);
+        return;
+    }
     std::error_code ec;
     const fs::file_status old = fs::status(path, ec);
     if (!ec && fs::is_regular_file(old)) fs::permissions(tmp, old.permissions(), ec);
@@ -211,7 +269,12 @@ void save_image(const fs::path& link, const Image& image) {
     OIIO::ImageSpec spec(image.width, image.height, 4, exr ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:UnassociatedAlpha", 1);
     fs::path tmp = temp_sibling(path);
-    if (!out->open(tmp.string(), spec)) throw Error(quoted(path) + ": cannot write (" + out->geterror() + ")");
+    create_temp(tmp, path);
+    if (!out->open(tmp.string(), spec)) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw Error(quoted(path) + ": cannot write (" + out->geterror() + ")");
+    }
     bool ok = out->write_image(OIIO::TypeDesc::UINT8, image.rgba.data());
     ok = out->close() && ok;
     std::string why = ok ? "" : out->geterror();
@@ -253,27 +316,37 @@ void save_gray16(const fs::path& link, int width, int height, const std::vector<
     if (!out) throw Error(quoted(path) + ": no PNG writer (" + OIIO::geterror() + ")");
     OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::UINT16);
     fs::path tmp = temp_sibling(path);
-    if (!out->open(tmp.string(), spec)) throw Error(quoted(path) + ": cannot write (" + out->geterror() + ")");
-    bool ok = out->write_image(OIIO::TypeDesc::UINT16, values.data());
+    create_temp(tmp, path);
+    bool ok = out->open(tmp.string(), spec) && out->write_image(OIIO::TypeDesc::UINT16, values.data());
     ok = out->close() && ok;
-    if (!ok) throw Error(quoted(path) + ": cannot write (" + out->geterror() + ")");
+    if (ok) {  // read back whole, as save_image does (the PNG writer misses a full disk)
+        auto in = OIIO::ImageInput::open(tmp.string());
+        std::vector<std::uint16_t> back(values.size());
+        ok = in && in->spec().width == width && in->spec().height == height &&
+             in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, back.data()) && back == values;
+        if (in) in->close();
+    }
+    if (!ok) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw Error(quoted(path) + ": cannot write (the written file does not read back whole: is the disk full?); "
+                    "the old file is kept");
+    }
     commit_temp(tmp, path);
 }
 
 void write_file_atomic(const fs::path& link, std::string_view contents) {
     const fs::path path = write_target(link);
     fs::path tmp = temp_sibling(path);
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        if (!f) throw Error(quoted(path) + ": cannot write (cannot create " + quoted(tmp) + ")");
-        f.write(contents.data(), std::streamsize(contents.size()));
-        f.flush();
-        if (!f) {
-            f.close();
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw Error(quoted(path) + ": cannot write (disk full?)");
-        }
+    create_temp(tmp, path);
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+    bool ok = fd >= 0 && write_all(fd, contents.data(), contents.size()) && ::fsync(fd) == 0;
+    int err = ok ? 0 : errno;
+    if (fd >= 0 && ::close(fd) != 0 && ok) ok = false, err = errno;
+    if (!ok) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw Error(quoted(path) + ": cannot write: " + std::strerror(err) + "; the old file is kept");
     }
     commit_temp(tmp, path);
 }

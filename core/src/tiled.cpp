@@ -195,8 +195,18 @@ std::pair<int, int> export_tiled(const World& world, const Scene& scene, const f
     const fs::path dir = tmx.parent_path().empty() ? fs::path(".") : tmx.parent_path();
     const fs::path image_dir = dir / (base + "_images");
     std::error_code ec;
+    const bool image_dir_existed = fs::exists(image_dir, ec);
     fs::create_directories(image_dir, ec);
     if (ec) throw Error(image_dir.string() + ": cannot create (" + ec.message() + ")");
+    // An export that fails (a full disk, say) takes back the folder it made.
+    struct RemoveUnlessDone {
+        fs::path dir;
+        bool armed;
+        ~RemoveUnlessDone() {
+            std::error_code e;
+            if (armed) fs::remove_all(dir, e);
+        }
+    } undo{image_dir, !image_dir_existed};
 
     Grid g;
     g.isometric = map.layout != Layout::staggered;
@@ -404,6 +414,7 @@ std::pair<int, int> export_tiled(const World& world, const Scene& scene, const f
     std::ostringstream out;
     doc.save(out, "  ");
     write_file_atomic(tmx, out.str());
+    undo.armed = false;
     return {origin_x, origin_y};
 }
 
