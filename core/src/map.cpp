@@ -264,6 +264,17 @@ std::vector<std::uint32_t> draw_order(const PlacedMap& p, bool overlays_only) {
     return out;
 }
 
+// The grid's cell: 256 world pixels, or larger when the map's pixels are so
+// many (huge tiles) that 256-pixel cells would outnumber its sprites many
+// times over: the grid then never holds more than about 4 cells a sprite
+// (plus 4096), whatever the tile size.
+int grid_cell_for(Rect area, std::size_t sprites) {
+    const double cells_max = 4.0 * double(sprites) + 4096.0;
+    const double pixels = double(std::max(0, area.w)) * double(std::max(0, area.h));
+    const double side = std::ceil(std::sqrt(pixels / cells_max));
+    return int(std::clamp(side, 256.0, 1073741824.0));
+}
+
 PlacedMap place_sprites(const Map& map, const Tileset& ts, const PlacedMap* origin_of) {
     struct Key {
         int y, x, tile, layer;
@@ -319,6 +330,7 @@ PlacedMap place_sprites(const Map& map, const Tileset& ts, const PlacedMap* orig
     out.shift_x = -x0;
     out.shift_y = -y0;
     const Rect g = bounding(reachable_rect(map, ts, out.shift_x, out.shift_y), out.bounds);
+    out.cell = grid_cell_for(g, out.instances.size());
     out.grid_x = g.x;
     out.grid_y = g.y;
     out.grid_w = (g.w + out.cell - 1) / out.cell;
@@ -330,6 +342,7 @@ PlacedMap place_sprites(const Map& map, const Tileset& ts, const PlacedMap* orig
 
 void finish_placed(PlacedMap& p) {
     p.bounds = live_bounds(p);
+    p.cell = grid_cell_for(p.bounds, p.instances.size());
     p.grid_x = p.bounds.x;
     p.grid_y = p.bounds.y;
     p.grid_w = (p.bounds.w + p.cell - 1) / p.cell;

@@ -179,6 +179,18 @@ tileset("footprint_unknown", O(footprint="sideways"), 2, "sideways")
 tileset("height_map_wrong_size", O(height_map="grass.png"), 2, "height_map")
 tileset("tile_huge", O(), 2, "tile", extra={"tile": {"width": 999999, "height": 64}})
 tileset("sprites_not_array", O(), 2, "sprites", extra={"sprites": 5})
+# Big work from small files, which must stay within the budgets: tiles of
+# 4096 x 2048 on a 1024 x 1024 map seen through a 64 x 64 view (the sprite
+# grid once took 3.5 GB), and 500 sprites cut from one 2048 x 2048 sheet.
+doc = {"tile": {"width": 4096, "height": 2048},
+       "sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]}, O()]}
+case("tileset_tile_4096_on_a_1024_map", ["render", "--size", "1024x1024", "--view", "0,0,64,64", "--out", T("out.png"),
+                                          "--tileset", write("ts/big_tiles.json", json.dumps(doc))], 0)
+write("ts/sheet.png", png(2048, 2048, rows=b"\0" * (2048 * (2048 * 4 + 1))))
+doc = {"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]}] +
+                  [{"name": f"s{i}", "image": "sheet.png", "rect": [(i % 32) * 64, (i // 32) * 64, 64, 64],
+                    "kind": "overlay", "tags": ["tree"]} for i in range(500)]}
+case("tileset_500_sprites_from_one_sheet", R + ["--tileset", write("ts/sheet.json", json.dumps(doc))], 0)
 
 # 5. Paths that are not plain files.
 os.mkfifo(T("fifo.json"))
