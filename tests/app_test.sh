@@ -36,6 +36,26 @@ if grep -q "^isolux: tracer: gpu (setting gpu; GPU tracer on " "$tmp/log_gpu" &&
   && grep -q "traced by the gpu$" "$tmp/log_gpu" && grep -q "traced by the cpu$" "$tmp/log_cpu"; then ok; else bad "tracer choice"; cat "$tmp/log_gpu" "$tmp/log_cpu" "$tmp/log"; fi
 if cmp -s "$tmp/gpu.png" "$tmp/cpu.png"; then ok; else bad "the GPU tracer's frame differs from the CPU tracer's"; fi
 
+# 1c. Work beyond the budget (the CLI's --allow-huge): a script's change
+# that would trace minutes is undone with a message, not run; a screenshot of
+# such a scene stops with exit code 2, at once.
+cat >"$tmp/huge.txt" <<EOF
+param rays every_pixel
+param area_a 4096
+wait 2
+save-preset $tmp/after_huge.json
+quit
+EOF
+timeout 60 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/huge.txt" >"$tmp/log" 2>&1 || { bad "huge-work script run (exit $?)"; cat "$tmp/log"; }
+if grep -q "would trace about .* ray steps (minutes or more): the change was undone" "$tmp/log" \
+  && [ "$(json "$tmp/after_huge.json" 'd["area_a"]')" = "128" ] && [ "$(json "$tmp/after_huge.json" 'd["rays"]')" = "every_pixel" ]; then ok
+else bad "huge work undone"; cat "$tmp/log"; cat "$tmp/after_huge.json"; fi
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['preset'].update(rays='every_pixel', area_a=4096, area_b=4096); json.dump(d, open(sys.argv[2], 'w'))" \
+  "$src/assets/scenes/default.json" "$tmp/huge_scene.json"
+timeout 60 "$app" --scene "$tmp/huge_scene.json" --frames 2 --screenshot "$tmp/huge.png" >"$tmp/log" 2>&1; code=$?
+if [ "$code" -eq 2 ] && grep -q "would trace about .* ray steps" "$tmp/log" && [ ! -e "$tmp/huge.png" ]; then ok
+else bad "huge scene screenshot: exit $code"; cat "$tmp/log"; fi
+
 # 2. Scripted input: place a light, move a slider, undo it, save.
 cat >"$tmp/edit.script" <<SCRIPT
 wait 2

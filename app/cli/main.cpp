@@ -56,9 +56,8 @@ struct RenderArgs {
 
 // Refuses work beyond what finishes in seconds, with the estimate and the
 // flag that allows it anyway.
-constexpr double max_steps = 4e9;
 void check_work(double steps, bool allow, const std::string& what) {
-    if (steps <= max_steps || allow) return;
+    if (steps <= huge_trace_steps || allow) return;
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.2g", steps);
     throw Error(what + " would trace about " + std::string(buf) +

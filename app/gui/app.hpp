@@ -74,6 +74,17 @@ struct App {
     GpuTracer gpu_tracer;      // Algorithm 2 as a compute shader (gpu_tracer.hpp)
     std::string gpu_tracer_error;  // why it is not available ("" when it is)
     std::string tracer_override;   // --tracer: wins over the saved setting, not saved
+    // Work beyond huge_trace_steps waits for the user's word (the CLI's
+    // --allow-huge): the frame is not traced until then.
+    struct HugeWork {
+        bool asking = false;
+        double steps = 0;
+        bool approved = false;
+        Params approved_params;
+        std::size_t approved_lights = 0;
+        bool declined = false;  // "Not now": these parameters stay untraced, unasked, until they change
+        Params declined_params;
+    } huge;
     Editor editor;
     Ui ui;
     Stats stats;

@@ -398,6 +398,35 @@ const LightTexture* update_truth(App& app, const Scene& scene) {
     return &t.texture;
 }
 
+// The CLI's budget in the app: a frame whose tracing is estimated beyond
+// huge_trace_steps is not traced until the user says so (the prompt in
+// panels.cpp: trace it, or undo the change). A script undoes the change and
+// says why; a screenshot run stops with the CLI's message and exit code 2.
+bool work_allowed(App& app, const Scene& scene, bool screenshot_mode) {
+    App::HugeWork& h = app.huge;
+    const double steps = trace_work(scene, app.view);
+    if (steps <= huge_trace_steps) return true;
+    if (h.approved && h.approved_params == scene.params && scene.lights.size() <= h.approved_lights) return true;
+    if (h.declined && h.declined_params == scene.params) return false;
+    char text[200];
+    std::snprintf(text, sizeof text, "this frame would trace about %.2g ray steps (minutes or more)", steps);
+    if (screenshot_mode) {
+        std::cerr << "isolux: " << text << ": use a smaller area, border rays or fewer lights (isolux-cli has --allow-huge)\n";
+        app.exit_code = 2;
+        app.quit = true;
+        return false;
+    }
+    if (app.script) {
+        undo(app.editor, app.now);
+        set_status(app.editor, std::string(text) + ": the change was undone", true);
+        std::cerr << "isolux: " << text << ": the change was undone\n";
+        return false;
+    }
+    h.asking = true;
+    h.steps = steps;
+    return false;
+}
+
 // One frame of the pipeline: core traces (CPU), the renderer does the rest.
 FrameReport render(App& app, bool screenshot_mode) {
     Editor& e = app.editor;
@@ -415,6 +444,7 @@ FrameReport render(App& app, bool screenshot_mode) {
         app.view_x = (app.view.x - e.view.x) * e.view.zoom;
         app.view_y = (app.view.y - e.view.y) * e.view.zoom;
     }
+    if (!work_allowed(app, scene, screenshot_mode)) return FrameReport{};  // the last frame stays
     e.frame.options.tracer = chosen_tracer(app);
     FrameReport rep = render_frame(e.frame, e.world, scene, cam, e.frame_number);
     if (rep.retraced) renderer_upload_light(app.renderer, e.frame.traced, rep.dirty);  // only what changed
@@ -641,6 +671,10 @@ int main(int argc, char** argv) {
         }
         const auto f0 = std::chrono::steady_clock::now();
         const FrameReport rep = render(app, screenshot_mode);
+        if (app.quit) {  // refused (work beyond the budget in a screenshot run)
+            ImGui::EndFrame();
+            break;
+        }
         push_stats(app, rep, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - f0).count(), dt);
         if (!screenshot_mode) draw_panels(app);
         ImGui::Render();

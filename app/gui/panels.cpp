@@ -987,6 +987,40 @@ void stats_panel(App& app) {
     ImGui::End();
 }
 
+// Work beyond the budget (main.cpp: work_allowed): trace it anyway, or undo
+// the change that asked for it. Until then the last frame stays on screen.
+void huge_work_prompt(App& app) {
+    App::HugeWork& h = app.huge;
+    if (!h.asking) return;
+    if (!ImGui::IsPopupOpen("Long work")) ImGui::OpenPopup("Long work");
+    if (!ImGui::BeginPopupModal("Long work", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+    ImGui::Text("This frame would trace about %.2g ray steps: minutes or more on one core,", h.steps);
+    ImGui::Text("during which the editor does not respond.");
+    if (ImGui::Button("Trace it")) {
+        const Scene scene = render_scene(app.editor);
+        h.approved = true;
+        h.approved_params = scene.params;
+        h.approved_lights = scene.lights.size();
+        h.asking = false;
+        ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Undo the change")) {
+        undo(app.editor, app.now);
+        h.asking = false;
+        ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Not now")) {  // the last frame stays until the parameters change
+        h.declined = true;
+        h.declined_params = render_scene(app.editor).params;
+        h.asking = false;
+        set_status(app.editor, "not traced: beyond the work budget (change the area, rays or lights)", true);
+        ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+}
+
 void status_bar(App& app) {
     const Editor& e = app.editor;
     ImGuiViewport* vp = ImGui::GetMainViewport();
@@ -1077,6 +1111,7 @@ void draw_panels(App& app) {
     accuracy_panel(app, app.accuracy);
     inspector_panel(app);
     help_window(app);
+    huge_work_prompt(app);
     status_bar(app);
     light_area_overlay(app);
     viewport_marks(app);

@@ -143,6 +143,10 @@ struct FrameState {
 // before it starts. About 1e9 steps take a few seconds on one core.
 double trace_work(const Scene& scene, Rect view);
 
+// Work beyond this many steps (minutes or more on one core) is refused by
+// isolux-cli unless --allow-huge, and asked about by the app before it runs.
+constexpr double huge_trace_steps = 4e9;
+
 // The view a camera shows: its rectangle, or the whole map (its bounds,
 // which edits may extend above or left of the origin) when its width or
 // height is 0.
