@@ -253,5 +253,17 @@ TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
         EXPECT_EQ(gpu.traced.rgb, cpu.traced.rgb) << "frame " << f;
         EXPECT_EQ(gpu.final.rgba, cpu.final.rgba) << "frame " << f;
     }
+    // A new frame state on another map, with the same tracer: its obstacle
+    // map is uploaded again (revisions are unique in the process).
+    Scene other;
+    other.width = other.height = 9;
+    other.seed = "another map";
+    const World w2 = make_world(test::default_tileset(), other);
+    FrameState cpu2, gpu2;
+    gpu2.options.tracer = gpu.options.tracer;
+    render_frame(cpu2, w2, s, Camera{}, 0);
+    const FrameReport r2 = render_frame(gpu2, w2, s, Camera{}, 0);
+    EXPECT_EQ(r2.tracer, "gpu");
+    EXPECT_EQ(gpu2.traced.rgb, cpu2.traced.rgb) << "a second frame state";
     gpu_tracer_free(tracer);
 }

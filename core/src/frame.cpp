@@ -73,6 +73,14 @@ struct Timer {
 
 Rect grow(Rect r, int by) { return {r.x - by, r.y - by, r.w + 2 * by, r.h + 2 * by}; }
 
+// Unique across every FrameState of the process: a tracer that keeps a copy
+// of the obstacle map (the GPU's) never mistakes a new state's map for an
+// old one's.
+std::uint64_t next_obstacles_revision() {
+    static std::atomic<std::uint64_t> counter{0};
+    return ++counter;
+}
+
 bool covers(Rect outer, Rect inner) { return intersect(outer, inner) == inner; }
 
 // Whether a parameter that `stage` reads changed from `before` to `now`.
@@ -200,7 +208,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
             if (p.rays_over_obstacles)
                 st.obstacle_heights = build_obstacle_heights(world.tileset, world.placed, p, st.obstacles);
             repaint_ground_lines(c.ground, world.placed, st.opacity, ch.part);
-            ++st.obstacles_revision;
+            st.obstacles_revision = next_obstacles_revision();
         }
         c.world_revision = world.revision;
         rep.rebuilt = ch.part;
@@ -234,7 +242,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
     c.ground = ground_lines(world.placed, st.opacity, c.obstacle_region);
-    ++st.obstacles_revision;
+    st.obstacles_revision = next_obstacles_revision();
     c.obstacle_params = p;
     c.world_revision = world.revision;
     c.has_obstacles = true;

@@ -126,7 +126,7 @@ struct FrameState {
 
     // Outputs, valid after render_frame (those of stages an option turns off stay empty).
     Mask obstacles;              // the obstacle map over the region lights need (paper 3.1)
-    std::uint64_t obstacles_revision = 0;  // changes whenever `obstacles` does
+    std::uint64_t obstacles_revision = 0;  // a new value, unique in the process, whenever `obstacles` changes
     std::vector<Mask> opacity;   // each tileset sprite's opacity map, by sprite index
     ObstacleHeights obstacle_heights;  // with rays_over_obstacles: the obstacles' estimated heights
     LightTexture traced;         // the last trace: corrected light texture, world-anchored
