@@ -56,6 +56,16 @@ timeout 60 "$app" --scene "$tmp/huge_scene.json" --frames 2 --screenshot "$tmp/h
 if [ "$code" -eq 2 ] && grep -q "would trace about .* ray steps" "$tmp/log" && [ ! -e "$tmp/huge.png" ]; then ok
 else bad "huge scene screenshot: exit $code"; cat "$tmp/log"; fi
 
+# A scene camera too large to render (65536 x 65536): refused by name, at once.
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['camera'].update(width=65536, height=65536); json.dump(d, open(sys.argv[2], 'w'))" \
+  "$src/assets/scenes/default.json" "$tmp/bigcam.json"
+timeout 60 "$app" --scene "$tmp/bigcam.json" --frames 2 --screenshot "$tmp/bigcam.png" >"$tmp/log" 2>&1; code=$?
+if [ "$code" -eq 2 ] && grep -q "bigcam.json: camera: shows 65536x65536 pixels" "$tmp/log" && [ ! -e "$tmp/bigcam.png" ]; then ok
+else bad "huge camera screenshot: exit $code"; cat "$tmp/log"; fi
+env -u DISPLAY timeout 60 "$app" --scene "$tmp/bigcam.json" --screenshot "$tmp/bigcam.png" >"$tmp/log" 2>&1; code=$?
+if [ "$code" -eq 2 ] && grep -q "bigcam.json: camera: the view is 65536x65536 pixels" "$tmp/log" && [ ! -e "$tmp/bigcam.png" ]; then ok
+else bad "huge camera without a display: exit $code"; cat "$tmp/log"; fi
+
 # 2. Scripted input: place a light, move a slider, undo it, save.
 cat >"$tmp/edit.script" <<SCRIPT
 wait 2

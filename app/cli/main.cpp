@@ -30,7 +30,6 @@ using namespace isolux::app;
 
 namespace {
 
-constexpr long long max_render_pixels = 1LL << 28;  // 256 Mpx: 1 GiB of RGBA
 
 // A preset and its overrides on the command line.
 struct ParamArgs {

@@ -74,6 +74,7 @@ struct App {
     GpuTracer gpu_tracer;      // Algorithm 2 as a compute shader (gpu_tracer.hpp)
     std::string gpu_tracer_error;  // why it is not available ("" when it is)
     std::string tracer_override;   // --tracer: wins over the saved setting, not saved
+    std::string scene_arg;         // --scene, for messages about it
     // Work beyond huge_trace_steps waits for the user's word (the CLI's
     // --allow-huge): the frame is not traced until then.
     struct HugeWork {

@@ -71,10 +71,17 @@ void upload_character(App& app) {
 }
 
 // No display: the same scene through core's CPU frame, written as a PNG.
-int render_headless(const Scene& scene, const std::string& out, const std::string& why) {
+int render_headless(const Scene& scene, const std::string& scene_name, const std::string& out, const std::string& why) {
     std::cerr << "isolux: " << why << ": the editor needs a display.\n"
               << "isolux: rendering the scene with the headless renderer instead (the same as isolux-cli render)\n";
     World w = build_world(scene);
+    // isolux-cli's budgets: the view's pixels and the tracing work.
+    const Rect view = camera_view(scene.camera, w);
+    if ((long long)view.w * view.h > max_render_pixels)
+        throw Error(scene_name + ": camera: the view is " + std::to_string(view.w) + "x" + std::to_string(view.h) +
+                    " pixels, over the 256-megapixel limit: render parts with isolux-cli --view X,Y,W,H");
+    if (trace_work(scene, view) > huge_trace_steps)
+        throw Error(scene_name + ": this render would trace minutes or more: isolux-cli render --allow-huge runs it anyway");
     FrameState st;
     render_frame(st, w, scene, scene.camera, 0);
     save_image(out, st.final);
@@ -427,6 +434,24 @@ bool work_allowed(App& app, const Scene& scene, bool screenshot_mode) {
     return false;
 }
 
+// A screenshot's view is the scene's camera: as in isolux-cli, at most
+// max_render_pixels, and no side beyond what the GPU's textures hold.
+bool screenshot_view_fits(App& app) {
+    GLint max_side = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+    const Rect v = app.view;
+    if ((long long)v.w * v.h <= max_render_pixels && v.w <= max_side && v.h <= max_side) return true;
+    const std::string scene = !app.scene_arg.empty()                ? app.scene_arg
+                              : !app.editor.scene_path.empty() ? app.editor.scene_path.string()
+                                                               : std::string("the scene");
+    std::cerr << "isolux: " << scene << ": camera: shows " << v.w << "x" << v.h << " pixels, over the 256-megapixel limit or "
+              << "this GPU's " << max_side << "-pixel texture side: set a smaller camera, or render parts with "
+              << "isolux-cli --view X,Y,W,H\n";
+    app.exit_code = 2;
+    app.quit = true;
+    return false;
+}
+
 // One frame of the pipeline: core traces (CPU), the renderer does the rest.
 FrameReport render(App& app, bool screenshot_mode) {
     Editor& e = app.editor;
@@ -444,6 +469,7 @@ FrameReport render(App& app, bool screenshot_mode) {
         app.view_x = (app.view.x - e.view.x) * e.view.zoom;
         app.view_y = (app.view.y - e.view.y) * e.view.zoom;
     }
+    if (screenshot_mode && !screenshot_view_fits(app)) return FrameReport{};
     if (!work_allowed(app, scene, screenshot_mode)) return FrameReport{};  // the last frame stays
     e.frame.options.tracer = chosen_tracer(app);
     FrameReport rep = render_frame(e.frame, e.world, scene, cam, e.frame_number);
@@ -564,7 +590,8 @@ int main(int argc, char** argv) {
     GLFWwindow* window = open_window(width, height, !screenshot_mode, why);
     if (!window) {
         try {
-            return render_headless(scene, screenshot.empty() ? headless_out : screenshot, why);
+            return render_headless(scene, scene_file.empty() ? "the default scene" : scene_file,
+                                   screenshot.empty() ? headless_out : screenshot, why);
         } catch (const Error& err) {
             std::cerr << "isolux: " << err.what() << "\n";
             return 2;
@@ -572,6 +599,7 @@ int main(int argc, char** argv) {
     }
 
     App app;
+    app.scene_arg = scene_file;
     app.screenshot_frames = frames > 0 ? frames : 1;
     const fs::path config = config_dir();
     try {

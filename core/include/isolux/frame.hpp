@@ -146,6 +146,9 @@ double trace_work(const Scene& scene, Rect view);
 // Work beyond this many steps (minutes or more on one core) is refused by
 // isolux-cli unless --allow-huge, and asked about by the app before it runs.
 constexpr double huge_trace_steps = 4e9;
+// The largest view a render makes (256 megapixels: 1 GiB of RGBA), in
+// isolux-cli and in the app's screenshots alike.
+constexpr long long max_render_pixels = 1LL << 28;
 
 // The view a camera shows: its rectangle, or the whole map (its bounds,
 // which edits may extend above or left of the origin) when its width or
