@@ -16,7 +16,7 @@ mkdir -p build/fuzz/crashes
 # the suppressions in tests/lsan.supp can match.
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 export ASAN_OPTIONS="fast_unwind_on_malloc=0"
-for t in preset scene tileset sprite tiled; do
+for t in preset scene tileset sprite tiled cli; do
   work=build/fuzz/corpus_$t
   mkdir -p "$work"
   echo "fuzz: $t for ${seconds}s"

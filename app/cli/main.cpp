@@ -367,6 +367,7 @@ void print_frame_stats(std::ostream& out, int frame, const FrameReport& rep, dou
 }
 
 int run_render(const RenderArgs& a) {
+    check_image_output(a.out);  // before the work, not after it
     Scene s;
     World w;
     if (!a.map.empty()) {
@@ -536,7 +537,8 @@ int run_sweep_command(const SweepArgs& a) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// The whole command line (tests/fuzz/fuzz_cli.cpp calls it too).
+int isolux_cli_main(int argc, char** argv) {
     CLI::App app{"isolux-cli: renders seeded isometric maps and the paper's lighting with no display."};
     app.require_subcommand(1);
 
@@ -672,3 +674,7 @@ int main(int argc, char** argv) {
     }
     return 0;
 }
+
+#ifndef ISOLUX_CLI_NO_MAIN
+int main(int argc, char** argv) { return isolux_cli_main(argc, argv); }
+#endif

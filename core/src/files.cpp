@@ -256,14 +256,21 @@ Image load_image(const fs::path& path) {
     return out;
 }
 
-void save_image(const fs::path& link, const Image& image) {
+void check_image_output(const fs::path& link) {
     const fs::path path = write_target(link);
     std::error_code dir_ec;
     if (fs::is_directory(path, dir_ec)) throw Error(quoted(path) + ": is a folder: name an image file (.png or .exr)");
     std::string ext = path.extension().string();
     for (char& c : ext) c = char(std::tolower(c));
+    if (ext != ".exr" && ext != ".png") throw Error(quoted(path) + ": unsupported image extension (use .png or .exr)");
+}
+
+void save_image(const fs::path& link, const Image& image) {
+    check_image_output(link);
+    const fs::path path = write_target(link);
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(c));
     const bool exr = ext == ".exr";
-    if (!exr && ext != ".png") throw Error(quoted(path) + ": unsupported image extension (use .png or .exr)");
     auto out = OIIO::ImageOutput::create(exr ? "openexr" : "png");
     if (!out) throw Error(quoted(path) + ": no image writer (" + OIIO::geterror() + ")");
     OIIO::ImageSpec spec(image.width, image.height, 4, exr ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);

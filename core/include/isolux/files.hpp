@@ -42,6 +42,9 @@ Image load_image(const std::filesystem::path& path);
 
 // Writes RGBA8 as PNG, or EXR (half float) when the extension is .exr.
 void save_image(const std::filesystem::path& path, const Image& image);
+// What save_image refuses before it writes (a folder, an extension other than
+// .png or .exr), checked up front: a render says so before its work.
+void check_image_output(const std::filesystem::path& path);
 
 // Reads the first channel of an image as 16-bit values (height maps: pixels
 // above the ground, not scaled); throws Error unless it is width x height.
