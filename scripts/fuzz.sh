@@ -16,12 +16,14 @@ mkdir -p build/fuzz/crashes
 # the suppressions in tests/lsan.supp can match.
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 export ASAN_OPTIONS="fast_unwind_on_malloc=0"
+# Absolute paths: fuzz_cli works in a folder of its own (it chdirs there).
+root=$PWD
 for t in preset scene tileset sprite tiled cli; do
-  work=build/fuzz/corpus_$t
+  work=$root/build/fuzz/corpus_$t
   mkdir -p "$work"
   echo "fuzz: $t for ${seconds}s"
   ./build/fuzz/tests/fuzz/fuzz_$t -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
-    -artifact_prefix=build/fuzz/crashes/"$t"- -print_final_stats=1 "$work" tests/fuzz/corpus/$t >build/fuzz/log_$t 2>&1 || true
+    -artifact_prefix="$root/build/fuzz/crashes/$t-" -print_final_stats=1 "$work" "$root/tests/fuzz/corpus/$t" >build/fuzz/log_$t 2>&1 || true
   grep -E "number_of_executed_units|new_units_added|ERROR|SUMMARY|runtime error" build/fuzz/log_$t || true
   # The core library must be instrumented too: its parsers' branches show as
   # hundreds of edges (the fuzz targets alone give a few dozen).
