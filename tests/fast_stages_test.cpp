@@ -5,6 +5,10 @@
 // what changed against one built from nothing.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
+#include <thread>
+
 #include "isolux/blur.hpp"
 #include "isolux/composite.hpp"
 #include "isolux/frame.hpp"
@@ -238,4 +242,81 @@ TEST(Accumulate, WhiteLightsAddTheirValueToEveryChannelSaturating) {
     accumulate_light(tex, m, white, p);
     const std::vector<std::uint8_t> want = {0, 0, 0, 200, 200, 200, 255, 255, 255, 255, 255, 255};
     EXPECT_EQ(tex.rgb, want);
+}
+
+// Long work (TraceControl): progress in trace_work's steps, the same bytes
+// with a control as without, and a cancel that stops within moments and
+// leaves nothing half-traced behind.
+TEST(LongWork, AControlChangesNoByteAndCountsEachLightsEstimate) {
+    // Obstacles over every area below (the fast paths) and a few near the centre.
+    Mask ob(Rect{-601, -521, 1203, 1043});
+    for (auto [x, y] : {std::pair{2, 1}, {3, 1}, {-4, -2}, {1, -3}, {-2, 2}}) ob.set(x, y);
+    const Mask clear_map(Rect{-601, -521, 1203, 1043});
+    struct Case {
+        Rays rays;
+        int skip, a, b;
+        Rect clip;  // empty: the whole area
+    };
+    const Case cases[] = {{Rays::every_pixel, 1, 6, 4, {}},  {Rays::border, 1, 7, 3, {}},
+                          {Rays::border, 3, 600, 520, {}},   {Rays::border, 2, 5, 5, Rect{-2, -1, 4, 3}},
+                          {Rays::every_pixel, 1, 3, 3, Rect{0, 0, 2, 2}}};
+    for (const Case& c : cases)
+        for (bool clear : {false, true}) {
+            Params p;
+            p.rays = c.rays;
+            p.ray_skip = c.skip;
+            const Rect area{-c.a, -c.b, 2 * c.a + 1, 2 * c.b + 1};
+            const Rect clip = c.clip.empty() ? area : c.clip;
+            const Mask& obstacles = clear ? clear_map : ob;
+            std::atomic<bool> cancel{false};
+            std::atomic<std::int64_t> done{0};
+            const TraceControl control{&cancel, &done};
+            const LightMask with = trace_light(obstacles, 0, 0, c.a, c.b, p, clip, clear, &control);
+            const LightMask without = trace_light(obstacles, 0, 0, c.a, c.b, p, clip, clear);
+            EXPECT_EQ(with.value, without.value) << c.a << "x" << c.b;
+            EXPECT_EQ(done.load(), std::int64_t(light_trace_work(c.a, c.b, p))) << c.a << "x" << c.b << " clear " << clear;
+        }
+}
+
+TEST(LongWork, ACancelledFrameThrowsKeepsNothingAndTheNextFrameIsAFreshOne) {
+    Scene base;
+    base.width = base.height = 24;
+    const World w = make_world(test::default_tileset(), base);
+    Scene s = moving_scene(w, 3);
+    s.params.area_a = s.params.area_b = 700;
+    s.params.rays = Rays::every_pixel;  // about 3e9 steps: far beyond a test's time unless cancelled
+    const Camera cam{};
+    for (int threads : {1, 2}) {
+        FrameState st;
+        st.options.threads = threads;
+        std::atomic<bool> cancel{false};
+        std::atomic<std::int64_t> done{0};
+        st.options.control = TraceControl{&cancel, &done};
+        const double total = trace_work(s, camera_view(cam, w));
+        // Cancel once the trace is under way, from another thread, as the app's Cancel button does.
+        std::jthread user([&] {
+            while (done.load() == 0) std::this_thread::yield();
+            cancel = true;
+        });
+        const auto t0 = std::chrono::steady_clock::now();
+        EXPECT_THROW(render_frame(st, w, s, cam, 0), Cancelled);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        user.join();
+        EXPECT_GT(done.load(), 0);
+        EXPECT_LT(double(done.load()), 0.5 * total) << "stopped late (" << seconds << " s)";
+        EXPECT_FALSE(st.cache.has_trace);
+        EXPECT_TRUE(st.cache.lights.empty());
+        EXPECT_TRUE(st.traced.rgb.empty());
+        EXPECT_EQ(st.options.threads, threads);  // the options are kept
+        // The same state, not cancelled, on a scene small enough to finish: a fresh frame's bytes.
+        cancel = false;
+        Scene small = s;
+        small.params.area_a = small.params.area_b = 60;
+        render_frame(st, w, small, cam, 1);
+        FrameState fresh;
+        fresh.options.threads = threads;
+        render_frame(fresh, w, small, cam, 0);
+        EXPECT_EQ(st.final.rgba, fresh.final.rgba);
+        EXPECT_EQ(st.traced.rgb, fresh.traced.rgb);
+    }
 }

@@ -11,6 +11,7 @@
 
 #include "isolux/blur.hpp"
 #include "isolux/composite.hpp"
+#include "isolux/error.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_correction.hpp"
 #include "isolux/footprint.hpp"
@@ -37,9 +38,7 @@ double trace_work(const Scene& scene, Rect view) {
     double steps = 0;
     for (const Light& l : scene.lights) {
         if (l.hidden || intersect(light_area(l, p), view).empty()) continue;
-        const double a = light_a(l, p), b = light_b(l, p);
-        const double rays = p.rays == Rays::every_pixel ? (2 * a + 1) * (2 * b + 1) : (8 * std::max(a, b) + 4) / p.ray_skip;
-        steps += rays * (std::max(a, b) + 1);
+        steps += light_trace_work(light_a(l, p), light_b(l, p), p);
     }
     return steps;
 }
@@ -368,18 +367,24 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     }
     if (!traced_elsewhere && n > 0) rep.tracer = "cpu";
 
+    const TraceControl& control = st.options.control;
+    const TraceControl* ctl = control.cancel || control.done ? &control : nullptr;
     std::atomic<std::size_t> next_light{0};
     auto trace_lights = [&] {
         for (std::size_t k; (k = next_light++) < n;) {
+            if (control.cancelled()) break;
             TracedLight& tl = plan.traced[plan.todo[k]];
             const auto t0 = Clock::now();
             const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
-            if (over)  // beyond the paper: rays over low obstacles
+            if (over) {  // beyond the paper: rays over low obstacles
                 tl.mask = trace_light_over(st.obstacles, st.obstacle_heights, tl.cx, tl.cy, tl.a, tl.b, tl.height, p,
                                            tl.mask.clip);
-            else if (!traced_elsewhere)
+                control.add(std::int64_t(light_trace_work(tl.a, tl.b, p)));  // progress by whole lights here
+            } else if (!traced_elsewhere)
                 tl.mask = trace_light(st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
-                                      area_is_clear(st.obstacles, area));
+                                      area_is_clear(st.obstacles, area), ctl);
+            else
+                control.add(std::int64_t(light_trace_work(tl.a, tl.b, p)));
             const auto t1 = Clock::now();
             // The ground lines when every sprite's ground fits them; the reference otherwise.
             if (correct)
@@ -423,6 +428,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     auto run = [&] {
         trace_lights();
         sync.arrive_and_wait();
+        if (control.cancelled()) return;  // the masks are incomplete: render_frame throws them away
         for (int k; (k = next_band++) < bands;) accumulate_band(k);
     };
     run_on_threads(pool_size, run);
@@ -582,6 +588,10 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_
             partial = part < whole;
         }
         trace_and_accumulate(st, world, scene.params, plan, to_clear, tex_rect, partial ? &rep.dirty : nullptr, rep);
+        if (st.options.control.cancelled()) {
+            st = FrameState{st.options};  // nothing half-traced is kept: the next frame starts afresh
+            throw Cancelled();
+        }
         keep_trace(st, scene, plan, rep);
     }
     if (st.options.cpu_blur_and_composite) update_view(st, scene.params, view, delta, rep);

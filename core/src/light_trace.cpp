@@ -251,10 +251,41 @@ std::int64_t trace_tree(const RayTree& t, const std::uint8_t* ob, const std::uin
     return visited;
 }
 
+// Rays counted for a TraceControl: every 64 rays their estimated steps are
+// added and the cancel flag read; once cancelled, next() says skip the rest.
+struct RayTally {
+    const TraceControl* control;
+    std::int64_t per_ray;  // max(a, b) + 1
+    std::int64_t added = 0;
+    int pending = 0;
+    bool stopped = false;
+    bool next() {
+        if (!control) return true;
+        if (stopped) return false;
+        if (++pending == 64) {
+            control->add(64 * per_ray);
+            added += 64 * per_ray;
+            pending = 0;
+            stopped = control->cancelled();
+        }
+        return !stopped;
+    }
+    // The light's whole estimate once done, whatever path traced it.
+    void finish(double estimate) {
+        if (control && !stopped) control->add(std::max<std::int64_t>(0, std::int64_t(estimate) - added));
+    }
+};
+
 }  // namespace
 
+double light_trace_work(int a, int b, const Params& p) {
+    const double m = std::max(a, b);
+    const double rays = p.rays == Rays::every_pixel ? (2.0 * a + 1) * (2.0 * b + 1) : (8 * m + 4) / p.ray_skip;
+    return rays * (m + 1);
+}
+
 LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
-                      Rect clip, bool area_is_clear) {
+                      Rect clip, bool area_is_clear, const TraceControl* control) {
     assert(a >= 0 && b >= 0 && p.ray_skip >= 1 && p.falloff_scale > 0);
     LightMask m;
     m.clip = clip;
@@ -267,6 +298,8 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
     m.value.assign(n, 0);
     if (p.mode == Mode::shadow) m.reached.assign(n, 0);
     if (clip.empty()) return m;
+    RayTally tally{control, std::int64_t(std::max(a, b)) + 1};
+    const double estimate = light_trace_work(a, b, p);
     // The falloff by distance: no division per pixel.
     const int dmax = std::max(a, b);
     std::vector<std::uint8_t> table(std::size_t(dmax) + 1);
@@ -287,6 +320,7 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
                 for (int x = -a; x <= a; ++x) row[x + a] = std::min(table[std::size_t(std::abs(x))], vy);
             }
             if (p.mode == Mode::shadow) std::fill(m.reached.begin(), m.reached.end(), 1);
+            tally.finish(estimate);
             return m;
         }
         static const std::uint8_t none = 0;
@@ -299,6 +333,7 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
         std::uint8_t* reached = p.mode == Mode::shadow ? &m.reached[std::size_t(b) * clip.w + a] : nullptr;
         std::uint64_t steps = 0;
         auto ray = [&](std::int64_t w, std::int64_t h) {
+            if (!tally.next()) return;
             switch (p.mode) {
                 case Mode::light: steps += trace_fast<Mode::light>(ob, ob_stride, table.data(), lit, reached, clip.w, w, h); break;
                 case Mode::shadow: steps += trace_fast<Mode::shadow>(ob, ob_stride, table.data(), lit, reached, clip.w, w, h); break;
@@ -325,11 +360,13 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
             for (std::size_t i = 0; i < border.size(); i += std::size_t(p.ray_skip)) ray(border[i].first, border[i].second);
         }
         bresenham_steps() += steps;
+        tally.finish(estimate);
         return m;
     }
 
     // General path: any clip, any centre (also far outside int range).
     auto trace = [&](std::int64_t tx, std::int64_t ty) {
+        if (!tally.next()) return;
         bool blocked = false;
         for (BresenhamRay r(cx, cy, tx, ty); !r.done(); r.step()) {
             ++bresenham_steps();
@@ -345,6 +382,7 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
         }
     };
     for_each_ray_target(cx, cy, a, b, p, trace);
+    tally.finish(estimate);
     return m;
 }
 

@@ -12,4 +12,9 @@ struct Error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Work stopped because the user asked (TraceControl::cancel): not a failure.
+struct Cancelled : Error {
+    Cancelled() : Error("cancelled") {}
+};
+
 }  // namespace isolux

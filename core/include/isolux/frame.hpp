@@ -9,9 +9,11 @@
 #include <string_view>
 #include <vector>
 
+#include "isolux/error.hpp"
 #include "isolux/height_rays.hpp"
 #include "isolux/image.hpp"
 #include "isolux/light_texture.hpp"
+#include "isolux/light_trace.hpp"
 #include "isolux/opacity_correction.hpp"
 #include "isolux/scene.hpp"
 #include "isolux/stage.hpp"
@@ -69,6 +71,12 @@ struct FrameOptions {
     // Traces the lights instead of the CPU when set and it accepts them
     // (never for rays_over_obstacles, a CPU-only extension).
     LightTracer tracer;
+    // Progress and cancel for long work run on another thread (the app's
+    // approved long traces): `done` counts trace_work's steps as the CPU
+    // tracer goes (by whole lights with rays_over_obstacles or another
+    // tracer). Once `cancel` is set, render_frame stops within a few
+    // milliseconds, resets the state (options kept) and throws Cancelled.
+    TraceControl control;
 };
 
 // What the last frame was built from: private to render_frame, which reads
@@ -161,6 +169,7 @@ Rect camera_view(const Camera& camera, const World& world);
 // tracing parameter or the obstacle map changed, and on frames that are a
 // multiple of trace_every when lights moved or the view left the traced
 // texture; other frames shift the last texture with the camera.
+// Throws Cancelled when FrameOptions::control asked.
 FrameReport render_frame(FrameState& state, const World& world, const Scene& scene, const Camera& camera, long frame);
 
 }  // namespace isolux

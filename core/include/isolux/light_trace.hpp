@@ -1,6 +1,7 @@
 // Paper 3.2, Algorithm 2: rays from a light's centre, traced with the adapted
 // Bresenham, stopping at the obstacle map.
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -69,6 +70,24 @@ void shape_light(LightMask& mask, const Params& p);
 // clockwise from the top-left corner. a = b = 0 gives the single centre pixel.
 std::vector<std::pair<int, int>> border_offsets(int a, int b);
 
+// Progress and cancel for a long trace, shared with another thread (the
+// app's approved long work). As rays are traced, `done` grows by each ray's
+// estimated steps, max(a, b) + 1 (trace_work's unit), checked every 64 rays
+// or so; once `cancel` is set the trace stops at its next check and leaves an
+// incomplete mask (the caller throws it away).
+struct TraceControl {
+    const std::atomic<bool>* cancel = nullptr;
+    std::atomic<std::int64_t>* done = nullptr;
+    bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+    void add(std::int64_t steps) const {
+        if (done) done->fetch_add(steps, std::memory_order_relaxed);
+    }
+};
+
+// The steps trace_work counts for one light of half-extents a, b: its rays
+// times max(a, b) + 1, an upper bound of what Algorithm 2 walks.
+double light_trace_work(int a, int b, const Params& p);
+
 // Calls target(x, y) for every pixel a ray is traced to: each pixel of the
 // area (Rays::every_pixel), else every ray_skip-th border pixel.
 template <class Target>
@@ -97,8 +116,9 @@ void for_each_ray_target(std::int64_t cx, std::int64_t cy, int a, int b, const P
 // obstacle lies in the area) lets k = 1 and every-pixel tracing fill the area
 // from its closed form: every pixel is lit (see docs/method.md). The result is
 // the same bytes as the general path's.
+// `control` (optional) reports progress and may cancel (TraceControl).
 LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
-                      Rect clip, bool area_is_clear = false);
+                      Rect clip, bool area_is_clear = false, const TraceControl* control = nullptr);
 
 // Whether `area` holds no obstacle pixel (outside `obstacles` there are none):
 // the condition for trace_light's closed form.
