@@ -56,6 +56,41 @@ timeout 60 "$app" --scene "$tmp/huge_scene.json" --frames 2 --screenshot "$tmp/h
 if [ "$code" -eq 2 ] && grep -q "would trace about .* ray steps" "$tmp/log" && [ ! -e "$tmp/huge.png" ]; then ok
 else bad "huge scene screenshot: exit $code"; cat "$tmp/log"; fi
 
+# 1d. Approved long work runs on a worker with progress and Cancel: the
+# script approves it (as "Trace it" would) and presses the prompt's Cancel
+# once rays are under way; the trace stops at once, the change is kept and
+# the app goes on. A long trace that finishes is picked up as a frame: one
+# light of 2601x2601 pixels (8.8e9 estimated steps) in flat mode.
+cat >"$tmp/cancel.txt" <<EOF
+long-work cancel
+param rays every_pixel
+param area_a 4096
+wait 2
+save-preset $tmp/after_cancel.json
+quit
+EOF
+start=$(date +%s)
+timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/cancel.txt" >"$tmp/log" 2>&1 || { bad "long-work cancel run (exit $?)"; cat "$tmp/log"; }
+took=$(( $(date +%s) - start ))
+if grep -q "long work cancelled at [0-9]*% after [0-9.]* s: the last frame stays" "$tmp/log" \
+  && [ "$(json "$tmp/after_cancel.json" 'd["area_a"]')" = "4096" ] && [ "$took" -lt 60 ]; then ok
+else bad "long work cancelled (took ${took}s)"; cat "$tmp/log"; fi
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['lights']=[{'x':1400,'y':900,'color':'ffffff','intensity':1.0}]; d['preset'].update(mode='flat', rays='every_pixel'); json.dump(d, open(sys.argv[2], 'w'))" \
+  "$src/assets/scenes/default.json" "$tmp/one_light.json"
+cat >"$tmp/long.txt" <<EOF
+long-work trace
+view -400 -900 0.25
+param area_a 1300
+param area_b 1300
+wait 2
+save-preset $tmp/after_long.json
+quit
+EOF
+timeout 300 "$app" --scene "$tmp/one_light.json" --script "$tmp/long.txt" >"$tmp/log" 2>&1 || { bad "long-work trace run (exit $?)"; cat "$tmp/log"; }
+if grep -q "^isolux: long work done: 1 lights traced in " "$tmp/log" && ! grep -q "undone\|cancelled" "$tmp/log" \
+  && [ "$(json "$tmp/after_long.json" 'd["area_b"]')" = "1300" ]; then ok
+else bad "long work traced"; cat "$tmp/log"; fi
+
 # A scene camera too large to render (65536 x 65536): refused by name, at once.
 python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['camera'].update(width=65536, height=65536); json.dump(d, open(sys.argv[2], 'w'))" \
   "$src/assets/scenes/default.json" "$tmp/bigcam.json"

@@ -2,9 +2,12 @@
 // and the UI's own transient state. Panels are functions over this.
 #pragma once
 #include <array>
+#include <atomic>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "gui/accuracy_panel.hpp"
@@ -83,9 +86,29 @@ struct App {
         bool approved = false;
         Params approved_params;
         std::size_t approved_lights = 0;
-        bool declined = false;  // "Not now": these parameters stay untraced, unasked, until they change
+        bool declined = false;  // "Not now" or Cancel: these parameters stay untraced, unasked, until they change
         Params declined_params;
+        // How a script answers the prompt (script command long-work): undo
+        // the change (the default), trace it, or trace it and press Cancel
+        // once the work is under way.
+        std::string script_answer = "undo";
     } huge;
+    // Approved long work runs on a worker thread with the CPU tracer, whose
+    // rays check for Cancel every 64 rays, while the window shows only its
+    // progress (long_work_prompt): the worker reads the document, so nothing
+    // else may edit it meanwhile.
+    struct LongTrace {
+        std::thread worker;
+        std::atomic<bool> cancel{false}, finished{false};
+        std::atomic<std::int64_t> done{0};  // trace_work's steps so far
+        double total = 0;                   // trace_work's estimate for the frame
+        double started = 0;                 // App::now when it began
+        double seconds = 0;                 // how long the worker took, once finished
+        FrameReport report;                 // once finished, not cancelled
+        bool cancelled = false;
+        std::string error;
+        bool running() const { return worker.joinable() && !finished.load(); }
+    } long_trace;
     Editor editor;
     Ui ui;
     Stats stats;
@@ -122,6 +145,9 @@ struct App {
 
 // Panels and the status bar: read the app's state, call the editor's actions.
 void draw_panels(App& app);
+// Approved long work's progress, time and Cancel (App::LongTrace), drawn
+// alone while its worker runs.
+void long_work_prompt(App& app);
 void inspector_panel(App& app);  // gui/inspector.cpp
 
 // Viewport input: pan, zoom, place, drag and delete lights, shortcuts, the

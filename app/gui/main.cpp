@@ -10,7 +10,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
+#include <thread>
 
 #include "common/assets.hpp"
 #include "common/world.hpp"
@@ -331,6 +333,10 @@ void run_script_step(App& app) {
         a.open = true;
         if (!start_sweep(app, a)) set_status(e, a.error, true);
     } else if (step.op == "wait-sweep") s.waiting_sweep = true;
+    else if (step.op == "long-work") {
+        if (step.args[0] == "undo" || step.args[0] == "trace" || step.args[0] == "cancel") app.huge.script_answer = step.args[0];
+        else set_status(e, "script line " + std::to_string(step.line) + ": long-work undo|trace|cancel", true);
+    }
     else if (step.op == "apply-point") apply_sweep_point(app, app.accuracy, std::size_t(num(0)));
     else if (step.op == "save-sweep") {
         try {
@@ -423,6 +429,12 @@ bool work_allowed(App& app, const Scene& scene, bool screenshot_mode) {
         app.quit = true;
         return false;
     }
+    if (app.script && h.script_answer != "undo") {  // as if "Trace it" were pressed
+        h.approved = true;
+        h.approved_params = scene.params;
+        h.approved_lights = scene.lights.size();
+        return true;
+    }
     if (app.script) {
         undo(app.editor, app.now);
         set_status(app.editor, std::string(text) + ": the change was undone", true);
@@ -432,6 +444,75 @@ bool work_allowed(App& app, const Scene& scene, bool screenshot_mode) {
     h.asking = true;
     h.steps = steps;
     return false;
+}
+
+// Approved long work (work_allowed): render_frame on a worker thread with
+// the CPU tracer, which Cancel can stop. Returns true with the frame's report
+// once it is done; false while it runs (the main loop then draws only its
+// progress) and when it was cancelled or failed (the last frame stays, and
+// these parameters are not traced again until they change). A frame that
+// reuses its cached trace ends at once: the first moments are waited for
+// here, so such frames never show the progress.
+bool run_long_trace(App& app, const Scene& scene, const Camera& cam, FrameReport& rep) {
+    App::LongTrace& job = app.long_trace;
+    Editor& e = app.editor;
+    if (!job.worker.joinable()) {
+        job.cancel = false;
+        job.finished = false;
+        job.done = 0;
+        job.total = trace_work(scene, app.view);
+        job.started = app.now;
+        job.cancelled = false;
+        job.error.clear();
+        e.frame.options.tracer = {};  // the CPU's, which checks for Cancel
+        e.frame.options.control = TraceControl{&job.cancel, &job.done};
+        job.worker = std::thread([&app, scene, cam, frame = e.frame_number] {
+            App::LongTrace& j = app.long_trace;
+            const auto t0 = std::chrono::steady_clock::now();
+            try {
+                j.report = render_frame(app.editor.frame, app.editor.world, scene, cam, frame);
+            } catch (const Cancelled&) {
+                j.cancelled = true;
+            } catch (const Error& err) {
+                j.error = err.what();
+            } catch (const std::bad_alloc&) {
+                j.error = "out of memory tracing this frame: use a smaller area or fewer lights";
+            }
+            j.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            j.finished = true;
+        });
+        for (int ms = 0; ms < 200 && !job.finished; ++ms) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    if (!job.finished) return false;
+    job.worker.join();
+    e.frame.options.control = {};
+    const double seconds = job.seconds;
+    char text[200];
+    if (job.cancelled || !job.error.empty()) {
+        App::HugeWork& h = app.huge;
+        h.approved = false;
+        h.declined = true;
+        h.declined_params = scene.params;
+        if (job.cancelled)
+            std::snprintf(text, sizeof text, "long work cancelled at %.0f%% after %.1f s: the last frame stays until the parameters change",
+                          100 * std::min(1.0, double(job.done) / std::max(1.0, job.total)), seconds);
+        set_status(e, job.cancelled ? text : job.error, true);
+        std::cerr << "isolux: " << (job.cancelled ? text : job.error) << "\n";
+        return false;
+    }
+    if (job.report.lights_traced > 0)
+        std::cout << "isolux: long work done: " << job.report.lights_traced << " lights traced in " << std::fixed << std::setprecision(2) << seconds << std::defaultfloat << " s\n";
+    rep = job.report;
+    return true;
+}
+
+// Stops a long trace the window is closing on (its work is thrown away).
+void stop_long_trace(App& app) {
+    App::LongTrace& job = app.long_trace;
+    if (!job.worker.joinable()) return;
+    job.cancel = true;
+    job.worker.join();
+    app.editor.frame.options.control = {};
 }
 
 // A screenshot's view is the scene's camera: as in isolux-cli, at most
@@ -472,7 +553,12 @@ FrameReport render(App& app, bool screenshot_mode) {
     if (screenshot_mode && !screenshot_view_fits(app)) return FrameReport{};
     if (!work_allowed(app, scene, screenshot_mode)) return FrameReport{};  // the last frame stays
     e.frame.options.tracer = chosen_tracer(app);
-    FrameReport rep = render_frame(e.frame, e.world, scene, cam, e.frame_number);
+    FrameReport rep;
+    if (app.long_trace.worker.joinable() || trace_work(scene, app.view) > huge_trace_steps) {
+        if (!run_long_trace(app, scene, cam, rep)) return FrameReport{};
+    } else {
+        rep = render_frame(e.frame, e.world, scene, cam, e.frame_number);
+    }
     if (rep.retraced) renderer_upload_light(app.renderer, e.frame.traced, rep.dirty);  // only what changed
     CompositeOptions opts;
     opts.show_light = e.overlays.raw_light;
@@ -653,6 +739,7 @@ int main(int argc, char** argv) {
     while (!app.quit) {
         glfwPollEvents();
         if (glfwWindowShouldClose(window)) {
+            stop_long_trace(app);  // its work is thrown away; the last frame stays
             // Closing the window asks about unsaved work first (scripted
             // and screenshot runs close at once).
             if (screenshot_mode || app.script || app.ui.quit_confirmed) break;
@@ -674,8 +761,22 @@ int main(int argc, char** argv) {
         }
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
-        run_script_step(app);
+        // While approved long work runs, its worker reads the document: the
+        // window shows only its progress, and input, scripts and dropped
+        // files wait.
+        const bool busy = app.long_trace.running();
+        if (!busy) run_script_step(app);
         ImGui::NewFrame();
+        if (busy) {
+            renderer_present(app.renderer, app.window_w, app.window_h, app.view_x, app.view_y, app.editor.view.zoom,
+                             app.view);
+            long_work_prompt(app);
+            ImGui::Render();
+            ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+            glfwSwapBuffers(window);
+            autosave_tick(app.editor, app.now);
+            continue;
+        }
         for (const std::string& path : std::vector<std::string>(std::move(app.ui.dropped))) {
             FileKind kind;
             try {
@@ -703,8 +804,11 @@ int main(int argc, char** argv) {
             ImGui::EndFrame();
             break;
         }
-        push_stats(app, rep, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - f0).count(), dt);
-        if (!screenshot_mode) draw_panels(app);
+        if (app.long_trace.running()) long_work_prompt(app);  // just started: nothing else edits the document now
+        else {
+            push_stats(app, rep, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - f0).count(), dt);
+            if (!screenshot_mode) draw_panels(app);
+        }
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         if (app.script && !app.script->window_shot.empty()) {
@@ -738,6 +842,7 @@ int main(int argc, char** argv) {
             app.script->release < 0 && app.script->drag_path.empty() && frames > 0 && frames_run >= frames)
             break;
     }
+    stop_long_trace(app);
     try {
         save_settings(config, app.editor.settings);
     } catch (const Error&) {

@@ -1021,6 +1021,33 @@ void huge_work_prompt(App& app) {
     ImGui::EndPopup();
 }
 
+}  // namespace
+
+void long_work_prompt(App& app) {
+    App::LongTrace& job = app.long_trace;
+    if (!ImGui::IsPopupOpen("Tracing")) ImGui::OpenPopup("Tracing");
+    if (!ImGui::BeginPopupModal("Tracing", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+    const double f = std::min(1.0, double(job.done.load()) / std::max(1.0, job.total));
+    const double seconds = app.now - job.started;
+    ImGui::Text("Tracing about %.2g ray steps on the CPU, %.0f s so far", job.total, seconds);
+    // Rays stop at obstacles, so the estimate is an upper bound: the time
+    // left is a guess from the share of rays done.
+    if (f > 0.01) ImGui::Text("about %.0f s left", seconds * (1 - f) / f);
+    else ImGui::TextUnformatted("estimating the time left...");
+    char label[32];
+    std::snprintf(label, sizeof label, "%.0f%%", 100 * f);
+    ImGui::ProgressBar(float(f), ImVec2(360, 0), label);
+    const bool script_cancels = app.script && app.huge.script_answer == "cancel" && job.done.load() > 0;
+    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false) || script_cancels) job.cancel = true;
+    if (job.cancel) {
+        ImGui::SameLine();
+        ImGui::TextUnformatted("stopping...");
+    }
+    ImGui::EndPopup();
+}
+
+namespace {
+
 void status_bar(App& app) {
     const Editor& e = app.editor;
     ImGuiViewport* vp = ImGui::GetMainViewport();

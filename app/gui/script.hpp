@@ -16,7 +16,10 @@
 //   new | fit | open-dropped PATH (as if dropped on the window) |
 //   check-glyphs TEXT (exit 3 unless the font has each) | dump-panels PATH (every
 //   window's rectangle, JSON lines) | export-final PATH | select I[,J...] |
-//   character on|off [X Y] | show accuracy|inspector|help|stats | export-tiled PATH.tmx
+//   character on|off [X Y] | show accuracy|inspector|help|stats | export-tiled PATH.tmx |
+//   long-work undo|trace|cancel (how the script answers the "Long work" prompt: undo the
+//   change, the default; trace it, the script waiting until it is done; or trace it and
+//   press Cancel once it is under way)
 // Coordinates are window pixels; '#' starts a comment.
 #pragma once
 #include <filesystem>
