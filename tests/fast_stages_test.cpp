@@ -9,6 +9,7 @@
 #include <chrono>
 #include <thread>
 
+#include "isolux/accuracy.hpp"
 #include "isolux/blur.hpp"
 #include "isolux/composite.hpp"
 #include "isolux/frame.hpp"
@@ -319,4 +320,27 @@ TEST(LongWork, ACancelledFrameThrowsKeepsNothingAndTheNextFrameIsAFreshOne) {
         EXPECT_EQ(st.final.rgba, fresh.final.rgba);
         EXPECT_EQ(st.traced.rgb, fresh.traced.rgb);
     }
+}
+
+TEST(LongWork, ASweepCancelledMidFrameReturnsWhatItFinished) {
+    Scene s;
+    s.width = s.height = 12;
+    const World w = make_world(test::default_tileset(), s);
+    s.lights = {Light{double(w.placed.bounds.x + 200), double(w.placed.bounds.y + 150)}};
+    s.params.mode = Mode::flat;  // rays never stop: the one combination traces about 1e9 steps a frame
+    s.params.rays = Rays::every_pixel;
+    s.camera = Camera{double(w.placed.bounds.x), double(w.placed.bounds.y), 400, 300};
+    SweepOptions opt;
+    opt.frames = 2;
+    opt.repeats = 1;
+    std::atomic<bool> cancel{false};
+    std::jthread user([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        cancel = true;
+    });
+    const std::vector<SweepPoint> points =
+        run_sweep(w, s, {parse_sweep_axis("area_a=500", s.params, "test"), parse_sweep_axis("area_b=500", s.params, "test")},
+                  opt, {}, &cancel);
+    EXPECT_TRUE(cancel.load());
+    EXPECT_TRUE(points.empty());  // cancelled inside the first combination's frames
 }

@@ -281,9 +281,15 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
         for (int rep = 0; rep < std::max(1, opt.repeats); ++rep) {
             FrameState st;
             st.options.opacity_correction = opt.opacity_correction;
+            st.options.control.cancel = cancel;  // a long frame stops mid-trace too
             std::array<double, stage_count> sum{};
             for (int f = 0; f < opt.frames; ++f) {
-                const FrameReport r = render_frame(st, world, scene_at(params[c], f), camera_at(f), f);
+                FrameReport r;
+                try {
+                    r = render_frame(st, world, scene_at(params[c], f), camera_at(f), f);
+                } catch (const Cancelled&) {
+                    return out;  // the combinations done so far
+                }
                 for (int k = 0; k < stage_count; ++k) sum[k] += r.ms[k];
                 if (rep == 0) {
                     lights.push_back(st.light);

@@ -82,7 +82,8 @@ struct SweepPoint {
 // Runs every combination of the axes' values over `scene` (its camera as the
 // path's start; width 0 means the whole map). Throws Error on an unknown
 // parameter or a bad value. `progress(done, total)` is called after each
-// combination; `cancel` (optional) stops early.
+// combination; `cancel` (optional) stops early, within a frame's trace too,
+// and the combinations done so far are returned.
 std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const std::vector<SweepAxis>& axes,
                                   const SweepOptions& options,
                                   const std::function<void(int, int)>& progress = {},
