@@ -44,12 +44,18 @@ param rays every_pixel
 param area_a 4096
 wait 2
 save-preset $tmp/after_huge.json
+sweep area_a=1024,2048 rays=every_pixel
+wait-sweep
+save-sweep $tmp/huge_sweep.csv
 quit
 EOF
 timeout 60 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/huge.txt" >"$tmp/log" 2>&1 || { bad "huge-work script run (exit $?)"; cat "$tmp/log"; }
 if grep -q "would trace about .* ray steps (minutes or more): the change was undone" "$tmp/log" \
   && [ "$(json "$tmp/after_huge.json" 'd["area_a"]')" = "128" ] && [ "$(json "$tmp/after_huge.json" 'd["rays"]')" = "every_pixel" ]; then ok
 else bad "huge work undone"; cat "$tmp/log"; cat "$tmp/after_huge.json"; fi
+# A sweep beyond the budget waits for "Run anyway" (isolux-cli's --allow-huge): none of it runs.
+if grep -q "this sweep would trace about .* ray steps (minutes or more)" "$tmp/log" && [ "$(wc -l <"$tmp/huge_sweep.csv")" -eq 1 ]; then ok
+else bad "huge sweep not started"; cat "$tmp/log"; cat "$tmp/huge_sweep.csv"; fi
 python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['preset'].update(rays='every_pixel', area_a=4096, area_b=4096); json.dump(d, open(sys.argv[2], 'w'))" \
   "$src/assets/scenes/default.json" "$tmp/huge_scene.json"
 timeout 60 "$app" --scene "$tmp/huge_scene.json" --frames 2 --screenshot "$tmp/huge.png" >"$tmp/log" 2>&1; code=$?

@@ -490,22 +490,7 @@ int run_sweep_command(const SweepArgs& a) {
         pos = end + 1;
     }
     World w = build_world(s, a.scene);
-    {
-        // The work of every combination, before any of it starts.
-        double steps = 0;
-        const Rect view = camera_view(s.camera, w);
-        for (const SweepAxis& ax : axes)
-            for (const std::string& v : ax.values) {
-                Scene probe = s;
-                set_param(probe.params, ax.name, v, "--param");
-                steps = std::max(steps, trace_work(probe, view));
-            }
-        if (axes.empty()) steps = trace_work(s, view);
-        double combos_all = 1;
-        for (const SweepAxis& ax : axes) combos_all *= double(ax.values.size());
-        check_work(steps * combos_all * opt.frames * (opt.repeats + double(opt.references.size())), a.allow_huge,
-                   "this sweep");
-    }
+    check_work(sweep_work(w, s, axes, opt), a.allow_huge, "this sweep");  // before any of it starts
     long combos = 1;
     for (const SweepAxis& ax : axes) combos *= long(ax.values.size());
     std::cerr << "isolux-cli: sweeping " << combos << " combinations x " << opt.repeats << " runs x " << opt.frames

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "gui/app.hpp"
 #include "isolux/composite.hpp"
@@ -52,7 +53,7 @@ namespace {
 std::string label_of(const std::vector<SweepAxis>& axes, const SweepPoint& p);
 }  // namespace
 
-bool start_sweep(App& app, AccuracyPanel& panel) {
+bool start_sweep(App& app, AccuracyPanel& panel, bool allow_huge) {
     std::vector<SweepAxis> axes;
     try {
         for (const std::string& text : panel.axes)
@@ -63,6 +64,7 @@ bool start_sweep(App& app, AccuracyPanel& panel) {
     }
     if (panel.worker.joinable()) panel.worker.join();
     panel.error.clear();
+    panel.over_budget = 0;
     panel.running = true;
     panel.cancel = false;
     panel.done = 0;
@@ -75,6 +77,16 @@ bool start_sweep(App& app, AccuracyPanel& panel) {
     opt.frames = panel.frames;
     opt.repeats = panel.repeats;
     opt.references = {panel.reference};
+    // The CLI's budget: beyond it, "Run anyway" (isolux-cli's --allow-huge).
+    const double steps = sweep_work(app.editor.world, scene, axes, opt);
+    if (steps > huge_trace_steps && !allow_huge) {
+        char text[200];
+        std::snprintf(text, sizeof text, "this sweep would trace about %.2g ray steps (minutes or more)", steps);
+        panel.error = text;
+        panel.over_budget = steps;
+        panel.running = false;
+        return false;
+    }
     panel.worker = std::thread([&panel, world, scene, axes, opt] {
         std::vector<SweepPoint> points;
         std::string error;
@@ -147,7 +159,12 @@ void accuracy_panel(App& app, AccuracyPanel& panel) {
     ImGui::SameLine();
     ImGui::SetNextItemWidth(120);
     ImGui::SliderInt("repeats", &panel.repeats, 1, 7);
-    if (!panel.running) {
+    if (!panel.running && panel.over_budget > 0) {
+        // It runs on its own thread with progress and Cancel, but for minutes: ask first.
+        if (ImGui::Button("Run anyway")) start_sweep(app, panel, true);
+        ImGui::SameLine();
+        if (ImGui::Button("Not now")) panel.over_budget = 0, panel.error.clear();
+    } else if (!panel.running) {
         if (ImGui::Button("Run sweep")) start_sweep(app, panel);
     } else {
         if (ImGui::Button("Cancel")) panel.cancel = true;

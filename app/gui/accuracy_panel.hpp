@@ -30,6 +30,9 @@ struct AccuracyPanel {
     std::vector<SweepAxis> result_axes;
     std::vector<SweepPoint> results;
     std::string error;
+    // A sweep beyond the work budget waits for "Run anyway": its estimate,
+    // 0 when nothing waits.
+    double over_budget = 0;
 
     // The heat map of |final - reference| for the current view.
     bool heatmap = false;
@@ -43,7 +46,9 @@ struct AccuracyPanel {
 void accuracy_panel(App& app, AccuracyPanel& panel);
 
 // What the panel's buttons do, for the panel and for scripted input.
-bool start_sweep(App& app, AccuracyPanel& panel);                  // false (and panel.error) on a bad axis
+// false (and panel.error) on a bad axis, or when its work (sweep_work) is
+// beyond huge_trace_steps and not `allow_huge` (then panel.over_budget).
+bool start_sweep(App& app, AccuracyPanel& panel, bool allow_huge = false);
 bool apply_sweep_point(App& app, AccuracyPanel& panel, std::size_t index);  // one undo step
 
 // The heat map for the app's current view and settings against `reference`

@@ -331,7 +331,10 @@ void run_script_step(App& app) {
         a.frames = 2;
         a.repeats = 1;
         a.open = true;
-        if (!start_sweep(app, a)) set_status(e, a.error, true);
+        if (!start_sweep(app, a)) {
+            set_status(e, a.error, true);
+            std::cerr << "isolux: " << a.error << "\n";  // a script has no one to read the status bar
+        }
     } else if (step.op == "wait-sweep") s.waiting_sweep = true;
     else if (step.op == "long-work") {
         if (step.args[0] == "undo" || step.args[0] == "trace" || step.args[0] == "cancel") app.huge.script_answer = step.args[0];

@@ -218,6 +218,22 @@ void add_mean(AreaErrors& acc, const AreaErrors& m, int frames) {
 
 }  // namespace
 
+double sweep_work(const World& world, const Scene& scene, const std::vector<SweepAxis>& axes,
+                  const SweepOptions& opt) {
+    const Rect view = camera_view(scene.camera, world);
+    double steps = axes.empty() ? trace_work(scene, view) : 0;
+    double combos = 1;
+    for (const SweepAxis& ax : axes) {
+        combos *= double(ax.values.size());
+        for (const std::string& v : ax.values) {
+            Scene probe = scene;
+            set_param(probe.params, ax.name, v, "sweep");
+            steps = std::max(steps, trace_work(probe, view));
+        }
+    }
+    return steps * combos * opt.frames * (opt.repeats + double(opt.references.size()));
+}
+
 std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const std::vector<SweepAxis>& axes,
                                   const SweepOptions& opt, const std::function<void(int, int)>& progress,
                                   const std::atomic<bool>* cancel) {

@@ -89,6 +89,12 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
                                   const std::function<void(int, int)>& progress = {},
                                   const std::atomic<bool>* cancel = nullptr);
 
+// The ray steps a sweep traces at most, before any of it starts: the
+// costliest combination's trace_work over the scene's camera view, times
+// the combinations, frames and runs (references included). Compared with
+// huge_trace_steps by isolux-cli and the app alike.
+double sweep_work(const World& world, const Scene& scene, const std::vector<SweepAxis>& axes, const SweepOptions& options);
+
 // Marks the points on the Pareto front of (lighting_ms, final RMSE), one front
 // per reference.
 void mark_pareto(std::vector<SweepPoint>& points);
