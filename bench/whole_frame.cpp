@@ -9,6 +9,7 @@
 #include <string>
 
 #include "isolux/blur.hpp"
+#include "isolux/cpu.hpp"
 #include "isolux/composite.hpp"
 #include "isolux/hash.hpp"
 #include "isolux/opacity_correction.hpp"
@@ -169,6 +170,17 @@ void print_floor_ratios() {
     print_ratio("blur_times_floor",
                 interleaved([&] { box_blur_into(traced, 2, traced.rect, blurred); }, 5, traced_copy, 30, pairs), "<= 4",
                 2);
+
+    // The baseline build of the blur over its AVX2 build (isolux/cpu.hpp), when the CPU has AVX2.
+    if (wide_kernels()) {
+        auto baseline = [&] {
+            set_wide_kernels(false);
+            box_blur_into(traced, 2, traced.rect, blurred);
+            set_wide_kernels(true);
+        };
+        print_ratio("blur_avx2_speedup",
+                    interleaved(baseline, 5, [&] { box_blur_into(traced, 2, traced.rect, blurred); }, 5, pairs), nullptr, 2);
+    }
 
     // The composite reads the view's sprites (RGBA) and the light at the view (RGB).
     const Rect view = one.frame.view;

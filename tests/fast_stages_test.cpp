@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstdio>
 #include <chrono>
 #include <thread>
 
 #include "isolux/accuracy.hpp"
 #include "isolux/blur.hpp"
 #include "isolux/composite.hpp"
+#include "isolux/cpu.hpp"
 #include "isolux/frame.hpp"
 #include "isolux/hash.hpp"
 #include "isolux/light_trace.hpp"
@@ -34,6 +36,19 @@ LightTexture random_texture(Rect r, std::uint64_t seed) {
     return t;
 }
 
+// The kernels' builds to hold to the same bytes (isolux/cpu.hpp): the
+// baseline, and AVX2 when this CPU has it (said once, so a run without it
+// is seen).
+std::vector<bool> both_widths() {
+    static const bool has_avx2 = [] {
+        set_wide_kernels(true);
+        const bool on = wide_kernels();
+        if (!on) std::printf("note: this CPU has no AVX2: only the baseline kernels are tested\n");
+        return on;
+    }();
+    return has_avx2 ? std::vector<bool>{false, true} : std::vector<bool>{false};
+}
+
 }  // namespace
 
 TEST(FastBlur, EqualsTheReferenceForEveryRadiusAndSize) {
@@ -43,7 +58,12 @@ TEST(FastBlur, EqualsTheReferenceForEveryRadiusAndSize) {
         for (int radius : {0, 1, 2, 3, 4, 5, 7, 8, 20, 62, 63, 100}) {
             if (radius > 20 && r.w * r.h > 1200) continue;  // the reference is O(r^2) per texel
             const LightTexture t = random_texture(r, std::uint64_t(r.w * 131 + radius));
-            EXPECT_EQ(box_blur(t, radius).rgb, box_blur_reference(t, radius).rgb) << r.w << "x" << r.h << " r " << radius;
+            const LightTexture want = box_blur_reference(t, radius);
+            for (bool wide : both_widths()) {
+                set_wide_kernels(wide);
+                EXPECT_EQ(box_blur(t, radius).rgb, want.rgb) << r.w << "x" << r.h << " r " << radius << " wide " << wide;
+            }
+            set_wide_kernels(true);
             ++checked;
         }
     EXPECT_GE(checked, 50);
@@ -58,15 +78,19 @@ TEST(FastBlur, ARegionWritesOnlyItsTexelsAndTheirFullValues) {
         for (int k = 0; k < 12; ++k) {
             const Rect region{r.x - 5 + int(rng.below(50)), r.y - 5 + int(rng.below(40)), 1 + int(rng.below(40)),
                               1 + int(rng.below(30))};
-            LightTexture out(r);
-            std::fill(out.rgb.begin(), out.rgb.end(), std::uint8_t(77));
-            box_blur_into(t, radius, region, out);
-            for (int y = r.y; y < r.y + r.h; ++y)
-                for (int x = r.x; x < r.x + r.w; ++x)
-                    for (int c = 0; c < 3; ++c) {
-                        const std::uint8_t want = region.contains(x, y) ? whole.at(x, y)[c] : 77;
-                        ASSERT_EQ(out.at(x, y)[c], want) << x << "," << y << " r " << radius;
-                    }
+            for (bool wide : both_widths()) {
+                set_wide_kernels(wide);
+                LightTexture out(r);
+                std::fill(out.rgb.begin(), out.rgb.end(), std::uint8_t(77));
+                box_blur_into(t, radius, region, out);
+                for (int y = r.y; y < r.y + r.h; ++y)
+                    for (int x = r.x; x < r.x + r.w; ++x)
+                        for (int c = 0; c < 3; ++c) {
+                            const std::uint8_t want = region.contains(x, y) ? whole.at(x, y)[c] : 77;
+                            ASSERT_EQ(out.at(x, y)[c], want) << x << "," << y << " r " << radius << " wide " << wide;
+                        }
+            }
+            set_wide_kernels(true);
         }
     }
 }
@@ -89,8 +113,13 @@ TEST(FastComposite, EqualsTheReferenceInEveryModeAndClarity) {
                     p.light_mix = mix;
                     p.dark_unlit = dark;
                     p.ambient_clarity = ac;
-                    EXPECT_EQ(composite(colour, view, light, p).rgba, composite_reference(colour, view, light, p).rgba)
-                        << to_string(mode) << " mix " << int(mix) << " dark " << dark << " ac " << ac;
+                    const Image want = composite_reference(colour, view, light, p);
+                    for (bool wide : both_widths()) {
+                        set_wide_kernels(wide);
+                        EXPECT_EQ(composite(colour, view, light, p).rgba, want.rgba)
+                            << to_string(mode) << " mix " << int(mix) << " dark " << dark << " ac " << ac << " wide " << wide;
+                    }
+                    set_wide_kernels(true);
                     ++configs;
                 }
     EXPECT_EQ(configs, 72);
@@ -112,7 +141,12 @@ TEST(FastComposite, EveryColourAndLightPairAtTheDefaults) {
     for (double ac : {0.4, 0.25, 0.9}) {
         Params p;
         p.ambient_clarity = ac;
-        EXPECT_EQ(composite(colour, view, light, p).rgba, composite_reference(colour, view, light, p).rgba) << ac;
+        const Image want = composite_reference(colour, view, light, p);
+        for (bool wide : both_widths()) {
+            set_wide_kernels(wide);
+            EXPECT_EQ(composite(colour, view, light, p).rgba, want.rgba) << ac << " wide " << wide;
+        }
+        set_wide_kernels(true);
     }
 }
 
@@ -153,10 +187,15 @@ TEST(FastCorrection, GroundLinesEqualThePerSpriteCorrection) {
                 const LightMask traced = trace_light(st.obstacles, cx, cy, a, b, p, clip);
                 LightMask want = traced, got = traced;
                 const int n_want = correct_with_opacity_maps(want, w.placed, st.opacity);
-                const int n_got = correct_with_ground_lines(got, lines, w.placed, st.opacity);
-                EXPECT_EQ(n_got, n_want);
-                EXPECT_EQ(got.value, want.value) << kind << " light " << cx << "," << cy;
-                EXPECT_EQ(got.reached, want.reached) << kind << " light " << cx << "," << cy;
+                for (bool wide : both_widths()) {
+                    set_wide_kernels(wide);
+                    got = traced;
+                    const int n_got = correct_with_ground_lines(got, lines, w.placed, st.opacity);
+                    EXPECT_EQ(n_got, n_want);
+                    EXPECT_EQ(got.value, want.value) << kind << " light " << cx << "," << cy << " wide " << wide;
+                    EXPECT_EQ(got.reached, want.reached) << kind << " light " << cx << "," << cy << " wide " << wide;
+                }
+                set_wide_kernels(true);
                 changed += want.value != traced.value;
                 ++compared;
             }

@@ -9,6 +9,9 @@
 #include <cstring>
 #include <vector>
 
+#include "cpu_dispatch.hpp"
+#include "isolux/cpu.hpp"
+
 namespace isolux {
 
 namespace {
@@ -164,9 +167,9 @@ void blur_region(const LightTexture& tex, int radius, Rect z, LightTexture& out)
 
 // Radius 1 to 3, the common case: each row one fused pass (the new row's
 // horizontal sums from its bytes, the column sums slid, the divide, the
-// store), the clamped edge texels from a padded copy.
+// store), the few clamped edge texels one by one.
 template <int R>
-void blur_region_small(const LightTexture& tex, Rect z, LightTexture& out) {
+[[gnu::always_inline]] inline void blur_region_small(const LightTexture& tex, Rect z, LightTexture& out) {
     constexpr int span = 2 * R + 1;
     const int w = tex.rect.w, h = tex.rect.h;
     const int x0 = z.x - tex.rect.x, y0 = z.y - tex.rect.y;
@@ -174,8 +177,7 @@ void blur_region_small(const LightTexture& tex, Rect z, LightTexture& out) {
     const Reciprocal& k = reciprocal_for(R);
     const std::uint16_t half = std::uint16_t((span * span - 1) / 2), mul = k.m;
     const int shift = k.shift;
-    RowSums<std::uint16_t> edge_sums(R, w, x0, z.w);  // the edges: clamped through the padded copy
-    std::vector<std::uint16_t> ring(std::size_t(span) * m), column(m, 0), edge(m);
+    std::vector<std::uint16_t> ring(std::size_t(span) * m), column(m, 0);
     auto slot = [&](int i) { return &ring[std::size_t(((i % span) + span) % span) * m]; };
     auto texel_row = [&](int i) { return &tex.rgb[std::size_t(std::clamp(i, 0, h - 1)) * w * 3]; };
     // Columns [a, b) of the region read no clamped texel: x - R >= 0, x + R < w.
@@ -184,7 +186,7 @@ void blur_region_small(const LightTexture& tex, Rect z, LightTexture& out) {
     // Texel row i comes in: its horizontal sums replace those in slot `s`
     // (the row leaving the window, or zeros) and the column sums move by the
     // difference; with Write, the column then gives output row `dst`.
-    auto row_in = [&]<bool Write>(int i, std::uint16_t* __restrict s, std::uint8_t* __restrict dst) {
+    auto row_in = [&]<bool Write>(int i, std::uint16_t* __restrict s, std::uint8_t* __restrict dst) __attribute__((always_inline)) {
         const std::uint8_t* __restrict src = texel_row(i) + std::size_t(x0) * 3;
         std::uint16_t* __restrict col = column.data();
         auto put = [&](std::size_t j, std::uint16_t v) {
@@ -193,11 +195,16 @@ void blur_region_small(const LightTexture& tex, Rect z, LightTexture& out) {
             s[j] = v;
             if constexpr (Write) dst[j] = std::uint8_t(std::uint16_t((std::uint32_t(std::uint16_t(c + half)) * mul) >> 16) >> shift);
         };
-        if (a > 0 || b < m) {
-            edge_sums(texel_row(i), edge.data());
-            for (std::size_t j = 0; j < a; ++j) put(j, edge[j]);
-            for (std::size_t j = b; j < m; ++j) put(j, edge[j]);
-        }
+        // The few edge values whose window is clamped, one by one.
+        auto clamped = [&](std::size_t j) {
+            const std::uint8_t* row = texel_row(i);
+            const int x = x0 + int(j / 3), c = int(j % 3);
+            std::uint16_t v = 0;
+            for (int t = -R; t <= R; ++t) v = std::uint16_t(v + row[std::size_t(std::clamp(x + t, 0, w - 1)) * 3 + c]);
+            return v;
+        };
+        for (std::size_t j = 0; j < a; ++j) put(j, clamped(j));
+        for (std::size_t j = b; j < m; ++j) put(j, clamped(j));
         for (std::size_t j = a; j < b; ++j) {
             std::uint16_t v = 0;
             for (int t = -R; t <= R; ++t) v = std::uint16_t(v + src[std::ptrdiff_t(j) + 3 * t]);
@@ -211,6 +218,18 @@ void blur_region_small(const LightTexture& tex, Rect z, LightTexture& out) {
     // Row y + R comes in (into the slot of row y - R - 1, which leaves), and row y is written.
     for (int y = y0; y < y0 + z.h; ++y)
         row_in.template operator()<true>(y + R, slot(y + R), &out.rgb[(std::size_t(y) * w + x0) * 3]);
+}
+
+// Radius 1 to 3 at two widths (isolux/cpu.hpp): the same code, vectorised twice.
+void blur_small(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
+    if (radius == 1) blur_region_small<1>(tex, z, out);
+    if (radius == 2) blur_region_small<2>(tex, z, out);
+    if (radius == 3) blur_region_small<3>(tex, z, out);
+}
+ISOLUX_AVX2 void blur_small_avx2(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
+    if (radius == 1) blur_region_small<1>(tex, z, out);
+    if (radius == 2) blur_region_small<2>(tex, z, out);
+    if (radius == 3) blur_region_small<3>(tex, z, out);
 }
 
 }  // namespace
@@ -229,9 +248,8 @@ void box_blur_into(const LightTexture& tex, int radius, Rect region, LightTextur
         return;
     }
     if (radius <= 3 && reciprocal_for(radius).exact) {
-        if (radius == 1) blur_region_small<1>(tex, z, out);
-        if (radius == 2) blur_region_small<2>(tex, z, out);
-        if (radius == 3) blur_region_small<3>(tex, z, out);
+        if (wide_kernels()) blur_small_avx2(radius, tex, z, out);
+        else blur_small(radius, tex, z, out);
     } else if (std::int64_t(2 * radius + 1) * (2 * radius + 1) * 255 < 65536)
         blur_region<std::uint16_t>(tex, radius, z, out);
     else

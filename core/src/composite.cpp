@@ -5,9 +5,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+
+#include "cpu_dispatch.hpp"
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__SSE2__) && ISOLUX_X86_DISPATCH
+#include <immintrin.h>
+#endif
+
+#include "isolux/cpu.hpp"
 
 namespace isolux {
 
@@ -183,6 +190,78 @@ void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const S
 }
 #endif
 
+#if defined(__SSE2__) && ISOLUX_X86_DISPATCH
+// shade_row_sse2 eight pixels at a time (AVX2, isolux/cpu.hpp): lane for
+// lane the same IEEE operations in the same order, so the same bytes. The
+// light's eight texels come from two of shade_row_sse2's four-texel loads.
+template <bool Shadow, bool Surface, bool DarkUnlit>
+ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k,
+                                std::uint8_t* d) {
+    const __m256i bytes = _mm256_set1_epi32(0xFF), zero = _mm256_setzero_si256();
+    const __m128i rgb_bytes = _mm_set1_epi32(0xFFFFFF);
+    const std::uint8_t* l_end = k.light_end ? k.light_end : l;
+    const __m256 inv255 = _mm256_set1_ps(1.0f / 255.0f), scale = _mm256_set1_ps(255.0f), top = _mm256_set1_ps(255.0f),
+                 half = _mm256_set1_ps(0.5f), magic = _mm256_set1_ps(8388608.0f), near = _mm256_set1_ps(1.0f / 512.0f),
+                 minus_near = _mm256_set1_ps(-1.0f / 512.0f), one = _mm256_set1_ps(1.0f),
+                 three_quarters = _mm256_set1_ps(0.75f), ts = _mm256_set1_ps(k.tex_scale),
+                 inv_denom = _mm256_set1_ps(k.inv_denom), kr = _mm256_set1_ps(0.349f), kg = _mm256_set1_ps(0.114f),
+                 kb = _mm256_set1_ps(0.537f), fzero = _mm256_setzero_ps();
+    auto four_texels = [&](const std::uint8_t* lp) {
+        if (lp + 16 <= l_end) {
+            const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(lp));
+            const __m128i t01 = _mm_unpacklo_epi32(v, _mm_srli_si128(v, 3));
+            const __m128i t23 = _mm_unpacklo_epi32(_mm_srli_si128(v, 6), _mm_srli_si128(v, 9));
+            return _mm_and_si128(_mm_unpacklo_epi64(t01, t23), rgb_bytes);
+        }
+        auto texel = [&](int q) {
+            return int(std::uint32_t(lp[3 * q]) | std::uint32_t(lp[3 * q + 1]) << 8 | std::uint32_t(lp[3 * q + 2]) << 16);
+        };
+        return _mm_set_epi32(texel(3), texel(2), texel(1), texel(0));
+    };
+    int i = 0;
+    for (; i + 8 <= n; i += 8) {
+        const __m256i sp = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + std::size_t(i) * 4));
+        const std::uint8_t* lp = l + std::size_t(i) * 3;
+        const __m256i lv = _mm256_inserti128_si256(_mm256_castsi128_si256(four_texels(lp)), four_texels(lp + 12), 1);
+        __m256 c[3], L[3];
+        for (int ch = 0; ch < 3; ++ch) {
+            c[ch] = _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32(sp, 8 * ch), bytes)), inv255);
+            L[ch] = _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32(lv, 8 * ch), bytes)), inv255);
+        }
+        const __m256i alpha = _mm256_srli_epi32(sp, 24);
+        const __m256 luminance =
+            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(c[0], kr), _mm256_mul_ps(c[1], kg)), _mm256_mul_ps(c[2], kb));
+        __m256 bad = fzero;
+        __m256i packed = _mm256_slli_epi32(alpha, 24);
+        for (int ch = 0; ch < 3; ++ch) {
+            __m256 v;
+            if constexpr (Surface && Shadow) {
+                v = _mm256_mul_ps(_mm256_mul_ps(c[ch], ts), _mm256_sub_ps(one, _mm256_mul_ps(three_quarters, L[ch])));
+            } else {
+                const __m256 light_factor = _mm256_mul_ps(_mm256_mul_ps(Surface ? c[ch] : luminance, L[ch]), inv_denom);
+                __m256 tex_factor = _mm256_mul_ps(c[ch], ts);
+                if constexpr (DarkUnlit) tex_factor = _mm256_mul_ps(tex_factor, Shadow ? _mm256_sub_ps(one, L[ch]) : L[ch]);
+                v = Shadow ? _mm256_sub_ps(tex_factor, light_factor) : _mm256_add_ps(tex_factor, light_factor);
+            }
+            const __m256 x = _mm256_add_ps(_mm256_min_ps(_mm256_max_ps(_mm256_mul_ps(v, scale), fzero), top), half);
+            const __m256 off = _mm256_sub_ps(x, _mm256_sub_ps(_mm256_add_ps(x, magic), magic));
+            bad = _mm256_or_ps(bad, _mm256_and_ps(_mm256_cmp_ps(off, near, _CMP_LT_OQ), _mm256_cmp_ps(off, minus_near, _CMP_GT_OQ)));
+            packed = _mm256_or_si256(packed, _mm256_slli_epi32(_mm256_cvttps_epi32(x), 8 * ch));
+        }
+        const __m256i transparent = _mm256_cmpeq_epi32(alpha, zero);
+        packed = _mm256_andnot_si256(transparent, packed);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + std::size_t(i) * 4), packed);
+        const int redo = _mm256_movemask_ps(_mm256_andnot_ps(_mm256_castsi256_ps(transparent), bad));
+        if (redo)
+            for (int q = 0; q < 8; ++q)
+                if ((redo >> q) & 1) exact_pixel(s + std::size_t(i + q) * 4, lp + 3 * q, *k.params, d + std::size_t(i + q) * 4);
+    }
+    if (i < n) shade_row_sse2<Shadow, Surface, DarkUnlit>(s + std::size_t(i) * 4, l + std::size_t(i) * 3, n - i, k,
+                                                           d + std::size_t(i) * 4);
+}
+#define ISOLUX_HAS_SHADE_AVX2 1
+#endif
+
 using ShadeRow = void (*)(const std::uint8_t*, const std::uint8_t*, int, const ShadeConstants&, std::uint8_t*);
 
 ShadeRow shade_row_for(const Params& p) {
@@ -198,6 +277,14 @@ ShadeRow shade_row_for(const Params& p) {
         {{ISOLUX_SHADE<true, false, false>, ISOLUX_SHADE<true, false, true>},
          {ISOLUX_SHADE<true, true, false>, ISOLUX_SHADE<true, true, true>}}};
 #undef ISOLUX_SHADE
+#if defined(ISOLUX_HAS_SHADE_AVX2)
+    static constexpr ShadeRow wide[2][2][2] = {
+        {{shade_row_avx2<false, false, false>, shade_row_avx2<false, false, true>},
+         {shade_row_avx2<false, true, false>, shade_row_avx2<false, true, true>}},
+        {{shade_row_avx2<true, false, false>, shade_row_avx2<true, false, true>},
+         {shade_row_avx2<true, true, false>, shade_row_avx2<true, true, true>}}};
+    if (wide_kernels()) return wide[shadow][surface][p.dark_unlit];
+#endif
     return table[shadow][surface][p.dark_unlit];
 }
 

@@ -8,6 +8,9 @@
 #include <cstdlib>
 #include <vector>
 
+#include "cpu_dispatch.hpp"
+#include "isolux/cpu.hpp"
+
 namespace isolux {
 
 int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const std::vector<Mask>& opacity) {
@@ -91,8 +94,11 @@ void repaint_ground_lines(GroundLines& lines, const PlacedMap& placed, const std
     paint(lines, placed, opacity, part);
 }
 
-int correct_with_ground_lines(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
-                              const std::vector<Mask>& opacity) {
+namespace {
+
+// The pass at two widths (isolux/cpu.hpp): the same code, vectorised twice.
+[[gnu::always_inline]] inline int correct_lines(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
+                                                const std::vector<Mask>& opacity) {
     const Rect clip = mask.clip;
     // The count the report shows: sprites whose opacity map meets the mask.
     int touched = 0;
@@ -130,6 +136,23 @@ int correct_with_ground_lines(LightMask& mask, const GroundLines& lines, const P
         }
     }
     return touched;
+}
+
+int correct_lines_baseline(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
+                           const std::vector<Mask>& opacity) {
+    return correct_lines(mask, lines, placed, opacity);
+}
+ISOLUX_AVX2 int correct_lines_avx2(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
+                                   const std::vector<Mask>& opacity) {
+    return correct_lines(mask, lines, placed, opacity);
+}
+
+}  // namespace
+
+int correct_with_ground_lines(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
+                              const std::vector<Mask>& opacity) {
+    return wide_kernels() ? correct_lines_avx2(mask, lines, placed, opacity)
+                          : correct_lines_baseline(mask, lines, placed, opacity);
 }
 
 }  // namespace isolux
