@@ -5,7 +5,49 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cpu_dispatch.hpp"
+#include "isolux/cpu.hpp"
+#if ISOLUX_X86_DISPATCH
+#include <immintrin.h>
+#endif
+
 namespace isolux {
+
+namespace {
+
+// out[3x + c] += v[x] for every channel c, saturating: a white light's row.
+// The AVX2 build (isolux/cpu.hpp) spreads 16 values over 48 bytes with three
+// byte shuffles; the baseline writes the spread row, then adds it.
+void add_white_row(std::uint8_t* out, const std::uint8_t* v, int w, std::vector<std::uint8_t>& rgb) {
+    for (int x = 0; x < w; ++x) rgb[std::size_t(x) * 3 + 0] = rgb[std::size_t(x) * 3 + 1] = rgb[std::size_t(x) * 3 + 2] = v[x];
+    for (std::size_t i = 0, n = std::size_t(w) * 3; i < n; ++i) {
+        const std::uint8_t s = std::uint8_t(out[i] + rgb[i]);
+        out[i] = s < out[i] ? std::uint8_t(255) : s;
+    }
+}
+
+#if ISOLUX_X86_DISPATCH
+ISOLUX_AVX2 void add_white_row_avx2(std::uint8_t* out, const std::uint8_t* v, int w) {
+    const __m128i spread0 = _mm_setr_epi8(0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5);
+    const __m128i spread1 = _mm_setr_epi8(5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10);
+    const __m128i spread2 = _mm_setr_epi8(10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15, 15);
+    int x = 0;
+    for (; x + 16 <= w; x += 16) {
+        const __m128i values = _mm_loadu_si128(reinterpret_cast<const __m128i*>(v + x));
+        __m128i* o = reinterpret_cast<__m128i*>(out + std::size_t(x) * 3);
+        _mm_storeu_si128(o, _mm_adds_epu8(_mm_loadu_si128(o), _mm_shuffle_epi8(values, spread0)));
+        _mm_storeu_si128(o + 1, _mm_adds_epu8(_mm_loadu_si128(o + 1), _mm_shuffle_epi8(values, spread1)));
+        _mm_storeu_si128(o + 2, _mm_adds_epu8(_mm_loadu_si128(o + 2), _mm_shuffle_epi8(values, spread2)));
+    }
+    for (; x < w; ++x)
+        for (int c = 0; c < 3; ++c) {
+            std::uint8_t& d = out[std::size_t(x) * 3 + std::size_t(c)];
+            d = std::uint8_t(std::min(255, d + v[x]));
+        }
+}
+#endif
+
+}  // namespace
 
 int light_a(const Light& l, const Params& p) { return l.area_a.value_or(p.area_a); }
 int light_b(const Light& l, const Params& p) { return l.area_b.value_or(p.area_b); }
@@ -56,18 +98,25 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
                                           : 0;
             v = row.data();
         }
-        // The row's RGB contributions, then one contiguous saturating add
-        // (the compiler vectorises it).
-        if (white)  // the value itself in all three channels: no lookups
-            for (int x = 0; x < r.w; ++x) rgb[std::size_t(x) * 3 + 0] = rgb[std::size_t(x) * 3 + 1] = rgb[std::size_t(x) * 3 + 2] = v[x];
-        else
-            for (int x = 0; x < r.w; ++x) {
-                const std::uint8_t val = v[x];
-                rgb[std::size_t(x) * 3 + 0] = lut[0][val];
-                rgb[std::size_t(x) * 3 + 1] = lut[1][val];
-                rgb[std::size_t(x) * 3 + 2] = lut[2][val];
-            }
         std::uint8_t* out = &tex.rgb[(std::size_t(y - tex.rect.y) * tex.rect.w + (r.x - tex.rect.x)) * 3];
+        if (white) {  // the value itself in all three channels: no lookups
+#if ISOLUX_X86_DISPATCH
+            if (wide_kernels()) {
+                add_white_row_avx2(out, v, r.w);
+                continue;
+            }
+#endif
+            add_white_row(out, v, r.w, rgb);
+            continue;
+        }
+        // A coloured light: the row's RGB contributions, then one contiguous
+        // saturating add (the compiler vectorises it).
+        for (int x = 0; x < r.w; ++x) {
+            const std::uint8_t val = v[x];
+            rgb[std::size_t(x) * 3 + 0] = lut[0][val];
+            rgb[std::size_t(x) * 3 + 1] = lut[1][val];
+            rgb[std::size_t(x) * 3 + 2] = lut[2][val];
+        }
         const std::uint8_t* add = rgb.data();
         const std::size_t n = std::size_t(r.w) * 3;
         for (std::size_t i = 0; i < n; ++i) {  // saturating: never wraps

@@ -223,19 +223,34 @@ std::shared_ptr<const RayTree> ray_tree(int a, int b, int k) {
     return slot;
 }
 
+// Each node's falloff for one falloff scale (table[depth[i]]), kept per
+// (a, b, k, scale) like the trees: the walk then stores it with one load.
+std::shared_ptr<const std::vector<std::uint8_t>> tree_values(const RayTree& tree, int a, int b, int k,
+                                                             const std::vector<std::uint8_t>& table, double scale) {
+    static std::mutex mutex;
+    static std::map<std::tuple<int, int, int, double>, std::shared_ptr<const std::vector<std::uint8_t>>> cache;
+    std::lock_guard<std::mutex> lock(mutex);
+    auto& slot = cache[{a, b, k, scale}];
+    if (!slot) {
+        auto values = std::make_shared<std::vector<std::uint8_t>>(tree.depth.size());
+        for (std::size_t i = 0; i < tree.depth.size(); ++i) (*values)[i] = table[tree.depth[i]];
+        slot = values;
+    }
+    return slot;
+}
+
 constexpr int max_tree_extent = 512;  // larger areas trace ray by ray (the tree would be too big to keep)
 
 // Walks the tree over an area-local copy of the obstacles (`ob`, the same
 // layout as the mask), so one offset serves both. Returns the nodes visited
 // (pruned subtrees are skipped).
 template <Mode M>
-std::int64_t trace_tree(const RayTree& t, const std::uint8_t* ob, const std::uint8_t* table, std::uint8_t* value,
+std::int64_t trace_tree(const RayTree& t, const std::uint8_t* ob, const std::uint8_t* lit, std::uint8_t* value,
                         std::uint8_t* reached) {
     std::int64_t visited = 0;
     const std::int32_t n = std::int32_t(t.offset.size());
     const std::int32_t* off = t.offset.data();
     const std::int32_t* end = t.end.data();
-    const std::uint16_t* depth = t.depth.data();
     for (std::int32_t i = 0; i < n; ++visited) {
         const std::int32_t o = off[i];
         if (ob[o]) {
@@ -244,7 +259,7 @@ std::int64_t trace_tree(const RayTree& t, const std::uint8_t* ob, const std::uin
             i = end[i];
             continue;
         }
-        value[o] = table[depth[i]];
+        value[o] = lit[i];
         if (M == Mode::shadow) reached[o] = 1;
         ++i;
     }
@@ -353,8 +368,9 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
                             &obstacles.bits[std::size_t(clip.y + y - obstacles.y0) * obstacles.width + (clip.x - obstacles.x0)],
                             std::size_t(clip.w));
             const std::uint8_t* centre = &local[std::size_t(b) * clip.w + a];
-            steps += p.mode == Mode::light ? trace_tree<Mode::light>(*tree, centre, table.data(), lit, reached)
-                                           : trace_tree<Mode::shadow>(*tree, centre, table.data(), lit, reached);
+            const auto values = tree_values(*tree, a, b, p.ray_skip, table, p.falloff_scale);
+            steps += p.mode == Mode::light ? trace_tree<Mode::light>(*tree, centre, values->data(), lit, reached)
+                                           : trace_tree<Mode::shadow>(*tree, centre, values->data(), lit, reached);
         } else {
             const auto border = border_offsets(a, b);
             for (std::size_t i = 0; i < border.size(); i += std::size_t(p.ray_skip)) ray(border[i].first, border[i].second);
