@@ -194,6 +194,11 @@ TEST(FastCorrection, GroundLinesEqualThePerSpriteCorrection) {
                     EXPECT_EQ(n_got, n_want);
                     EXPECT_EQ(got.value, want.value) << kind << " light " << cx << "," << cy << " wide " << wide;
                     EXPECT_EQ(got.reached, want.reached) << kind << " light " << cx << "," << cy << " wide " << wide;
+                    // Idempotent (the benchmark corrects the same masks again and again).
+                    LightMask again = got;
+                    correct_with_ground_lines(again, lines, w.placed, st.opacity);
+                    EXPECT_EQ(again.value, got.value);
+                    EXPECT_EQ(again.reached, got.reached);
                 }
                 set_wide_kernels(true);
                 changed += want.value != traced.value;
