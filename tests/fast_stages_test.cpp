@@ -148,6 +148,25 @@ TEST(FastComposite, EveryColourAndLightPairAtTheDefaults) {
         }
         set_wide_kernels(true);
     }
+    // And every mode, light mix and dark-unlit at the extreme clarities (0:
+    // the light term ten times the colour's) and one between.
+    for (Mode mode : {Mode::light, Mode::shadow, Mode::flat})
+        for (LightMix mix : {LightMix::luminance, LightMix::surface})
+            for (bool dark : {false, true})
+                for (double ac : {0.0, 0.6, 1.0}) {
+                    Params p;
+                    p.mode = mode;
+                    p.light_mix = mix;
+                    p.dark_unlit = dark;
+                    p.ambient_clarity = ac;
+                    const Image want = composite_reference(colour, view, light, p);
+                    for (bool wide : both_widths()) {
+                        set_wide_kernels(wide);
+                        EXPECT_EQ(composite(colour, view, light, p).rgba, want.rgba)
+                            << to_string(mode) << " mix " << int(mix) << " dark " << dark << " ac " << ac << " wide " << wide;
+                    }
+                    set_wide_kernels(true);
+                }
 }
 
 TEST(FastCorrection, GroundLinesEqualThePerSpriteCorrection) {
