@@ -295,6 +295,42 @@ TEST(OnlyWhatChanged, RadiusAndModeChangesRedoEverything) {
     }
 }
 
+TEST(FastTrace, AClippedLightEqualsTheGeneralPath) {
+    // The same obstacles twice: in a map covering every light's area (the
+    // fast path, traced whole and cropped) and in a map of just their own
+    // rectangle (which covers no area: the general path, ray by ray).
+    const Rect own{-30, -25, 61, 51};
+    Mask small(own), big(Rect{-200, -200, 401, 401});
+    Pcg32 rng(31);
+    for (int i = 0; i < 300; ++i) {
+        const int x = own.x + int(rng.below(std::uint32_t(own.w))), y = own.y + int(rng.below(std::uint32_t(own.h)));
+        if (std::abs(x) + std::abs(y) < 3) continue;  // keep the centres clear
+        small.set(x, y), big.set(x, y);
+    }
+    int compared = 0;
+    for (Mode mode : {Mode::light, Mode::shadow, Mode::flat})
+        for (Rays rays : {Rays::border, Rays::every_pixel})
+            for (int k : {1, 3})
+                for (int t = 0; t < 6; ++t) {
+                    if (rays == Rays::every_pixel && k != 1) continue;
+                    Params p;
+                    p.mode = mode;
+                    p.rays = rays;
+                    p.ray_skip = k;
+                    const int a = 20 + int(rng.below(60)), b = 20 + int(rng.below(60));
+                    const std::int64_t cx = int(rng.below(9)) - 4, cy = int(rng.below(9)) - 4;
+                    const Rect area{int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1};
+                    const Rect clip = intersect(area, Rect{area.x + int(rng.below(std::uint32_t(a))), area.y - 5,
+                                                           a + int(rng.below(std::uint32_t(a))), b + 10});
+                    const LightMask fast = trace_light(big, cx, cy, a, b, p, clip);
+                    const LightMask general = trace_light(small, cx, cy, a, b, p, clip);
+                    ASSERT_EQ(fast.value, general.value) << to_string(mode) << " k " << k << " t " << t;
+                    ASSERT_EQ(fast.reached, general.reached) << to_string(mode) << " k " << k << " t " << t;
+                    ++compared;
+                }
+    EXPECT_EQ(compared, 54);
+}
+
 TEST(Accumulate, WhiteLightsAddTheirValueToEveryChannelSaturating) {
     LightMask m;
     m.clip = {0, 0, 4, 1};
@@ -413,7 +449,7 @@ TEST(LongWork, ASweepCancelledMidFrameReturnsWhatItFinished) {
     s.width = s.height = 12;
     const World w = make_world(test::default_tileset(), s);
     s.lights = {Light{double(w.placed.bounds.x + 200), double(w.placed.bounds.y + 150)}};
-    s.params.mode = Mode::flat;  // rays never stop: the one combination traces about 1e9 steps a frame
+    s.params.mode = Mode::flat;  // rays never stop: the one combination traces about 1e10 steps a frame (the area is far larger than the view, so ray by ray)
     s.params.rays = Rays::every_pixel;
     s.camera = Camera{double(w.placed.bounds.x), double(w.placed.bounds.y), 400, 300};
     SweepOptions opt;
@@ -425,7 +461,7 @@ TEST(LongWork, ASweepCancelledMidFrameReturnsWhatItFinished) {
         cancel = true;
     });
     const std::vector<SweepPoint> points =
-        run_sweep(w, s, {parse_sweep_axis("area_a=500", s.params, "test"), parse_sweep_axis("area_b=500", s.params, "test")},
+        run_sweep(w, s, {parse_sweep_axis("area_a=1500", s.params, "test"), parse_sweep_axis("area_b=1500", s.params, "test")},
                   opt, {}, &cancel);
     EXPECT_TRUE(cancel.load());
     EXPECT_TRUE(points.empty());  // cancelled inside the first combination's frames

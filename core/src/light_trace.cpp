@@ -322,7 +322,22 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
 
     const bool representable = std::llabs(cx) < 1000000000 && std::llabs(cy) < 1000000000;
     const Rect area = representable ? Rect{int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1} : Rect{};
-    const bool fast = representable && clip == area && (p.mode == Mode::flat || intersect(obstacles.rect(), area) == area);
+    const bool covered = representable && (p.mode == Mode::flat || intersect(obstacles.rect(), area) == area);
+    // A light cut by the view's edge: its rays do not depend on the clip, so
+    // the fast path traces the whole area and the clip is copied out (the
+    // same bytes as the general path, many times faster), unless the area is
+    // far larger than the clip.
+    const double area_px = double(area.w) * area.h, clip_px = double(clip.w) * clip.h;
+    if (covered && !(clip == area) && intersect(clip, area) == clip && area_px <= std::max(4 * clip_px, 1048576.0)) {
+        const LightMask whole = trace_light(obstacles, cx, cy, a, b, p, area, area_is_clear, control);
+        for (int y = 0; y < clip.h; ++y) {
+            const std::size_t from = std::size_t(clip.y + y - area.y) * area.w + std::size_t(clip.x - area.x);
+            std::memcpy(&m.value[std::size_t(y) * clip.w], &whole.value[from], std::size_t(clip.w));
+            if (p.mode == Mode::shadow) std::memcpy(&m.reached[std::size_t(y) * clip.w], &whole.reached[from], std::size_t(clip.w));
+        }
+        return m;
+    }
+    const bool fast = covered && clip == area;
     if (fast) {
         const bool every_pixel_lit = p.mode == Mode::flat || area_is_clear;
         if (every_pixel_lit && (p.rays == Rays::every_pixel || p.ray_skip == 1)) {
