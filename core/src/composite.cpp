@@ -204,6 +204,9 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
                                 std::uint8_t* d) {
     const __m256i bytes = _mm256_set1_epi32(0xFF), zero = _mm256_setzero_si256();
     const __m128i rgb_bytes = _mm_set1_epi32(0xFFFFFF);
+    const __m256i up_a_lane = _mm256_setr_epi32(0, 1, 2, 3, 3, 4, 5, 6);
+    const __m256i spread_rgb = _mm256_setr_epi8(0, 1, 2, -128, 3, 4, 5, -128, 6, 7, 8, -128, 9, 10, 11, -128,  //
+                                                0, 1, 2, -128, 3, 4, 5, -128, 6, 7, 8, -128, 9, 10, 11, -128);
     const std::uint8_t* l_end = k.light_end ? k.light_end : l;
     const __m256 inv255 = _mm256_set1_ps(1.0f / 255.0f), top = _mm256_set1_ps(255.0f), half = _mm256_set1_ps(0.5f),
                  magic = _mm256_set1_ps(8388608.0f), near = _mm256_set1_ps(1.0f / 2048.0f),
@@ -227,7 +230,13 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
     for (; i + 8 <= n; i += 8) {
         const __m256i sp = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + std::size_t(i) * 4));
         const std::uint8_t* lp = l + std::size_t(i) * 3;
-        const __m256i lv = _mm256_inserti128_si256(_mm256_castsi128_si256(four_texels(lp)), four_texels(lp + 12), 1);
+        // Eight RGB texels into eight lanes: one 32-byte load, the second
+        // half's bytes moved up a lane (dwords 3-6) and spread by a shuffle.
+        const __m256i lv = lp + 32 <= l_end
+                               ? _mm256_shuffle_epi8(_mm256_permutevar8x32_epi32(
+                                                         _mm256_loadu_si256(reinterpret_cast<const __m256i*>(lp)), up_a_lane),
+                                                     spread_rgb)
+                               : _mm256_inserti128_si256(_mm256_castsi128_si256(four_texels(lp)), four_texels(lp + 12), 1);
         // In 0..255 units: composite_pixel's terms times 255, its constants
         // folded (fewer roundings than shade_row_sse2, the same bound).
         __m256 c[3], L[3];
@@ -236,8 +245,10 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
             L[ch] = _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32(lv, 8 * ch), bytes));
         }
         const __m256i alpha = _mm256_srli_epi32(sp, 24);
-        const __m256 luminance =
-            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(c[0], kr), _mm256_mul_ps(c[1], kg)), _mm256_mul_ps(c[2], kb));
+        // The luminance with the light's scale in it (luminance mix): one multiply per channel below.
+        const __m256 luminance = _mm256_mul_ps(
+            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(c[0], kr), _mm256_mul_ps(c[1], kg)), _mm256_mul_ps(c[2], kb)),
+            light_scale);
         __m256 bad = fzero;
         __m256i packed = _mm256_slli_epi32(alpha, 24);
         for (int ch = 0; ch < 3; ++ch) {
@@ -246,7 +257,8 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
                 v = _mm256_mul_ps(_mm256_mul_ps(c[ch], ts),
                                   _mm256_sub_ps(one, _mm256_mul_ps(three_quarters, _mm256_mul_ps(L[ch], inv255))));
             } else {
-                const __m256 light_factor = _mm256_mul_ps(_mm256_mul_ps(Surface ? c[ch] : luminance, L[ch]), light_scale);
+                const __m256 light_factor =
+                    Surface ? _mm256_mul_ps(_mm256_mul_ps(c[ch], L[ch]), light_scale) : _mm256_mul_ps(luminance, L[ch]);
                 __m256 tex_factor = _mm256_mul_ps(c[ch], ts);
                 if constexpr (DarkUnlit) {
                     const __m256 lu = _mm256_mul_ps(L[ch], inv255);
