@@ -221,15 +221,14 @@ template <int R>
 }
 
 // Radius 1 to 3 at two widths (isolux/cpu.hpp): the same code, vectorised twice.
-void blur_small(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
+[[gnu::always_inline]] inline void blur_small_any(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
     if (radius == 1) blur_region_small<1>(tex, z, out);
     if (radius == 2) blur_region_small<2>(tex, z, out);
     if (radius == 3) blur_region_small<3>(tex, z, out);
 }
+void blur_small(int radius, const LightTexture& tex, Rect z, LightTexture& out) { blur_small_any(radius, tex, z, out); }
 ISOLUX_AVX2 void blur_small_avx2(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
-    if (radius == 1) blur_region_small<1>(tex, z, out);
-    if (radius == 2) blur_region_small<2>(tex, z, out);
-    if (radius == 3) blur_region_small<3>(tex, z, out);
+    blur_small_any(radius, tex, z, out);
 }
 
 }  // namespace

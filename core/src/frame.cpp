@@ -376,15 +376,15 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             TracedLight& tl = plan.traced[plan.todo[k]];
             const auto t0 = Clock::now();
             const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
-            if (over) {  // beyond the paper: rays over low obstacles
-                tl.mask = trace_light_over(st.obstacles, st.obstacle_heights, tl.cx, tl.cy, tl.a, tl.b, tl.height, p,
-                                           tl.mask.clip);
-                control.add(std::int64_t(light_trace_work(tl.a, tl.b, p)));  // progress by whole lights here
-            } else if (!traced_elsewhere)
+            if (!over && !traced_elsewhere) {
                 tl.mask = trace_light(st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
                                       area_is_clear(st.obstacles, area), ctl);
-            else
-                control.add(std::int64_t(light_trace_work(tl.a, tl.b, p)));
+            } else {
+                if (over)  // beyond the paper: rays over low obstacles
+                    tl.mask = trace_light_over(st.obstacles, st.obstacle_heights, tl.cx, tl.cy, tl.a, tl.b, tl.height,
+                                               p, tl.mask.clip);
+                control.add(std::int64_t(light_trace_work(tl.a, tl.b, p)));  // progress by whole lights here
+            }
             const auto t1 = Clock::now();
             // The ground lines when every sprite's ground fits them; the reference otherwise.
             if (correct)
