@@ -331,6 +331,42 @@ TEST(FastTrace, AClippedLightEqualsTheGeneralPath) {
     EXPECT_EQ(compared, 54);
 }
 
+TEST(FastTrace, PrunedAndWalkedTreesEqualTheGeneralPath) {
+    // From one obstacle to a dense field, so that the tree is both pruned
+    // (few obstacles) and walked (many), against the general path, ray by
+    // ray, on the same obstacles in a map that covers no area.
+    const TreeTraces before = tree_traces();
+    Pcg32 rng(77);
+    int compared = 0;
+    for (int obstacles : {0, 1, 4, 20, 120, 900, 4000})
+        for (Mode mode : {Mode::light, Mode::shadow})
+            for (int k : {1, 2, 5}) {
+                const int a = 15 + int(rng.below(60)), b = 15 + int(rng.below(60));
+                const Rect area{-a, -b, 2 * a + 1, 2 * b + 1};
+                // `small` lacks the area's left column: it covers no area, so its light takes the general path.
+                Mask small(Rect{area.x + 1, area.y, area.w - 1, area.h}), big(Rect{-100, -100, 201, 201});
+                for (int i = 0; i < obstacles; ++i) {
+                    const int x = area.x + 1 + int(rng.below(std::uint32_t(area.w - 1)));
+                    const int y = area.y + int(rng.below(std::uint32_t(area.h)));
+                    if (x == 0 && y == 0 && obstacles > 1) continue;  // the centre blocked only in the one-obstacle case below
+                    small.set(x, y), big.set(x, y);
+                }
+                if (obstacles == 1) small.set(0, 0), big.set(0, 0);
+                Params p;
+                p.mode = mode;
+                p.ray_skip = k;
+                const LightMask fast = trace_light(big, 0, 0, a, b, p, area);
+                const LightMask general = trace_light(small, 0, 0, a, b, p, area);
+                ASSERT_EQ(fast.value, general.value) << obstacles << " obstacles, " << to_string(mode) << " k " << k;
+                ASSERT_EQ(fast.reached, general.reached) << obstacles << " obstacles, " << to_string(mode) << " k " << k;
+                ++compared;
+            }
+    EXPECT_EQ(compared, 42);
+    // Both ways ran (a blocked centre, a dense field: walked; a few obstacles: pruned).
+    EXPECT_GE(tree_traces().walked - before.walked, 6u);
+    EXPECT_GE(tree_traces().pruned - before.pruned, 12u);
+}
+
 TEST(Accumulate, WhiteLightsAddTheirValueToEveryChannelSaturating) {
     LightMask m;
     m.clip = {0, 0, 4, 1};

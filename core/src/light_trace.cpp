@@ -99,6 +99,11 @@ std::uint64_t& bresenham_steps() {
     return steps;
 }
 
+TreeTraces& tree_traces() {
+    thread_local TreeTraces counts;
+    return counts;
+}
+
 namespace {
 
 // One ray from the centre, stepping two pointers (obstacle map, mask) with
@@ -158,6 +163,9 @@ struct RayTree {
     std::vector<std::int32_t> end;
     std::vector<std::int32_t> offset;  // dy * (2a+1) + dx: the node's index offset in an area-sized buffer
     std::vector<std::uint16_t> depth;  // max(|dx|, |dy|): the falloff's d
+    // Each area pixel's nodes (a pixel many rays reach has several): pixel
+    // p's are pixel_nodes[pixel_start[p] .. pixel_start[p + 1]).
+    std::vector<std::int32_t> pixel_start, pixel_nodes;
 };
 
 std::shared_ptr<const RayTree> build_ray_tree(int a, int b, int k) {
@@ -210,6 +218,15 @@ std::shared_ptr<const RayTree> build_ray_tree(int a, int b, int k) {
         tree->offset[i] = tree->dy[i] * (2 * a + 1) + tree->dx[i];
         tree->depth[i] = std::uint16_t(std::max(std::abs(tree->dx[i]), std::abs(tree->dy[i])));
     }
+    const std::size_t pixels = std::size_t(2 * a + 1) * (2 * b + 1);
+    const std::int32_t centre = b * (2 * a + 1) + a;
+    tree->pixel_start.assign(pixels + 1, 0);
+    for (std::int32_t o : tree->offset) ++tree->pixel_start[std::size_t(centre + o) + 1];
+    for (std::size_t p = 0; p < pixels; ++p) tree->pixel_start[p + 1] += tree->pixel_start[p];
+    tree->pixel_nodes.resize(tree->offset.size());
+    std::vector<std::int32_t> next(tree->pixel_start.begin(), tree->pixel_start.end() - 1);
+    for (std::size_t i = 0; i < tree->offset.size(); ++i)
+        tree->pixel_nodes[std::size_t(next[std::size_t(centre + tree->offset[i])]++)] = std::int32_t(i);
     return tree;
 }
 
@@ -223,18 +240,33 @@ std::shared_ptr<const RayTree> ray_tree(int a, int b, int k) {
     return slot;
 }
 
-// Each node's falloff for one falloff scale (table[depth[i]]), kept per
-// (a, b, k, scale) like the trees: the walk then stores it with one load.
-std::shared_ptr<const std::vector<std::uint8_t>> tree_values(const RayTree& tree, int a, int b, int k,
-                                                             const std::vector<std::uint8_t>& table, double scale) {
+// A tree's values for one falloff scale, kept per (a, b, k, scale) like the
+// trees. `word`: each node in one word, its index in an area-sized buffer
+// (from the top-left, never negative) times 256 plus its falloff
+// (table[depth]), so a walk step is one load and one shift (indices fit:
+// 1025 * 1025 < 2^24). `clear`: the mask with nothing in the way, each pixel
+// some ray reaches at its falloff.
+struct TreeValues {
+    std::vector<std::uint32_t> word;
+    std::vector<std::uint8_t> clear;
+};
+std::shared_ptr<const TreeValues> tree_values(const RayTree& tree, int a, int b, int k,
+                                              const std::vector<std::uint8_t>& table, double scale) {
     static std::mutex mutex;
-    static std::map<std::tuple<int, int, int, double>, std::shared_ptr<const std::vector<std::uint8_t>>> cache;
+    static std::map<std::tuple<int, int, int, double>, std::shared_ptr<const TreeValues>> cache;
     std::lock_guard<std::mutex> lock(mutex);
     auto& slot = cache[{a, b, k, scale}];
     if (!slot) {
-        auto values = std::make_shared<std::vector<std::uint8_t>>(tree.depth.size());
-        for (std::size_t i = 0; i < tree.depth.size(); ++i) (*values)[i] = table[tree.depth[i]];
-        slot = values;
+        auto v = std::make_shared<TreeValues>();
+        v->word.resize(tree.depth.size());
+        v->clear.assign(tree.pixel_start.size() - 1, 0);
+        const std::int32_t centre = b * (2 * a + 1) + a;
+        for (std::size_t i = 0; i < tree.depth.size(); ++i) {
+            const std::uint32_t at = std::uint32_t(centre + tree.offset[i]);
+            v->word[i] = at << 8 | table[tree.depth[i]];
+            v->clear[at] = table[tree.depth[i]];
+        }
+        slot = v;
     }
     return slot;
 }
@@ -242,28 +274,93 @@ std::shared_ptr<const std::vector<std::uint8_t>> tree_values(const RayTree& tree
 constexpr int max_tree_extent = 512;  // larger areas trace ray by ray (the tree would be too big to keep)
 
 // Walks the tree over an area-local copy of the obstacles (`ob`, the same
-// layout as the mask), so one offset serves both. Returns the nodes visited
-// (pruned subtrees are skipped).
+// layout as the mask), so one index serves both. Returns the nodes visited
+// (pruned subtrees are skipped). Kept out of line and lean: it is most of a
+// dense scene's tracing (inlined into trace_light, its pointers were spilled
+// and reloaded at every node).
 template <Mode M>
-std::int64_t trace_tree(const RayTree& t, const std::uint8_t* ob, const std::uint8_t* lit, std::uint8_t* value,
-                        std::uint8_t* reached) {
-    std::int64_t visited = 0;
-    const std::int32_t n = std::int32_t(t.offset.size());
-    const std::int32_t* off = t.offset.data();
-    const std::int32_t* end = t.end.data();
-    for (std::int32_t i = 0; i < n; ++visited) {
-        const std::int32_t o = off[i];
+[[gnu::noinline]] std::int64_t walk_tree(const std::uint32_t* __restrict word, const std::int32_t* __restrict end,
+                                         std::int32_t n, const std::uint8_t* __restrict ob, std::uint8_t* __restrict value,
+                                         std::uint8_t* __restrict reached) {
+    std::int64_t skipped = 0;
+    const std::uint32_t* at = word;
+    const std::uint32_t* const stop = word + n;
+    while (at < stop) {
+        const std::uint32_t w = *at;
+        const std::size_t o = w >> 8;
         if (ob[o]) {
+            const std::int32_t i = std::int32_t(at - word);
             if (M == Mode::shadow)  // this pixel and every one behind it on these rays
-                for (std::int32_t j = i; j < end[i]; ++j) reached[off[j]] = 1;
-            i = end[i];
+                for (std::int32_t j = i; j < end[i]; ++j) reached[word[j] >> 8] = 1;
+            skipped += end[i] - i - 1;
+            at = word + end[i];
             continue;
         }
-        value[o] = lit[i];
+        value[o] = std::uint8_t(w);
         if (M == Mode::shadow) reached[o] = 1;
-        ++i;
+        ++at;
     }
-    return visited;
+    return n - skipped;
+}
+
+// The same bytes from the other side, for areas with few obstacles: start
+// from the clear mask and darken only what the obstacles cut off. The walk
+// prunes the subtree of every obstacle node it meets, [j, end[j]); those are
+// exactly the outermost of all obstacle nodes' subtrees (depth-first
+// subtrees nest or are disjoint). A pixel stays lit unless every one of its
+// nodes lies in them. In shadow mode every node is reached, pruned or not.
+// Costs the obstacle nodes and the pruned subtrees instead of the visited
+// nodes; gives up (returns -1, nothing written) when that would not pay.
+std::int64_t prune_tree(const RayTree& t, const TreeValues& v, const std::uint8_t* ob, std::size_t pixels,
+                        std::uint8_t* value, std::uint8_t* reached) {
+    thread_local std::vector<std::pair<std::int32_t, std::int32_t>> cut;
+    thread_local std::vector<std::uint16_t> pruned_at;  // per pixel, kept all zero between calls
+    const std::int32_t n = std::int32_t(t.end.size());
+    const std::size_t most = std::size_t(n) / 64;
+    // 1. The obstacle nodes' subtrees (the obstacle bytes found eight at a time).
+    cut.clear();
+    std::size_t p = 0;
+    for (; p < pixels; ++p) {
+        if (p % 8 == 0)
+            while (p + 8 <= pixels) {
+                std::uint64_t eight;
+                std::memcpy(&eight, ob + p, 8);
+                if (eight) break;
+                p += 8;
+            }
+        if (p >= pixels) break;
+        if (!ob[p]) continue;
+        for (std::int32_t q = t.pixel_start[p]; q < t.pixel_start[p + 1]; ++q) {
+            const std::int32_t j = t.pixel_nodes[std::size_t(q)];
+            cut.push_back({j, t.end[std::size_t(j)]});
+        }
+        if (cut.size() > most) return -1;  // dense: the walk is cheaper
+    }
+    // 2. The outermost of them, and what they cover.
+    std::sort(cut.begin(), cut.end());
+    std::size_t kept = 0;
+    std::int64_t skipped = 0;
+    for (const auto& c : cut)
+        if (kept == 0 || c.first >= cut[kept - 1].second) {
+            cut[kept++] = c;
+            skipped += c.second - c.first - 1;
+        }
+    cut.resize(kept);
+    if (2 * skipped > n - skipped) return -1;  // most of the tree is cut: the walk is cheaper
+    // 3. Clear mask, then the pixels whose every node is cut.
+    std::memcpy(value, v.clear.data(), pixels);
+    if (reached)
+        for (std::size_t i = 0; i < pixels; ++i) reached[i] = t.pixel_start[i + 1] > t.pixel_start[i];
+    pruned_at.resize(pixels);
+    for (const auto& [first, last] : cut)
+        for (std::int32_t j = first; j < last; ++j) ++pruned_at[v.word[std::size_t(j)] >> 8];
+    for (const auto& [first, last] : cut)
+        for (std::int32_t j = first; j < last; ++j) {
+            const std::size_t at = v.word[std::size_t(j)] >> 8;
+            if (pruned_at[at] == t.pixel_start[at + 1] - t.pixel_start[at]) value[at] = 0;
+            pruned_at[at] = 0;
+        }
+    return n - skipped;
 }
 
 // Rays counted for a TraceControl: every 64 rays their estimated steps are
@@ -382,10 +479,18 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
                 std::memcpy(&local[std::size_t(y) * clip.w],
                             &obstacles.bits[std::size_t(clip.y + y - obstacles.y0) * obstacles.width + (clip.x - obstacles.x0)],
                             std::size_t(clip.w));
-            const std::uint8_t* centre = &local[std::size_t(b) * clip.w + a];
             const auto values = tree_values(*tree, a, b, p.ray_skip, table, p.falloff_scale);
-            steps += p.mode == Mode::light ? trace_tree<Mode::light>(*tree, centre, values->data(), lit, reached)
-                                           : trace_tree<Mode::shadow>(*tree, centre, values->data(), lit, reached);
+            const std::int32_t nodes = std::int32_t(values->word.size());
+            std::uint8_t* reached_all = p.mode == Mode::shadow ? m.reached.data() : nullptr;
+            std::int64_t visited = prune_tree(*tree, *values, local.data(), n, m.value.data(), reached_all);
+            ++(visited < 0 ? tree_traces().walked : tree_traces().pruned);
+            if (visited < 0)
+                visited = p.mode == Mode::light
+                              ? walk_tree<Mode::light>(values->word.data(), tree->end.data(), nodes, local.data(),
+                                                       m.value.data(), nullptr)
+                              : walk_tree<Mode::shadow>(values->word.data(), tree->end.data(), nodes, local.data(),
+                                                        m.value.data(), reached_all);
+            steps += std::uint64_t(visited);
         } else {
             const auto border = border_offsets(a, b);
             for (std::size_t i = 0; i < border.size(); i += std::size_t(p.ray_skip)) ray(border[i].first, border[i].second);

@@ -179,21 +179,6 @@ SpriteInstance make_instance(const Tileset& ts, int sprite, int gx, int gy, int 
 
 Rect rect_of(const SpriteInstance& in) { return {in.x, in.y, in.w, in.h}; }
 
-// The grid cells a world rectangle meets, clamped to the grid.
-struct CellRange {
-    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-};
-CellRange cells_of(const PlacedMap& p, Rect r) {
-    CellRange c;
-    const Rect g{p.grid_x, p.grid_y, p.grid_w * p.cell, p.grid_h * p.cell};
-    const Rect q = intersect(r, g);
-    if (q.empty()) return c;
-    c.x0 = (q.x - p.grid_x) / p.cell;
-    c.y0 = (q.y - p.grid_y) / p.cell;
-    c.x1 = (q.x + q.w - 1 - p.grid_x) / p.cell;
-    c.y1 = (q.y + q.h - 1 - p.grid_y) / p.cell;
-    return c;
-}
 
 void grid_add(PlacedMap& p, std::uint32_t i) {
     const CellRange c = cells_of(p, rect_of(p.instances[i]));

@@ -57,10 +57,22 @@ namespace isolux {
 
 namespace {
 
+bool fits_a_byte(std::int16_t below) { return below == GroundLines::none || (below >= -127 && below <= 127); }
+
+// The part of row y from x0 to x1: how many of its pixels do not fit below8.
+std::uint32_t wide_pixels(const GroundLines& lines, int y, int x0, int x1) {
+    const std::int16_t* below = &lines.below[std::size_t(y - lines.rect.y) * lines.rect.w + std::size_t(x0 - lines.rect.x)];
+    std::uint32_t n = 0;
+    for (int x = 0; x < x1 - x0; ++x) n += !fits_a_byte(below[x]);
+    return n;
+}
+
 void paint(GroundLines& lines, const PlacedMap& placed, const std::vector<Mask>& opacity, Rect part) {
     part = intersect(part, lines.rect);
     if (part.empty()) return;
     const int w = lines.rect.w;
+    for (int y = part.y; y < part.y + part.h; ++y)
+        lines.wide[std::size_t(y - lines.rect.y)] -= wide_pixels(lines, y, part.x, part.x + part.w);
     for (int y = part.y; y < part.y + part.h; ++y)
         std::fill_n(&lines.below[std::size_t(y - lines.rect.y) * w + (part.x - lines.rect.x)], part.w, GroundLines::none);
     std::vector<std::uint32_t> near;
@@ -78,6 +90,14 @@ void paint(GroundLines& lines, const PlacedMap& placed, const std::vector<Mask>&
             for (int x = 0; x < r.w; ++x) dst[x] = src[x] ? below : dst[x];  // a select: vectorised
         }
     }
+    for (int y = part.y; y < part.y + part.h; ++y) {
+        const std::size_t at = std::size_t(y - lines.rect.y) * w + std::size_t(part.x - lines.rect.x);
+        for (int x = 0; x < part.w; ++x) {
+            const std::int16_t b = lines.below[at + std::size_t(x)];
+            lines.below8[at + std::size_t(x)] = b == GroundLines::none || !fits_a_byte(b) ? 0 : std::uint8_t(b + 128);
+        }
+        lines.wide[std::size_t(y - lines.rect.y)] += wide_pixels(lines, y, part.x, part.x + part.w);
+    }
 }
 
 }  // namespace
@@ -86,6 +106,8 @@ GroundLines ground_lines(const PlacedMap& placed, const std::vector<Mask>& opaci
     GroundLines lines;
     lines.rect = region.empty() ? Rect{} : region;
     lines.below.assign(std::size_t(std::max(0, lines.rect.w)) * std::max(0, lines.rect.h), GroundLines::none);
+    lines.below8.assign(lines.below.size(), 0);
+    lines.wide.assign(std::size_t(std::max(0, lines.rect.h)), 0);
     paint(lines, placed, opacity, lines.rect);
     return lines;
 }
@@ -101,28 +123,43 @@ namespace {
                                                 const std::vector<Mask>& opacity) {
     const Rect clip = mask.clip;
     // The count the report shows: sprites whose opacity map meets the mask.
-    int touched = 0;
-    std::vector<std::uint32_t> near;
-    instances_in(placed, clip, true, near);
-    for (std::uint32_t k : near) {
-        const SpriteInstance& in = placed.instances[k];
-        touched += !intersect({in.x, in.y, opacity[in.sprite].width, opacity[in.sprite].height}, clip).empty();
-    }
+    const int touched = int(count_instances_in(placed, clip, true, [&](const SpriteInstance& in) {
+        return !intersect({in.x, in.y, opacity[in.sprite].width, opacity[in.sprite].height}, clip).empty();
+    }));
     const Rect r = intersect(clip, lines.rect);
     if (r.empty() || touched == 0) return touched;
     // falloff(max(|dx|, |dy|)) = min(falloff(|dx|), falloff(|dy|)): it never increases.
     std::vector<std::uint8_t> by_x(std::size_t(r.w));
     for (int x = 0; x < r.w; ++x) by_x[std::size_t(x)] = falloff(std::llabs(r.x + x - mask.cx), mask.falloff_scale);
     const bool shadow = !mask.reached.empty();
+    const std::uint8_t* fx = by_x.data();
     for (int y = r.y; y < r.y + r.h; ++y) {
-        const std::int16_t* below = &lines.below[std::size_t(y - lines.rect.y) * lines.rect.w + (r.x - lines.rect.x)];
+        const std::size_t line = std::size_t(y - lines.rect.y) * lines.rect.w + std::size_t(r.x - lines.rect.x);
         const std::size_t m = std::size_t(y - clip.y) * clip.w + std::size_t(r.x - clip.x);
         std::uint8_t* value = &mask.value[m];
         const std::uint8_t vy = falloff(std::llabs(y - mask.cy), mask.falloff_scale);
         // A sprite stands above the centre when ground_y < cy, i.e. below < cy - y.
+        if (lines.wide[std::size_t(y - lines.rect.y)] == 0) {
+            // below < cy - y  <=>  below8 = below + 128 <= cy - y + 127 (below8 >= 1).
+            const std::uint8_t* below8 = &lines.below8[line];
+            const std::uint8_t top = std::uint8_t(std::clamp<std::int64_t>(mask.cy - y + 127, 0, 255));
+            for (int x = 0; x < r.w; ++x) {  // branch-free, so that it vectorises
+                const std::uint8_t b = below8[x];
+                std::uint8_t f = fx[x];
+                f = f < vy ? f : vy;
+                const std::uint8_t keep = std::uint8_t(-std::uint8_t(b == 0));
+                const std::uint8_t lit = std::uint8_t(-std::uint8_t(b <= top));
+                value[x] = std::uint8_t((value[x] & keep) | (f & lit & std::uint8_t(~keep)));
+            }
+            if (shadow) {
+                std::uint8_t* reached = &mask.reached[m];
+                for (int x = 0; x < r.w; ++x) reached[x] = below8[x] == 0 ? reached[x] : std::uint8_t(1);
+            }
+            continue;
+        }
+        const std::int16_t* below = &lines.below[line];
         const std::int16_t above = std::int16_t(std::clamp<std::int64_t>(mask.cy - y, GroundLines::none + 1, INT16_MAX));
-        const std::uint8_t* fx = by_x.data();
-        for (int x = 0; x < r.w; ++x) {  // branch-free, so that it vectorises
+        for (int x = 0; x < r.w; ++x) {
             const std::int16_t b = below[x];
             std::uint8_t f = fx[x];
             f = f < vy ? f : vy;

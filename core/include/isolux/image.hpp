@@ -15,8 +15,15 @@ struct Rect {
     friend bool operator==(const Rect&, const Rect&) = default;
 };
 
-// Intersection of two rectangles (empty when they do not meet).
-Rect intersect(const Rect& a, const Rect& b);
+// Intersection of two rectangles (empty when they do not meet). Inline: the
+// sprite queries of every frame call it per candidate.
+inline Rect intersect(const Rect& a, const Rect& b) {
+    const int x0 = a.x > b.x ? a.x : b.x, y0 = a.y > b.y ? a.y : b.y;
+    const int ax1 = a.x + a.w, bx1 = b.x + b.w, ay1 = a.y + a.h, by1 = b.y + b.h;
+    const int x1 = ax1 < bx1 ? ax1 : bx1, y1 = ay1 < by1 ? ay1 : by1;
+    if (x1 <= x0 || y1 <= y0) return {x0, y0, 0, 0};
+    return {x0, y0, x1 - x0, y1 - y0};
+}
 
 // The smallest rectangle holding both (an empty one counts as nothing).
 Rect bounding(const Rect& a, const Rect& b);

@@ -128,6 +128,14 @@ bool area_is_clear(const Mask& obstacles, Rect area);
 // benchmark's steps-per-pixel figure).
 std::uint64_t& bresenham_steps();
 
+// How the ray tree was traced by this thread's trace_light calls (for tests
+// and the benchmark): walked node by node, or pruned (the clear mask, minus
+// what the obstacles' subtrees cut off: cheaper when obstacles are few).
+struct TreeTraces {
+    std::uint64_t walked = 0, pruned = 0;
+};
+TreeTraces& tree_traces();
+
 // The plain transcription of Algorithm 2 for one ray, kept as the reference
 // implementation the fast tracer is measured against (bench/): "enlighten
 // pixel" writes the paper's intensity 255 / (1 + max(|Δx|, |Δy|)), computed

@@ -107,6 +107,48 @@ std::vector<std::uint32_t> draw_order(const PlacedMap& placed, bool overlays_onl
 void instances_in(const PlacedMap& placed, Rect r, bool overlays_only, std::vector<std::uint32_t>& out,
                   int margin = 0);
 
+// The grid cells a world rectangle meets, clamped to the grid.
+struct CellRange {
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+};
+inline CellRange cells_of(const PlacedMap& p, Rect r) {
+    CellRange c;
+    const Rect q = intersect(r, Rect{p.grid_x, p.grid_y, p.grid_w * p.cell, p.grid_h * p.cell});
+    if (q.empty()) return c;
+    c.x0 = (q.x - p.grid_x) / p.cell;
+    c.y0 = (q.y - p.grid_y) / p.cell;
+    c.x1 = (q.x + q.w - 1 - p.grid_x) / p.cell;
+    c.y1 = (q.y + q.h - 1 - p.grid_y) / p.cell;
+    return c;
+}
+
+// How many instances meet `r` and satisfy `meets`, each counted once:
+// instances_in's count without its sorts, for callers that need no order.
+template <class Meets>
+std::size_t count_instances_in(const PlacedMap& placed, Rect r, bool overlays_only, Meets&& meets) {
+    const std::size_t first = overlays_only ? placed.first_overlay : 0;
+    auto counts = [&](const SpriteInstance& in) {
+        return in.sprite >= 0 && !intersect({in.x, in.y, in.w, in.h}, r).empty() && meets(in);
+    };
+    std::size_t n = 0;
+    if (placed.grid.empty()) {
+        for (std::size_t i = first; i < placed.instances.size(); ++i) n += counts(placed.instances[i]);
+        return n;
+    }
+    // A sprite over several cells is listed in each: it counts in the first
+    // (top-left) of the cells the query shares with it.
+    const CellRange c = cells_of(placed, r);
+    for (int cy = c.y0; cy <= c.y1; ++cy)
+        for (int cx = c.x0; cx <= c.x1; ++cx)
+            for (std::uint32_t i : placed.grid[std::size_t(cy) * placed.grid_w + cx]) {
+                const SpriteInstance& in = placed.instances[i];
+                if (i < first || !counts(in)) continue;
+                const CellRange own = cells_of(placed, {in.x, in.y, in.w, in.h});
+                n += cx == (c.x0 > own.x0 ? c.x0 : own.x0) && cy == (c.y0 > own.y0 ? c.y0 : own.y0);
+            }
+    return n;
+}
+
 // Places every tile's sprites. The world's origin is the top-left of what
 // they cover, unless `origin_of` is given: then it is that map's (a seeded
 // map's, so that its edited copy keeps the same world pixels).

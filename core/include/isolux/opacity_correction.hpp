@@ -34,11 +34,18 @@ int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const st
 // sprite). The rule above then reads, per pixel, "none: keep; stands above
 // the light's centre: its intensity; otherwise: unlit", one branch-free pass
 // over the light's area whatever the number of sprites.
+//
+// The pass reads a byte per pixel: below8 = below + 128 (1..255 for below in
+// [-127, 127], 0 for none), so that "stands above" is one unsigned compare
+// against a per-row threshold. A row holding a value outside that range (a
+// sprite pixel 128+ rows from its ground) is read from `below` instead.
 struct GroundLines {
     static constexpr std::int16_t none = INT16_MIN;
-    Rect rect;                          // world pixels it covers (elsewhere: none)
-    std::vector<std::int16_t> below;    // ground_y - y per pixel, or none
-    bool exact = true;                  // false when a sprite's ground is 32766+ rows from its pixels
+    Rect rect;                            // world pixels it covers (elsewhere: none)
+    std::vector<std::int16_t> below;      // ground_y - y per pixel, or none
+    std::vector<std::uint8_t> below8;     // the same in a byte where it fits
+    std::vector<std::uint32_t> wide;      // per row of rect: pixels whose below does not fit a byte
+    bool exact = true;                    // false when a sprite's ground is 32766+ rows from its pixels
 };
 
 // Paints the overlays' opacity maps over `region` in draw order.
