@@ -164,8 +164,11 @@ struct RayTree {
     std::vector<std::int32_t> offset;  // dy * (2a+1) + dx: the node's index offset in an area-sized buffer
     std::vector<std::uint16_t> depth;  // max(|dx|, |dy|): the falloff's d
     // Each area pixel's nodes (a pixel many rays reach has several): pixel
-    // p's are pixel_nodes[pixel_start[p] .. pixel_start[p + 1]).
+    // p's are pixel_nodes[pixel_start[p] .. pixel_start[p + 1]), and their
+    // count in a byte (prunable: no pixel has more than 255).
     std::vector<std::int32_t> pixel_start, pixel_nodes;
+    std::vector<std::uint8_t> nodes_at;
+    bool prunable = true;
 };
 
 std::shared_ptr<const RayTree> build_ray_tree(int a, int b, int k) {
@@ -227,6 +230,12 @@ std::shared_ptr<const RayTree> build_ray_tree(int a, int b, int k) {
     std::vector<std::int32_t> next(tree->pixel_start.begin(), tree->pixel_start.end() - 1);
     for (std::size_t i = 0; i < tree->offset.size(); ++i)
         tree->pixel_nodes[std::size_t(next[std::size_t(centre + tree->offset[i])]++)] = std::int32_t(i);
+    tree->nodes_at.resize(pixels);
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const std::int32_t count = tree->pixel_start[p + 1] - tree->pixel_start[p];
+        tree->prunable = tree->prunable && count <= 255;
+        tree->nodes_at[p] = std::uint8_t(std::min(count, 255));
+    }
     return tree;
 }
 
@@ -309,18 +318,18 @@ template <Mode M>
 // exactly the outermost of all obstacle nodes' subtrees (depth-first
 // subtrees nest or are disjoint). A pixel stays lit unless every one of its
 // nodes lies in them. In shadow mode every node is reached, pruned or not.
-// Costs the obstacle nodes and the pruned subtrees instead of the visited
-// nodes; gives up (returns -1, nothing written) when that would not pay.
+// Costs about one walk step per pruned node instead of per visited node;
+// gives up (returns -1, nothing written) when that would not pay.
 std::int64_t prune_tree(const RayTree& t, const TreeValues& v, const std::uint8_t* ob, std::size_t pixels,
                         std::uint8_t* value, std::uint8_t* reached) {
-    thread_local std::vector<std::pair<std::int32_t, std::int32_t>> cut;
-    thread_local std::vector<std::uint16_t> pruned_at;  // per pixel, kept all zero between calls
+    if (!t.prunable) return -1;
+    thread_local std::vector<std::int32_t> cut;
+    thread_local std::vector<std::uint8_t> left;  // per pixel: its nodes not yet found cut off
     const std::int32_t n = std::int32_t(t.end.size());
-    const std::size_t most = std::size_t(n) / 64;
-    // 1. The obstacle nodes' subtrees (the obstacle bytes found eight at a time).
+    const std::size_t most = std::size_t(n) / 256;  // beyond, sorting the cuts costs more than it saves
+    // 1. The obstacle nodes (the obstacle bytes found eight at a time).
     cut.clear();
-    std::size_t p = 0;
-    for (; p < pixels; ++p) {
+    for (std::size_t p = 0; p < pixels; ++p) {
         if (p % 8 == 0)
             while (p + 8 <= pixels) {
                 std::uint64_t eight;
@@ -330,35 +339,29 @@ std::int64_t prune_tree(const RayTree& t, const TreeValues& v, const std::uint8_
             }
         if (p >= pixels) break;
         if (!ob[p]) continue;
-        for (std::int32_t q = t.pixel_start[p]; q < t.pixel_start[p + 1]; ++q) {
-            const std::int32_t j = t.pixel_nodes[std::size_t(q)];
-            cut.push_back({j, t.end[std::size_t(j)]});
-        }
+        cut.insert(cut.end(), t.pixel_nodes.begin() + t.pixel_start[p], t.pixel_nodes.begin() + t.pixel_start[p + 1]);
         if (cut.size() > most) return -1;  // dense: the walk is cheaper
     }
-    // 2. The outermost of them, and what they cover.
+    // 2. The outermost of their subtrees, and how many nodes they cut.
     std::sort(cut.begin(), cut.end());
     std::size_t kept = 0;
     std::int64_t skipped = 0;
-    for (const auto& c : cut)
-        if (kept == 0 || c.first >= cut[kept - 1].second) {
-            cut[kept++] = c;
-            skipped += c.second - c.first - 1;
+    for (const std::int32_t j : cut)
+        if (kept == 0 || j >= t.end[std::size_t(cut[kept - 1])]) {
+            cut[kept++] = j;
+            skipped += t.end[std::size_t(j)] - j - 1;
         }
     cut.resize(kept);
-    if (2 * skipped > n - skipped) return -1;  // most of the tree is cut: the walk is cheaper
-    // 3. Clear mask, then the pixels whose every node is cut.
+    if (skipped > n - skipped) return -1;  // most of the tree is cut off: the walk is cheaper
+    // 3. The clear mask, then every pixel whose last node is cut off goes dark.
     std::memcpy(value, v.clear.data(), pixels);
     if (reached)
-        for (std::size_t i = 0; i < pixels; ++i) reached[i] = t.pixel_start[i + 1] > t.pixel_start[i];
-    pruned_at.resize(pixels);
-    for (const auto& [first, last] : cut)
-        for (std::int32_t j = first; j < last; ++j) ++pruned_at[v.word[std::size_t(j)] >> 8];
-    for (const auto& [first, last] : cut)
-        for (std::int32_t j = first; j < last; ++j) {
+        for (std::size_t i = 0; i < pixels; ++i) reached[i] = t.nodes_at[i] != 0;
+    left.assign(t.nodes_at.begin(), t.nodes_at.end());
+    for (const std::int32_t first : cut)
+        for (std::int32_t j = first, last = t.end[std::size_t(first)]; j < last; ++j) {
             const std::size_t at = v.word[std::size_t(j)] >> 8;
-            if (pruned_at[at] == t.pixel_start[at + 1] - t.pixel_start[at]) value[at] = 0;
-            pruned_at[at] = 0;
+            if (--left[at] == 0) value[at] = 0;
         }
     return n - skipped;
 }
