@@ -320,27 +320,33 @@ template <Mode M>
 // nodes lies in them. In shadow mode every node is reached, pruned or not.
 // Costs about one walk step per pruned node instead of per visited node;
 // gives up (returns -1, nothing written) when that would not pay.
-std::int64_t prune_tree(const RayTree& t, const TreeValues& v, const std::uint8_t* ob, std::size_t pixels,
-                        std::uint8_t* value, std::uint8_t* reached) {
+std::int64_t prune_tree(const RayTree& t, const TreeValues& v, const std::uint8_t* ob, std::ptrdiff_t ob_stride, int w,
+                        int h, std::uint8_t* value, std::uint8_t* reached) {
     if (!t.prunable) return -1;
     thread_local std::vector<std::int32_t> cut;
     thread_local std::vector<std::uint8_t> left;  // per pixel: its nodes not yet found cut off
     const std::int32_t n = std::int32_t(t.end.size());
+    const std::size_t pixels = std::size_t(w) * std::size_t(h);
     const std::size_t most = std::size_t(n) / 256;  // beyond, sorting the cuts costs more than it saves
-    // 1. The obstacle nodes (the obstacle bytes found eight at a time).
+    // 1. The obstacle nodes, read from the obstacle map in place (its bytes
+    // eight at a time).
     cut.clear();
-    for (std::size_t p = 0; p < pixels; ++p) {
-        if (p % 8 == 0)
-            while (p + 8 <= pixels) {
-                std::uint64_t eight;
-                std::memcpy(&eight, ob + p, 8);
-                if (eight) break;
-                p += 8;
-            }
-        if (p >= pixels) break;
-        if (!ob[p]) continue;
-        cut.insert(cut.end(), t.pixel_nodes.begin() + t.pixel_start[p], t.pixel_nodes.begin() + t.pixel_start[p + 1]);
-        if (cut.size() > most) return -1;  // dense: the walk is cheaper
+    for (int y = 0; y < h; ++y) {
+        const std::uint8_t* row = ob + y * ob_stride;
+        for (int x = 0; x < w; ++x) {
+            if (x % 8 == 0)
+                while (x + 8 <= w) {
+                    std::uint64_t eight;
+                    std::memcpy(&eight, row + x, 8);
+                    if (eight) break;
+                    x += 8;
+                }
+            if (x >= w) break;
+            if (!row[x]) continue;
+            const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
+            cut.insert(cut.end(), t.pixel_nodes.begin() + t.pixel_start[p], t.pixel_nodes.begin() + t.pixel_start[p + 1]);
+            if (cut.size() > most) return -1;  // dense: the walk is cheaper
+        }
     }
     // 2. The outermost of their subtrees, and how many nodes they cut.
     std::sort(cut.begin(), cut.end());
@@ -475,24 +481,27 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
                 for (int x = -a; x <= a; ++x) ray(x, y);
         } else if (p.mode != Mode::flat && a <= max_tree_extent && b <= max_tree_extent) {
             const auto tree = ray_tree(a, b, p.ray_skip);
-            // The area's obstacles, copied row by row into the mask's layout.
-            thread_local std::vector<std::uint8_t> local;
-            local.resize(n);
-            for (int y = 0; y < clip.h; ++y)
-                std::memcpy(&local[std::size_t(y) * clip.w],
-                            &obstacles.bits[std::size_t(clip.y + y - obstacles.y0) * obstacles.width + (clip.x - obstacles.x0)],
-                            std::size_t(clip.w));
             const auto values = tree_values(*tree, a, b, p.ray_skip, table, p.falloff_scale);
             const std::int32_t nodes = std::int32_t(values->word.size());
             std::uint8_t* reached_all = p.mode == Mode::shadow ? m.reached.data() : nullptr;
-            std::int64_t visited = prune_tree(*tree, *values, local.data(), n, m.value.data(), reached_all);
+            const std::uint8_t* ob_area =
+                &obstacles.bits[std::size_t(clip.y - obstacles.y0) * obstacles.width + std::size_t(clip.x - obstacles.x0)];
+            std::int64_t visited =
+                prune_tree(*tree, *values, ob_area, obstacles.width, clip.w, clip.h, m.value.data(), reached_all);
             ++(visited < 0 ? tree_traces().walked : tree_traces().pruned);
-            if (visited < 0)
+            if (visited < 0) {
+                // The walk: the area's obstacles copied row by row into the mask's layout first.
+                thread_local std::vector<std::uint8_t> local;
+                local.resize(n);
+                for (int y = 0; y < clip.h; ++y)
+                    std::memcpy(&local[std::size_t(y) * clip.w], ob_area + std::size_t(y) * obstacles.width,
+                                std::size_t(clip.w));
                 visited = p.mode == Mode::light
                               ? walk_tree<Mode::light>(values->word.data(), tree->end.data(), nodes, local.data(),
                                                        m.value.data(), nullptr)
                               : walk_tree<Mode::shadow>(values->word.data(), tree->end.data(), nodes, local.data(),
                                                         m.value.data(), reached_all);
+            }
             steps += std::uint64_t(visited);
         } else {
             const auto border = border_offsets(a, b);
