@@ -128,16 +128,29 @@ namespace {
     }));
     const Rect r = intersect(clip, lines.rect);
     if (r.empty() || touched == 0) return touched;
-    // falloff(max(|dx|, |dy|)) = min(falloff(|dx|), falloff(|dy|)): it never increases.
-    std::vector<std::uint8_t> by_x(std::size_t(r.w));
-    for (int x = 0; x < r.w; ++x) by_x[std::size_t(x)] = falloff(std::llabs(r.x + x - mask.cx), mask.falloff_scale);
+    // falloff(max(|dx|, |dy|)) = min(falloff(|dx|), falloff(|dy|)): it never
+    // increases. Tabulated by distance once, kept while the scale holds.
+    thread_local std::vector<std::uint8_t> by_d;
+    thread_local double by_d_scale = 0;
+    const std::size_t far = std::size_t(std::max({std::llabs(r.x - mask.cx), std::llabs(r.x + r.w - 1 - mask.cx),
+                                                  std::llabs(r.y - mask.cy), std::llabs(r.y + r.h - 1 - mask.cy)}));
+    if (by_d_scale != mask.falloff_scale) by_d.clear(), by_d_scale = mask.falloff_scale;
+    // (A light centred far outside its clip does not grow the table.)
+    for (std::size_t d = by_d.size(); d <= std::min<std::size_t>(far, 1 << 16); ++d)
+        by_d.push_back(falloff(std::int64_t(d), mask.falloff_scale));
+    auto fall = [&](std::int64_t d) {
+        return std::size_t(d) < by_d.size() ? by_d[std::size_t(d)] : falloff(d, mask.falloff_scale);
+    };
+    thread_local std::vector<std::uint8_t> by_x;
+    by_x.resize(std::size_t(r.w));
+    for (int x = 0; x < r.w; ++x) by_x[std::size_t(x)] = fall(std::llabs(r.x + x - mask.cx));
     const bool shadow = !mask.reached.empty();
     const std::uint8_t* fx = by_x.data();
     for (int y = r.y; y < r.y + r.h; ++y) {
         const std::size_t line = std::size_t(y - lines.rect.y) * lines.rect.w + std::size_t(r.x - lines.rect.x);
         const std::size_t m = std::size_t(y - clip.y) * clip.w + std::size_t(r.x - clip.x);
         std::uint8_t* value = &mask.value[m];
-        const std::uint8_t vy = falloff(std::llabs(y - mask.cy), mask.falloff_scale);
+        const std::uint8_t vy = fall(std::llabs(y - mask.cy));
         // A sprite stands above the centre when ground_y < cy, i.e. below < cy - y.
         if (lines.wide[std::size_t(y - lines.rect.y)] == 0) {
             // below < cy - y  <=>  below8 = below + 128 <= cy - y + 127 (below8 >= 1).

@@ -135,17 +135,21 @@ std::size_t count_instances_in(const PlacedMap& placed, Rect r, bool overlays_on
         for (std::size_t i = first; i < placed.instances.size(); ++i) n += counts(placed.instances[i]);
         return n;
     }
-    // A sprite over several cells is listed in each: it counts in the first
-    // (top-left) of the cells the query shares with it.
+    // A sprite over several cells is listed in each: it counts in the cell
+    // holding the top-left of its overlap with the query (the grid holds
+    // every sprite, so that corner lies in the grid), tested without dividing.
     const CellRange c = cells_of(placed, r);
     for (int cy = c.y0; cy <= c.y1; ++cy)
-        for (int cx = c.x0; cx <= c.x1; ++cx)
+        for (int cx = c.x0; cx <= c.x1; ++cx) {
+            const int x0 = placed.grid_x + cx * placed.cell, y0 = placed.grid_y + cy * placed.cell;
             for (std::uint32_t i : placed.grid[std::size_t(cy) * placed.grid_w + cx]) {
+                if (i < first) continue;
                 const SpriteInstance& in = placed.instances[i];
-                if (i < first || !counts(in)) continue;
-                const CellRange own = cells_of(placed, {in.x, in.y, in.w, in.h});
-                n += cx == (c.x0 > own.x0 ? c.x0 : own.x0) && cy == (c.y0 > own.y0 ? c.y0 : own.y0);
+                const int corner_x = in.x > r.x ? in.x : r.x, corner_y = in.y > r.y ? in.y : r.y;
+                if (corner_x < x0 || corner_x >= x0 + placed.cell || corner_y < y0 || corner_y >= y0 + placed.cell) continue;
+                n += counts(in);
             }
+        }
     return n;
 }
 
