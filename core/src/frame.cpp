@@ -6,7 +6,11 @@
 #include <barrier>
 #include <cassert>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
+#include <functional>
+#include <mutex>
+#include <stop_token>
 #include <thread>
 
 #include "isolux/blur.hpp"
@@ -87,11 +91,68 @@ bool params_changed_for(Stage stage, const Params& before, const Params& now) {
     return !(before == now) && stages_changed(before, now).has(stage);  // equal: the still frame's fast answer
 }
 
+// Threads kept from frame to frame: starting one costs tens of microseconds,
+// a fair share of a frame that moved a few lights. One job at a time; a
+// caller that finds the pool busy (a frame on another thread) starts threads
+// of its own.
+class WorkerPool {
+public:
+    // Runs `job` on `extra` pool threads and the caller's, all at once (the
+    // frame's phases meet at a barrier); false, having run nothing, when busy.
+    bool run(int extra, const std::function<void()>& job) {
+        std::unique_lock<std::mutex> busy(busy_, std::try_to_lock);
+        if (!busy) return false;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            while (int(workers_.size()) < extra)
+                workers_.emplace_back([this, id = int(workers_.size()), seen = generation_](std::stop_token stop) {
+                    serve(stop, id, seen);
+                });
+            job_ = &job;
+            wanted_ = extra;
+            done_ = 0;
+            ++generation_;
+        }
+        wake_.notify_all();
+        job();
+        std::unique_lock<std::mutex> lock(mutex_);
+        finished_.wait(lock, [&] { return done_ == wanted_; });
+        job_ = nullptr;
+        return true;
+    }
+
+private:
+    void serve(std::stop_token stop, int id, std::uint64_t seen) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        for (;;) {
+            if (!wake_.wait(lock, stop, [&] { return generation_ != seen; })) return;  // stopping
+            seen = generation_;
+            if (id >= wanted_) continue;  // this job wants fewer threads
+            const std::function<void()>* job = job_;
+            lock.unlock();
+            (*job)();
+            lock.lock();
+            if (++done_ == wanted_) finished_.notify_all();
+        }
+    }
+
+    std::mutex busy_, mutex_;
+    std::condition_variable_any wake_, finished_;
+    const std::function<void()>* job_ = nullptr;
+    int wanted_ = 0, done_ = 0;
+    std::uint64_t generation_ = 0;
+    std::vector<std::jthread> workers_;  // last: stopped and joined first
+};
+
 // Runs `work` on `count` threads, the caller's among them, and waits for all.
 template <class Work>
 void run_on_threads(int count, Work& work) {
-    std::vector<std::jthread> pool;
-    for (int id = 1; id < count; ++id) pool.emplace_back([&work] { work(); });
+    if (count <= 1) return work();
+    static WorkerPool pool;
+    const std::function<void()> job = [&work] { work(); };
+    if (pool.run(count - 1, job)) return;
+    std::vector<std::jthread> own;
+    for (int id = 1; id < count; ++id) own.emplace_back([&work] { work(); });
     work();
 }
 
