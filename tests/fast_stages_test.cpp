@@ -5,6 +5,7 @@
 // what changed against one built from nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <chrono>
@@ -225,6 +226,99 @@ TEST(FastCorrection, GroundLinesEqualThePerSpriteCorrection) {
             }
         EXPECT_EQ(compared, 80);
         EXPECT_GT(changed, 20) << "the corrections must have done something to compare";
+    }
+}
+
+namespace {
+
+// Overlays placed by hand (no tileset): sprite 0 a 40x300 column standing
+// on its bottom row (its top 299 rows above its ground: too far for the
+// byte lines), sprite 1 a 30x60 block whose ground is 50 rows above its
+// bottom (pixels below the ground line), both with holes.
+struct HandPlaced {
+    PlacedMap placed;
+    std::vector<Mask> opacity;
+    HandPlaced() {
+        opacity = {Mask(Rect{0, 0, 40, 300}), Mask(Rect{0, 0, 30, 60})};
+        for (Mask& m : opacity)
+            for (int y = 0; y < m.height; ++y)
+                for (int x = 0; x < m.width; ++x) m.bits[std::size_t(y) * m.width + x] = (x * 7 + y * 3) % 11 != 0;
+        Pcg32 rng(5);
+        for (int i = 0; i < 24; ++i) {
+            SpriteInstance in;
+            in.sprite = i % 2;
+            in.w = opacity[std::size_t(in.sprite)].width, in.h = opacity[std::size_t(in.sprite)].height;
+            in.x = int(rng.below(400)), in.y = int(rng.below(400));
+            in.ground_x = in.x + in.w / 2;
+            in.ground_y = in.sprite == 0 ? in.y + in.h - 1 : in.y + 9;
+            in.layer = 1;
+            placed.instances.push_back(in);
+        }
+        // Draw order: overlays by their ground point, as place_sprites orders them.
+        std::stable_sort(placed.instances.begin(), placed.instances.end(),
+                         [](const SpriteInstance& a, const SpriteInstance& b) { return a.ground_y < b.ground_y; });
+        placed.first_overlay = 0;
+        finish_placed(placed);
+    }
+};
+
+}  // namespace
+
+TEST(FastCorrection, RowsTooTallForAByteReadTheWideLinesAndEqualTheRule) {
+    const HandPlaced h;
+    const GroundLines lines = ground_lines(h.placed, h.opacity, h.placed.bounds);
+    ASSERT_TRUE(lines.exact);
+    int wide_rows = 0, byte_rows = 0;
+    for (std::uint32_t n : lines.wide) ++(n ? wide_rows : byte_rows);
+    EXPECT_GT(wide_rows, 50) << "the test must reach the 16-bit rows";
+    EXPECT_GT(byte_rows, 50) << "and the byte rows";
+    Pcg32 rng(6);
+    int changed = 0;
+    for (int k = 0; k < 60; ++k) {
+        LightMask m;
+        m.cx = h.placed.bounds.x + std::int64_t(rng.below(std::uint32_t(h.placed.bounds.w)));
+        m.cy = h.placed.bounds.y + std::int64_t(rng.below(std::uint32_t(h.placed.bounds.h)));
+        m.a = 20 + int(rng.below(150)), m.b = 20 + int(rng.below(150));
+        m.falloff_scale = k % 3 ? 1.0 : 2.5;
+        m.clip = Rect{int(m.cx) - m.a, int(m.cy) - m.b, 2 * m.a + 1, 2 * m.b + 1};
+        m.value.resize(std::size_t(m.clip.w) * m.clip.h);
+        for (std::uint8_t& v : m.value) v = std::uint8_t(rng.below(256));
+        if (k % 2) {
+            m.reached.resize(m.value.size());
+            for (std::uint8_t& v : m.reached) v = std::uint8_t(rng.below(2));
+        }
+        LightMask want = m;
+        const int n_want = correct_with_opacity_maps(want, h.placed, h.opacity);
+        for (bool wide : both_widths()) {
+            set_wide_kernels(wide);
+            LightMask got = m;
+            EXPECT_EQ(correct_with_ground_lines(got, lines, h.placed, h.opacity), n_want);
+            EXPECT_EQ(got.value, want.value) << "light " << m.cx << "," << m.cy << " wide " << wide;
+            EXPECT_EQ(got.reached, want.reached) << "light " << m.cx << "," << m.cy << " wide " << wide;
+        }
+        set_wide_kernels(true);
+        changed += want.value != m.value;
+    }
+    EXPECT_GT(changed, 30);
+}
+
+TEST(FastCorrection, ARepaintEqualsFreshLines) {
+    HandPlaced h;
+    const Rect region{h.placed.bounds.x - 20, h.placed.bounds.y - 20, h.placed.bounds.w + 40, h.placed.bounds.h + 40};
+    GroundLines lines = ground_lines(h.placed, h.opacity, region);
+    Pcg32 rng(9);
+    for (int k = 0; k < 12; ++k) {
+        // Move one sprite (a tall one on even steps: its rows change between byte and wide).
+        SpriteInstance& in = h.placed.instances[std::size_t(2 * (k % 12) + (k % 2))];
+        const Rect before{in.x, in.y, in.w, in.h};
+        const int dx = int(rng.below(61)) - 30, dy = int(rng.below(61)) - 30;
+        in.x += dx, in.y += dy, in.ground_x += dx, in.ground_y += dy;
+        finish_placed(h.placed);  // the grid again (draw order may differ now: both are painted the same way)
+        repaint_ground_lines(lines, h.placed, h.opacity, bounding(before, Rect{in.x, in.y, in.w, in.h}));
+        const GroundLines fresh = ground_lines(h.placed, h.opacity, region);
+        ASSERT_EQ(lines.below, fresh.below) << "step " << k;
+        ASSERT_EQ(lines.below8, fresh.below8) << "step " << k;
+        ASSERT_EQ(lines.wide, fresh.wide) << "step " << k;
     }
 }
 
