@@ -89,7 +89,7 @@ bool area_is_clear(const Mask& obstacles, Rect area) {
     const Rect r = intersect(area, obstacles.rect());
     for (int y = r.y; y < r.y + r.h; ++y) {
         const std::uint8_t* row = &obstacles.bits[std::size_t(y - obstacles.y0) * obstacles.width + (r.x - obstacles.x0)];
-        if (std::find(row, row + r.w, std::uint8_t(1)) != row + r.w) return false;
+        if (std::memchr(row, 1, std::size_t(r.w))) return false;  // glibc's vectorised search
     }
     return true;
 }
@@ -450,10 +450,14 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
             // Closed form: with nothing in the way, the rays cover the whole
             // area, each pixel at falloff(max(|dx|, |dy|)) = min of the two
             // (falloff never increases).
+            std::vector<std::uint8_t> by_x(std::size_t(clip.w));
+            for (int x = -a; x <= a; ++x) by_x[std::size_t(x + a)] = table[std::size_t(std::abs(x))];
             for (int y = -b; y <= b; ++y) {
                 std::uint8_t* row = &m.value[std::size_t(y + b) * clip.w];
                 const std::uint8_t vy = table[std::size_t(std::abs(y))];
-                for (int x = -a; x <= a; ++x) row[x + a] = std::min(table[std::size_t(std::abs(x))], vy);
+                const std::uint8_t* fx = by_x.data();
+                const int w = clip.w;  // a local: the byte stores could alias clip.w, and re-reading it stops vectorising
+                for (int x = 0; x < w; ++x) row[x] = fx[x] < vy ? fx[x] : vy;
             }
             if (p.mode == Mode::shadow) std::fill(m.reached.begin(), m.reached.end(), 1);
             tally.finish(estimate);
