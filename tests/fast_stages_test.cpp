@@ -371,6 +371,35 @@ TEST(OnlyWhatChanged, OneMovedLightRedoesItsAreasAndEqualsAFreshFrame) {
     }
 }
 
+TEST(OnlyWhatChanged, LightsSharingAPlaceEachKeepTheirMask) {
+    // Reused masks move out of the cache, one per cached light: two lights
+    // at the same place must each find their own (the second one must not
+    // get the first one's moved-from, empty mask).
+    Scene base;
+    base.width = base.height = 16;
+    const World w = make_world(test::default_tileset(), base);
+    Scene s = moving_scene(w, 3);
+    const Camera cam{double(w.placed.bounds.x + 100), double(w.placed.bounds.y + 50), 700, 400};
+    const Light twin{cam.x + 300, cam.y + 200};
+    s.lights = {twin, twin, Light{cam.x + 350, cam.y + 230}};  // its areas meet the twins': they are redrawn
+    FrameState st;
+    render_frame(st, w, s, cam, 0);
+    for (long f = 1; f <= 4; ++f) {
+        // Another light moves, and the list's order changes: the second twin
+        // is looked for away from its old place.
+        Light other = s.lights[f % 2 ? 2 : 1];
+        other.y += 5;
+        s.lights = f % 2 ? std::vector<Light>{twin, other, twin} : std::vector<Light>{twin, twin, other};
+        const FrameReport r = render_frame(st, w, s, cam, f);
+        EXPECT_EQ(r.lights_traced, 1);
+        EXPECT_EQ(r.lights_reused, 2);
+        FrameState fresh;
+        render_frame(fresh, w, s, cam, 0);
+        ASSERT_EQ(st.traced.rgb, fresh.traced.rgb) << "frame " << f;
+        ASSERT_EQ(st.final.rgba, fresh.final.rgba) << "frame " << f;
+    }
+}
+
 TEST(OnlyWhatChanged, RadiusAndModeChangesRedoEverything) {
     Scene base;
     base.width = base.height = 10;

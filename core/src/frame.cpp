@@ -340,12 +340,17 @@ struct LightPlan {
     std::vector<std::size_t> recoloured;  // reused masks whose colour or intensity changed
 };
 
-LightPlan plan_lights(const FrameCache& c, const Scene& scene, Rect tex_rect, Rect edited, FrameReport& rep) {
+// A reused light's mask is moved out of the cache (copying 32 masks of 66 KB
+// was most of a frame where one light moved): the cache keeps each light's
+// place and clip for dirty_region, and render_frame drops the cache if the
+// frame does not finish.
+LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edited, FrameReport& rep) {
     const Params& p = scene.params;
     LightPlan plan;
     for (const Light& l : scene.lights)
         if (!intersect(light_area(l, p), tex_rect).empty()) plan.lights.push_back(&l);
     plan.traced.resize(plan.lights.size());
+    std::vector<char> taken(c.lights.size(), 0);  // a mask moves out once (two lights may share a place)
     for (std::size_t i = 0; i < plan.lights.size(); ++i) {
         const Light& l = *plan.lights[i];
         TracedLight& t = plan.traced[i];
@@ -362,14 +367,16 @@ LightPlan plan_lights(const FrameCache& c, const Scene& scene, Rect tex_rect, Re
                    old.mask.clip == clip && intersect(old.mask.clip, edited).empty();
         };
         // Lights mostly keep their place in the list: look there first.
-        const TracedLight* hit = nullptr;
-        if (i < c.lights.size() && same(c.lights[i])) hit = &c.lights[i];
-        for (std::size_t j = 0; !hit && j < c.lights.size(); ++j)
-            if (same(c.lights[j])) hit = &c.lights[j];
-        if (hit) {
-            t.mask = hit->mask;
+        std::size_t hit = c.lights.size();
+        if (i < c.lights.size() && !taken[i] && same(c.lights[i])) hit = i;
+        for (std::size_t j = 0; hit == c.lights.size() && j < c.lights.size(); ++j)
+            if (!taken[j] && same(c.lights[j])) hit = j;
+        if (hit < c.lights.size()) {
+            taken[hit] = 1;
+            const TracedLight& old = c.lights[hit];
+            t.mask = std::move(c.lights[hit].mask);  // (its clip, a plain copy, stays behind for dirty_region)
             ++rep.lights_reused;
-            if (hit->colour != t.colour || hit->intensity != t.intensity)
+            if (old.colour != t.colour || old.intensity != t.intensity)
                 plan.recoloured.push_back(i);
         } else {
             t.mask.clip = clip;
@@ -648,7 +655,12 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_
             for (const TracedLight& t : plan.traced) whole += area(t.mask.clip), part += area(intersect(t.mask.clip, rep.dirty));
             partial = part < whole;
         }
-        trace_and_accumulate(st, world, scene.params, plan, to_clear, tex_rect, partial ? &rep.dirty : nullptr, rep);
+        try {
+            trace_and_accumulate(st, world, scene.params, plan, to_clear, tex_rect, partial ? &rep.dirty : nullptr, rep);
+        } catch (...) {
+            st = FrameState{st.options};  // the cache gave its masks to the plan: start afresh
+            throw;
+        }
         if (st.options.control.cancelled()) {
             st = FrameState{st.options};  // nothing half-traced is kept: the next frame starts afresh
             throw Cancelled();
