@@ -383,6 +383,17 @@ LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edi
             plan.todo.push_back(i);
         }
     }
+    // The lights to trace take the vectors of cached masks no light reuses:
+    // their capacity, so that retracing allocates nothing and touches no
+    // fresh page.
+    std::size_t spare = 0;
+    for (std::size_t i : plan.todo) {
+        while (spare < c.lights.size() && taken[spare]) ++spare;
+        if (spare == c.lights.size()) break;
+        plan.traced[i].mask.value = std::move(c.lights[spare].mask.value);
+        plan.traced[i].mask.reached = std::move(c.lights[spare].mask.reached);
+        taken[spare++] = 1;
+    }
     return plan;
 }
 
@@ -445,8 +456,8 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             const auto t0 = Clock::now();
             const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
             if (!over && !traced_elsewhere) {
-                tl.mask = trace_light(st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
-                                      area_is_clear(st.obstacles, area), ctl);
+                trace_light_into(tl.mask, st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
+                                 area_is_clear(st.obstacles, area), ctl);
             } else {
                 if (over)  // beyond the paper: rays over low obstacles
                     tl.mask = trace_light_over(st.obstacles, st.obstacle_heights, tl.cx, tl.cy, tl.a, tl.b, tl.height,

@@ -405,10 +405,9 @@ double light_trace_work(int a, int b, const Params& p) {
     return rays * (m + 1);
 }
 
-LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
-                      Rect clip, bool area_is_clear, const TraceControl* control) {
+void trace_light_into(LightMask& m, const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b,
+                      const Params& p, Rect clip, bool area_is_clear, const TraceControl* control) {
     assert(a >= 0 && b >= 0 && p.ray_skip >= 1 && p.falloff_scale > 0);
-    LightMask m;
     m.clip = clip;
     m.cx = cx;
     m.cy = cy;
@@ -417,8 +416,8 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
     m.falloff_scale = p.falloff_scale;
     const std::size_t n = std::size_t(std::max(0, clip.w)) * std::max(0, clip.h);
     m.value.assign(n, 0);
-    if (p.mode == Mode::shadow) m.reached.assign(n, 0);
-    if (clip.empty()) return m;
+    m.reached.assign(p.mode == Mode::shadow ? n : 0, 0);
+    if (clip.empty()) return;
     RayTally tally{control, std::int64_t(std::max(a, b)) + 1};
     const double estimate = light_trace_work(a, b, p);
     // The falloff by distance: no division per pixel.
@@ -435,13 +434,14 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
     // far larger than the clip.
     const double area_px = double(area.w) * area.h, clip_px = double(clip.w) * clip.h;
     if (covered && !(clip == area) && intersect(clip, area) == clip && area_px <= std::max(4 * clip_px, 1048576.0)) {
-        const LightMask whole = trace_light(obstacles, cx, cy, a, b, p, area, area_is_clear, control);
+        thread_local LightMask whole;  // kept: its vectors' capacity is reused
+        trace_light_into(whole, obstacles, cx, cy, a, b, p, area, area_is_clear, control);
         for (int y = 0; y < clip.h; ++y) {
             const std::size_t from = std::size_t(clip.y + y - area.y) * area.w + std::size_t(clip.x - area.x);
             std::memcpy(&m.value[std::size_t(y) * clip.w], &whole.value[from], std::size_t(clip.w));
             if (p.mode == Mode::shadow) std::memcpy(&m.reached[std::size_t(y) * clip.w], &whole.reached[from], std::size_t(clip.w));
         }
-        return m;
+        return;
     }
     const bool fast = covered && clip == area;
     if (fast) {
@@ -461,7 +461,7 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
             }
             if (p.mode == Mode::shadow) std::fill(m.reached.begin(), m.reached.end(), 1);
             tally.finish(estimate);
-            return m;
+            return;
         }
         static const std::uint8_t none = 0;
         const std::uint8_t* ob = p.mode == Mode::flat
@@ -513,7 +513,7 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
         }
         bresenham_steps() += steps;
         tally.finish(estimate);
-        return m;
+        return;
     }
 
     // General path: any clip, any centre (also far outside int range).
@@ -535,6 +535,13 @@ LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, i
     };
     for_each_ray_target(cx, cy, a, b, p, trace);
     tally.finish(estimate);
+    return;
+}
+
+LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
+                      Rect clip, bool area_is_clear, const TraceControl* control) {
+    LightMask m;
+    trace_light_into(m, obstacles, cx, cy, a, b, p, clip, area_is_clear, control);
     return m;
 }
 

@@ -119,6 +119,10 @@ void for_each_ray_target(std::int64_t cx, std::int64_t cy, int a, int b, const P
 // `control` (optional) reports progress and may cancel (TraceControl).
 LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
                       Rect clip, bool area_is_clear = false, const TraceControl* control = nullptr);
+// The same into `m`, reusing its vectors' capacity (a frame retracing its
+// lights allocates nothing).
+void trace_light_into(LightMask& m, const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b,
+                      const Params& p, Rect clip, bool area_is_clear = false, const TraceControl* control = nullptr);
 
 // Whether `area` holds no obstacle pixel (outside `obstacles` there are none):
 // the condition for trace_light's closed form.
