@@ -177,7 +177,8 @@ check huge_quality 2 "allow-huge" -- render --size 3x3 --light 100,100 --preset 
 check stats 0 "" -- render --size 8x8 --view 100,50,400,300 --light 200,150 --light 420,280 --frames 2 \
   --camera-step 0,0 --stats --out "$tmp/s1.png"
 if grep -q "^frame 0: .* ms; 2 lights traced" "$tmp/out" && grep -qE "^  blur +[0-9.]+ ms  touched [0-9]+x[0-9]+ at " "$tmp/out" \
-  && grep -qE "^  composite +[0-9.]+ ms  touched 400x300 at 100,50" "$tmp/out"; then
+  && grep -qE "^  composite +[0-9.]+ ms  touched 400x300 at 100,50" "$tmp/out" \
+  && grep -qE "^  opacity_correction +[0-9.]+ ms  touched [0-9]+x[0-9]+ at [-0-9]+,[-0-9]+ in [0-9]+ rectangles, [0-9]+ pixels" "$tmp/out"; then
   pass=$((pass + 1))
 else
   echo "FAIL stats_lines: --stats output lacks a stage line"; cat "$tmp/out"; fail=$((fail + 1))

@@ -371,6 +371,74 @@ TEST(OnlyWhatChanged, OneMovedLightRedoesItsAreasAndEqualsAFreshFrame) {
     }
 }
 
+TEST(OnlyWhatChanged, TheDisjointUnionCoversEachPixelOfThePartsOnce) {
+    Pcg32 rng(5);
+    for (int round = 0; round < 300; ++round) {
+        const int field = 40;
+        std::vector<Rect> parts(rng.below(12));
+        for (Rect& r : parts)  // some empty, some touching, some nested
+            r = {int(rng.below(field)) - 5, int(rng.below(field)) - 5, int(rng.below(20)), int(rng.below(20))};
+        std::vector<int> wanted(field * field * 9, 0), got(field * field * 9, 0);  // -field..2 field squared
+        auto mark = [&](std::vector<int>& grid, Rect r) {
+            for (int y = r.y; y < r.y + r.h; ++y)
+                for (int x = r.x; x < r.x + r.w; ++x) grid.at(std::size_t(y + field) * field * 3 + std::size_t(x + field)) += 1;
+        };
+        for (const Rect& r : parts) mark(wanted, r);
+        for (int& v : wanted) v = v > 0;
+        const std::vector<Rect> out = disjoint_union(parts);
+        for (const Rect& r : out) {
+            ASSERT_FALSE(r.empty());
+            mark(got, r);
+        }
+        ASSERT_EQ(got, wanted) << "round " << round;  // every pixel of the union once, nothing else
+        for (std::size_t i = 1; i < out.size(); ++i) EXPECT_LE(out[i - 1].y, out[i].y) << "top to bottom";
+    }
+    // Runs that stay the same join downward: two stacked equal parts are one.
+    EXPECT_EQ(disjoint_union({{0, 0, 10, 5}, {0, 5, 10, 5}}), (std::vector<Rect>{{0, 0, 10, 10}}));
+}
+
+TEST(OnlyWhatChanged, LightsFarApartAreRedoneApart) {
+    // Two lights at opposite corners of the view move: the blur and the
+    // composite redo their two areas, not the box spanning the view.
+    Scene base;
+    base.width = base.height = 16;
+    const World w = make_world(test::default_tileset(), base);
+    for (int threads : {1, 2}) {
+        Scene s = moving_scene(w, 2);
+        const Camera cam{double(w.placed.bounds.x + 100), double(w.placed.bounds.y + 50), 900, 500};
+        s.lights[0] = Light{cam.x + 120, cam.y + 110};
+        s.lights[1] = Light{cam.x + 780, cam.y + 390};
+        FrameState st;
+        st.options.threads = threads;
+        render_frame(st, w, s, cam, 0);
+        for (long f = 1; f <= 4; ++f) {
+            for (Light& l : s.lights) l.x += (f % 2) ? 3 : -2;
+            const FrameReport r = render_frame(st, w, s, cam, f);
+            FrameState fresh;
+            fresh.options.threads = threads;
+            render_frame(fresh, w, s, cam, 0);
+            ASSERT_EQ(st.final.rgba, fresh.final.rgba) << "frame " << f << ", " << threads << " threads";
+            for (Stage stage : {Stage::trace, Stage::blur, Stage::composite}) {
+                const std::vector<Rect>& parts = r.touched_parts[int(stage)];
+                const Rect box = r.touched[int(stage)];
+                double pixels = 0;
+                for (const Rect& z : parts) pixels += double(z.w) * z.h;
+                ASSERT_FALSE(parts.empty()) << to_string(stage);
+                EXPECT_LT(pixels, 0.5 * box.w * box.h) << to_string(stage) << ": the parts, not their box";
+                EXPECT_EQ(disjoint_union(parts).size(), parts.size()) << to_string(stage);
+                for (const Rect& z : parts) EXPECT_EQ(intersect(z, box), z);
+            }
+            // The blur reaches its radius past what was traced; the composite stays in the blur's parts.
+            for (const Rect& z : r.touched_parts[int(Stage::composite)]) {
+                bool inside = false;
+                for (const Rect& b : r.touched_parts[int(Stage::blur)]) inside = inside || intersect(z, b) == z;
+                EXPECT_TRUE(inside);
+            }
+            EXPECT_EQ(r.dirty, r.touched[int(Stage::trace)]);
+        }
+    }
+}
+
 TEST(OnlyWhatChanged, LightsSharingAPlaceEachKeepTheirMask) {
     // Reused masks move out of the cache, one per cached light: two lights
     // at the same place must each find their own (the second one must not

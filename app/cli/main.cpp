@@ -348,7 +348,8 @@ std::pair<Scene, World> tiled_from_args(const RenderArgs& a) {
     return {s, std::move(t.world)};
 }
 
-// --stats: each stage that ran, its time and the world rectangle it wrote.
+// --stats: each stage that ran, its time and the world rectangles it wrote
+// (their bounding box; the count and pixels when they are several).
 void print_frame_stats(std::ostream& out, int frame, const FrameReport& rep, double wall_ms) {
     char line[200];
     std::snprintf(line, sizeof line, "frame %d: %.2f ms; %d lights traced, %d reused\n", frame, wall_ms,
@@ -357,11 +358,17 @@ void print_frame_stats(std::ostream& out, int frame, const FrameReport& rep, dou
     for (int k = 0; k < stage_count; ++k) {
         if (!rep.ran[std::size_t(k)]) continue;
         const Rect r = rep.touched[std::size_t(k)];
+        const std::vector<Rect>& parts = rep.touched_parts[std::size_t(k)];
+        std::string where = r.empty() ? "nothing"
+                                      : std::to_string(r.w) + "x" + std::to_string(r.h) + " at " + std::to_string(r.x) +
+                                            "," + std::to_string(r.y);
+        if (parts.size() > 1) {
+            long long pixels = 0;
+            for (const Rect& z : parts) pixels += (long long)z.w * z.h;
+            where += " in " + std::to_string(parts.size()) + " rectangles, " + std::to_string(pixels) + " pixels";
+        }
         std::snprintf(line, sizeof line, "  %-19s %8.2f ms  touched %s\n", std::string(to_string(Stage(k))).c_str(),
-                      rep.ms[std::size_t(k)],
-                      r.empty() ? "nothing"
-                                : (std::to_string(r.w) + "x" + std::to_string(r.h) + " at " + std::to_string(r.x) + "," +
-                                   std::to_string(r.y)).c_str());
+                      rep.ms[std::size_t(k)], where.c_str());
         out << line;
     }
 }

@@ -3,6 +3,7 @@
 
 #include <cassert>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -62,7 +63,7 @@ struct ShadeConstants {
     const Params* params;  // for the pixels redone exactly
     const std::uint8_t* light_end;  // the end of the light buffer the row reads (wide loads stop 16 bytes short)
     float tex_scale, inv_denom;
-    float unit[256];  // v / 255
+    const float* unit;  // v / 255, v in 0..255
 };
 
 // Three passes over runs of up to 256 pixels, so the arithmetic is one
@@ -320,10 +321,16 @@ void composite_into(const Image& colour, Rect view, const LightTexture& light, c
     const Rect z = intersect(region, view);
     if (z.empty()) return;
     const double ac = p.ambient_clarity;
-    ShadeConstants k{&p, nullptr, float(std::sqrt(ac)), float(1.0 / (ac * ac + 0.1)), {}};
-    for (int v = 0; v < 256; ++v) k.unit[v] = float(v / 255.0);
+    // Built once: a frame composites several parts, each a call.
+    static const std::array<float, 256> unit = [] {
+        std::array<float, 256> u{};
+        for (int v = 0; v < 256; ++v) u[std::size_t(v)] = float(v / 255.0);
+        return u;
+    }();
+    ShadeConstants k{&p, nullptr, float(std::sqrt(ac)), float(1.0 / (ac * ac + 0.1)), unit.data()};
     const ShadeRow shade = shade_row_for(p);
-    std::vector<std::uint8_t> unlit(std::size_t(z.w) * 3 + 16, 0);
+    thread_local std::vector<std::uint8_t> unlit;  // zeros: light outside the texture
+    unlit.assign(std::size_t(z.w) * 3 + 16, 0);
     const std::uint8_t* light_end = light.rgb.data() + light.rgb.size();
     // Where the light texture covers each row (the rest reads 0, unlit).
     const int lx0 = std::clamp(light.rect.x, z.x, z.x + z.w), lx1 = std::clamp(light.rect.x + light.rect.w, lx0, z.x + z.w);

@@ -76,6 +76,19 @@ struct Timer {
 
 Rect grow(Rect r, int by) { return {r.x - by, r.y - by, r.w + 2 * by, r.h + 2 * by}; }
 
+Rect bounding(const std::vector<Rect>& parts) {
+    Rect b;
+    for (const Rect& r : parts) b = bounding(b, r);
+    return b;
+}
+
+// Records what a stage wrote: its disjoint parts and their bounding box.
+void touch(FrameReport& rep, Stage s, std::vector<Rect> parts) {
+    std::erase_if(parts, [](const Rect& r) { return r.empty(); });
+    rep.touched[int(s)] = bounding(parts);
+    rep.touched_parts[int(s)] = std::move(parts);
+}
+
 // Unique across every FrameState of the process: a tracer that keeps a copy
 // of the obstacle map (the GPU's) never mistakes a new state's map for an
 // old one's.
@@ -160,22 +173,36 @@ int threads_wanted(const FrameOptions& o) {
     return o.threads > 0 ? o.threads : std::max(1, int(std::thread::hardware_concurrency()));
 }
 
-// Runs band(rows) over `region` split into bands of rows, on up to `threads`
-// threads (one for small regions: starting threads would cost more).
+// Runs band(rows) over every part (disjoint rectangles) split into bands of
+// rows, on up to `threads` threads (one for small regions: starting threads
+// would cost more). About four bands per thread, cut in proportion to each
+// part's pixels, so that threads finish together.
 template <class Band>
-void in_row_bands(Rect region, int threads, const Band& band) {
-    if (region.empty()) return;
-    const int count = long(region.w) * region.h < 150000 ? 1 : std::max(1, std::min(threads, region.h));
-    const int bands = count == 1 ? 1 : std::min(region.h, count * 4);
-    std::atomic<int> next{0};
-    auto work = [&] {
-        for (int k; (k = next++) < bands;) {
-            const int y0 = region.y + int(std::int64_t(region.h) * k / bands);
-            const int y1 = region.y + int(std::int64_t(region.h) * (k + 1) / bands);
-            band(Rect{region.x, y0, region.w, y1 - y0});
+void in_row_bands(const std::vector<Rect>& parts, int threads, const Band& band) {
+    std::int64_t pixels = 0;
+    for (const Rect& r : parts) pixels += r.empty() ? 0 : std::int64_t(r.w) * r.h;
+    if (pixels == 0) return;
+    const int count = pixels < 150000 ? 1 : std::max(1, threads);
+    if (count == 1) {
+        for (const Rect& r : parts)
+            if (!r.empty()) band(r);
+        return;
+    }
+    std::vector<Rect> bands;
+    const std::int64_t per_band = pixels / (count * 4) + 1;
+    for (const Rect& r : parts) {
+        if (r.empty()) continue;
+        const int k = int(std::clamp<std::int64_t>((std::int64_t(r.w) * r.h + per_band / 2) / per_band, 1, r.h));
+        for (int i = 0; i < k; ++i) {
+            const int y0 = r.y + int(std::int64_t(r.h) * i / k), y1 = r.y + int(std::int64_t(r.h) * (i + 1) / k);
+            bands.push_back({r.x, y0, r.w, y1 - y0});
         }
+    }
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+        for (std::size_t k; (k = next++) < bands.size();) band(bands[k]);
     };
-    run_on_threads(count, work);
+    run_on_threads(std::min<int>(count, int(bands.size())), work);
 }
 
 // ---------------------------------------------------------------- the steps
@@ -203,14 +230,14 @@ void draw_view_sprites(FrameState& st, const World& world, Rect view, const Worl
     Timer t{rep, Stage::sprites};
     if (!delta.partial || !same_view) {
         st.sprites = render_sprites(world.tileset, world.placed, view);
-        rep.touched[int(Stage::sprites)] = view;
+        touch(rep, Stage::sprites, {view});
         return;
     }
     // An edit: redraw only its rectangle (each pixel is drawn from every
     // sprite over it, so the part equals the whole's).
     const Rect r = intersect(delta.region, view);
     if (r.empty()) return;
-    rep.touched[int(Stage::sprites)] = r;
+    touch(rep, Stage::sprites, {r});
     const Image part = render_sprites(world.tileset, world.placed, r);
     for (int y = 0; y < r.h; ++y)
         std::copy_n(part.at(0, y), std::size_t(r.w) * 4, st.sprites.at(r.x - view.x, r.y + y - view.y));
@@ -272,7 +299,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
         }
         c.world_revision = world.revision;
         rep.rebuilt = ch.part;
-        rep.touched[int(Stage::obstacle_map)] = ch.part;
+        touch(rep, Stage::obstacle_map, {ch.part});
         return ch;
     }
     // Some room around what is needed, so a panning camera does not rebuild
@@ -309,7 +336,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     ObstacleChange ch;
     ch.all = changed;
     if (changed) rep.rebuilt = c.obstacle_region;
-    rep.touched[int(Stage::obstacle_map)] = c.obstacle_region;
+    touch(rep, Stage::obstacle_map, {c.obstacle_region});
     return ch;
 }
 
@@ -479,7 +506,8 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     std::atomic<int> next_band{0};
     // Only where lights changed (`redo`), when the rest of the texture still
     // holds the sum of unchanged lights; everything they covered otherwise.
-    const std::vector<Rect> clear = redo ? std::vector<Rect>{*redo} : to_clear;
+    // (Each texel once: lights' areas overlap.)
+    const std::vector<Rect> clear = redo ? std::vector<Rect>{*redo} : disjoint_union(to_clear);
     auto accumulate_band = [&](int k) {
         const int y0 = tex_rect.y + int(std::int64_t(tex_rect.h) * k / bands);
         const int y1 = tex_rect.y + int(std::int64_t(tex_rect.h) * (k + 1) / bands);
@@ -526,33 +554,35 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
         }
         rep.lights_traced = int(n);
         for (int t : touched) rep.sprites_corrected += t;
-        Rect traced;
-        for (std::size_t k : plan.todo) traced = bounding(traced, plan.traced[k].mask.clip);
-        if (correct) rep.touched[int(Stage::opacity_correction)] = traced;
-        rep.touched[int(Stage::trace)] = traced;
+        std::vector<Rect> traced;
+        for (std::size_t k : plan.todo) traced.push_back(plan.traced[k].mask.clip);
+        traced = disjoint_union(std::move(traced));
+        if (correct) touch(rep, Stage::opacity_correction, traced);
+        touch(rep, Stage::trace, std::move(traced));
     }
     rep.ran[int(Stage::trace)] = true;
     rep.ms[int(Stage::trace)] += ms_between(t_traced, t_done);
 }
 
-// What changed in the texture: the areas of lights traced now, of lights
-// gone or moved since, and of lights whose colour or intensity changed (all
-// of it when the texture itself is new). Known before tracing: it is also
-// where the accumulation is redone.
-Rect dirty_region(const FrameCache& c, const LightPlan& plan, Rect tex_rect, bool fresh, bool must, bool had_lights) {
+// What changed in the texture, as disjoint rectangles: the areas of lights
+// traced now, of lights gone or moved since, and of lights whose colour or
+// intensity changed (all of it when the texture itself is new). Known before
+// tracing: its bounding box is also where the accumulation is redone.
+std::vector<Rect> dirty_parts(const FrameCache& c, const LightPlan& plan, Rect tex_rect, bool fresh, bool must,
+                              bool had_lights) {
     if (!had_lights && plan.lights.empty()) return {};
-    if (fresh || must) return tex_rect;
-    Rect dirty;
-    for (std::size_t k : plan.todo) dirty = bounding(dirty, intersect(plan.traced[k].mask.clip, tex_rect));
-    for (std::size_t k : plan.recoloured) dirty = bounding(dirty, intersect(plan.traced[k].mask.clip, tex_rect));
+    if (fresh || must) return {tex_rect};
+    std::vector<Rect> dirty;
+    for (std::size_t k : plan.todo) dirty.push_back(intersect(plan.traced[k].mask.clip, tex_rect));
+    for (std::size_t k : plan.recoloured) dirty.push_back(intersect(plan.traced[k].mask.clip, tex_rect));
     for (const TracedLight& old : c.lights) {
         bool kept = false;
         for (const TracedLight& now : plan.traced)
             kept = kept || (now.cx == old.cx && now.cy == old.cy && now.a == old.a && now.b == old.b &&
                             now.mask.clip == old.mask.clip);
-        if (!kept) dirty = bounding(dirty, intersect(old.mask.clip, tex_rect));
+        if (!kept) dirty.push_back(intersect(old.mask.clip, tex_rect));
     }
-    return dirty;
+    return disjoint_union(std::move(dirty));
 }
 
 // Keeps this trace for the next frames, and invalidates the blur.
@@ -564,9 +594,14 @@ void keep_trace(FrameState& st, const Scene& scene, LightPlan& plan, FrameReport
     c.trace_params = scene.params;
     c.trace_lights = scene.lights;
     c.has_blur = false;
-    c.blur_pending = bounding(c.blur_pending, rep.dirty);
+    // Frames traced but not yet blurred (the app blurs on the GPU) pile up
+    // parts: past a few hundred, their box stands for them.
+    c.blur_pending.insert(c.blur_pending.end(), rep.dirty_parts.begin(), rep.dirty_parts.end());
+    if (c.blur_pending.size() > 256) c.blur_pending = {bounding(c.blur_pending)};
     rep.retraced = !rep.dirty.empty();
-    rep.touched[int(Stage::trace)] = bounding(rep.touched[int(Stage::trace)], rep.dirty);
+    std::vector<Rect> traced = rep.touched_parts[int(Stage::trace)];
+    traced.insert(traced.end(), rep.dirty_parts.begin(), rep.dirty_parts.end());
+    touch(rep, Stage::trace, disjoint_union(std::move(traced)));
     if (!rep.retraced) {
         // No light now and none before: the texture stayed empty, nothing to
         // upload or blur again.
@@ -585,18 +620,23 @@ void update_view(FrameState& st, const Params& p, Rect view, const WorldDelta& d
     const int threads = threads_wanted(st.options);
     const Rect tex = st.traced.rect;
     const LightTexture& light = p.blur_radius > 0 ? c.blurred : st.traced;
-    Rect changed;  // world pixels whose blurred light changed
+    std::vector<Rect> changed;  // world pixels whose blurred light changed, disjoint
     const bool radius_changed = c.blur_params.blur_radius != p.blur_radius;
     if (!c.has_blur || radius_changed) {
         // The whole texture when it is new or the radius changed; else what
         // was traced since, grown by the radius (every texel it reaches).
         const bool whole = radius_changed || !(c.blurred.rect == tex) || (p.blur_radius > 0 && c.blurred.rgb.empty());
-        changed = whole ? tex : intersect(grow(c.blur_pending, p.blur_radius), tex);
+        if (whole) {
+            changed = {tex};
+        } else {
+            for (const Rect& r : c.blur_pending) changed.push_back(intersect(grow(r, p.blur_radius), tex));
+            changed = disjoint_union(std::move(changed));
+        }
         if (p.blur_radius > 0 && !changed.empty()) {
             Timer t{rep, Stage::blur};
             if (!(c.blurred.rect == tex) || c.blurred.rgb.size() != st.traced.rgb.size()) c.blurred = LightTexture(tex);
             in_row_bands(changed, threads, [&](Rect band) { box_blur_into(st.traced, p.blur_radius, band, c.blurred); });
-            rep.touched[int(Stage::blur)] = changed;
+            touch(rep, Stage::blur, changed);
         } else if (p.blur_radius == 0) {
             c.blurred = LightTexture{};
             c.blurred.rect = tex;  // what the texture was "blurred" for: itself
@@ -608,17 +648,21 @@ void update_view(FrameState& st, const Params& p, Rect view, const WorldDelta& d
     if (st.options.view_light_texture && (!changed.empty() || !(st.light.rect == view))) {
         Timer t{rep, Stage::shift};
         st.light = shift_light_texture(light, view);
-        rep.touched[int(Stage::shift)] = view;
+        touch(rep, Stage::shift, {view});
     }
     const bool whole = !c.has_final || !(st.view == view) || delta.changed ||
                        params_changed_for(Stage::composite, c.composite_params, p) || st.final.width != view.w ||
                        st.final.height != view.h;
-    const Rect region = whole ? view : intersect(changed, view);
+    std::vector<Rect> region;  // disjoint, as `changed` is
+    if (whole) region = {view};
+    else
+        for (const Rect& r : changed)
+            if (const Rect z = intersect(r, view); !z.empty()) region.push_back(z);
     if (!region.empty()) {
         Timer t{rep, Stage::composite};
         if (st.final.width != view.w || st.final.height != view.h) st.final = Image(view.w, view.h);
         in_row_bands(region, threads, [&](Rect band) { composite_into(st.sprites, view, light, p, band, st.final); });
-        rep.touched[int(Stage::composite)] = region;
+        touch(rep, Stage::composite, std::move(region));
     }
     c.composite_params = p;
     c.has_final = true;
@@ -655,7 +699,8 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_
         const bool had_lights = !st.cache.lights.empty();
         if (trace.must) st.cache.lights.clear();  // nothing traced is reusable
         LightPlan plan = plan_lights(st.cache, scene, tex_rect, obstacles.part, rep);
-        rep.dirty = dirty_region(st.cache, plan, tex_rect, fresh, trace.must, had_lights);
+        rep.dirty_parts = dirty_parts(st.cache, plan, tex_rect, fresh, trace.must, had_lights);
+        rep.dirty = bounding(rep.dirty_parts);
         // A kept texture is redone only where lights changed, when that is
         // less work than clearing and adding every light again.
         bool partial = !fresh && !trace.must && !to_clear.empty();

@@ -13,6 +13,42 @@ Rect bounding(const Rect& a, const Rect& b) {
     return {x0, y0, x1 - x0, y1 - y0};
 }
 
+std::vector<Rect> disjoint_union(std::vector<Rect> parts) {
+    std::erase_if(parts, [](const Rect& r) { return r.empty(); });
+    if (parts.size() <= 1) return parts;
+    std::vector<int> edges;
+    for (const Rect& r : parts) edges.push_back(r.y), edges.push_back(r.y + r.h);
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    std::vector<Rect> out;
+    std::vector<std::size_t> above, here;  // out's rectangles ending at the band's top, and at its bottom
+    std::vector<std::pair<int, int>> runs;
+    for (std::size_t e = 0; e + 1 < edges.size(); ++e) {
+        const int y0 = edges[e], y1 = edges[e + 1];
+        runs.clear();
+        for (const Rect& r : parts)
+            if (r.y <= y0 && r.y + r.h >= y1) runs.push_back({r.x, r.x + r.w});
+        std::sort(runs.begin(), runs.end());
+        here.clear();
+        for (std::size_t i = 0; i < runs.size();) {
+            int x0 = runs[i].first, x1 = runs[i].second;
+            for (++i; i < runs.size() && runs[i].first <= x1; ++i) x1 = std::max(x1, runs[i].second);
+            const auto same = std::find_if(above.begin(), above.end(), [&](std::size_t k) {
+                return out[k].x == x0 && out[k].w == x1 - x0;
+            });
+            if (same != above.end()) {
+                out[*same].h += y1 - y0;
+                here.push_back(*same);
+            } else {
+                out.push_back({x0, y0, x1 - x0, y1 - y0});
+                here.push_back(out.size() - 1);
+            }
+        }
+        std::swap(above, here);
+    }
+    return out;
+}
+
 long Mask::count() const { return std::accumulate(bits.begin(), bits.end(), 0L); }
 
 void paint_mask(Image& image, Rect image_rect, const Mask& mask, int dx, int dy, const std::uint8_t rgba[4]) {

@@ -37,6 +37,11 @@ struct FrameReport {
     // run): the traced lights' areas, the texture's redone part (trace:
     // clearing and adding lights), the blurred and composited parts.
     std::array<Rect, stage_count> touched{};
+    // The same as disjoint rectangles (`touched` is their bounding box): the
+    // blur and the composite redo several moved lights' areas, not the box
+    // around them. `dirty_parts` likewise for `dirty`.
+    std::array<std::vector<Rect>, stage_count> touched_parts{};
+    std::vector<Rect> dirty_parts;
     // Which tracer traced this frame's lights: "cpu", or the name a
     // FrameOptions::tracer gave ("gpu" in the app); empty when none was traced.
     std::string_view tracer;
@@ -120,7 +125,7 @@ struct FrameCache {
     bool has_blur = false;
     Params blur_params;
     LightTexture blurred;
-    Rect blur_pending;  // texels traced since the last blur
+    std::vector<Rect> blur_pending;  // texels traced since the last blur
 
     // The final image's inputs.
     bool has_final = false;

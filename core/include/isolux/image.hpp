@@ -28,6 +28,12 @@ inline Rect intersect(const Rect& a, const Rect& b) {
 // The smallest rectangle holding both (an empty one counts as nothing).
 Rect bounding(const Rect& a, const Rect& b);
 
+// Every pixel of the parts once: disjoint rectangles covering exactly their
+// union, top to bottom. Cut into bands at the parts' top and bottom edges,
+// each band's runs merged, a run joining the same run of the band above, so
+// that a frame redoes several lights' areas and nothing between them.
+std::vector<Rect> disjoint_union(std::vector<Rect> parts);
+
 // An 8-bit RGBA image, row-major, straight (not premultiplied) alpha.
 struct Image {
     int width = 0, height = 0;
