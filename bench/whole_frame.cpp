@@ -105,19 +105,16 @@ void register_whole_frames() {
                 benchmark::RegisterBenchmark(name.c_str(), [map, threads, moved](benchmark::State& st) {
                     ScreenScene& s = screen(map, threads);
                     std::array<double, stage_count> ms{};
-                    double n = 0, composited = 0, parts = 0, rows = 0;
+                    double n = 0, composited = 0;
                     for (auto _ : st) {
                         const FrameReport r = step(s, std::size_t(moved));
                         for (int k = 0; k < stage_count; ++k) ms[std::size_t(k)] += r.ms[std::size_t(k)];
-                        for (const Rect& z : r.touched_parts[int(Stage::composite)]) composited += double(z.w) * z.h, rows += z.h;
-                        parts += double(r.touched_parts[int(Stage::composite)].size());
+                        for (const Rect& z : r.touched_parts[int(Stage::composite)]) composited += double(z.w) * z.h;
                         ++n;
                     }
                     stage_counters(st, ms, n);
                     // The share of the view each frame composited again (its changed parts).
                     st.counters["composited_share"] = composited / n / (double(s.camera.width) * s.camera.height);
-                    st.counters["parts"] = parts / n;
-                    st.counters["rows"] = rows / n;
                 })->Unit(benchmark::kMillisecond)->UseRealTime();
             }
     // Each stage alone on the frame's own buffers, one thread.

@@ -283,6 +283,20 @@ printf 'wait 2\nquit\n' >"$tmp/quit.script"
 timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/quit.script" >"$tmp/log" 2>&1 || { bad "quit run"; cat "$tmp/log"; }
 cmp -s "$ISOLUX_CONFIG_DIR/autosave.json" "$tmp/autosave.before" && ok || bad "a clean run deleted or replaced an unrecovered autosave"
 
+# 4c. move-lights moves every light each frame (each frame retraces them
+#     all), and save-stats writes the Stats panel's mean stage times.
+cat >"$tmp/move.script" <<SCRIPT
+wait 2
+move-lights 5
+save-stats $tmp/stats.json
+save-scene $tmp/moved.json
+quit
+SCRIPT
+timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/move.script" --tracer cpu >"$tmp/log" 2>&1 || { bad "move-lights run"; cat "$tmp/log"; }
+[ "$(json "$tmp/moved.json" "int(d['lights'][0]['x'])")" = "701" ] && ok || bad "move-lights: light 1 is not 1 px right after 5 frames (+1 -1 +1 -1 +1)"
+[ "$(json "$tmp/stats.json" "d['lights_traced'] == 2 and d['tracer'] == 'cpu' and d['cpu_ms']['trace'] > 0 and d['frames'] >= 7")" = "True" ] \
+  && ok || { bad "save-stats: not the moving frames' figures"; cat "$tmp/stats.json"; }
+
 # 5. Every overlay, the error heat map, and the Accuracy panel's sweep: a
 #    point applied from it becomes the preset.
 cat >"$tmp/accuracy.script" <<SCRIPT

@@ -28,6 +28,7 @@ struct Stats {
     std::array<bool, stage_count> last_ran{};
     std::array<bool, 4> gpu_ran{};  // upload, sprites, blur, composite
     int head = 0;
+    long recorded = 0;  // frames pushed so far (the last `frames` of them are kept)
     float frame_ms = 0, fps = 0;
     int lights_traced = 0;
     std::string tracer;  // which tracer traced the last traced frame: "cpu" or "gpu"

@@ -7,6 +7,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 #include <imgui_internal.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -92,6 +93,25 @@ int render_headless(const Scene& scene, const std::string& scene_name, const std
     return 0;
 }
 
+// save-stats: each stage's mean time over the frames the Stats panel keeps
+// (the last Stats::frames), as the panel plots them: the core's CPU stages
+// by Stage name, the renderer's GPU stages apart.
+std::string stats_json(const Stats& s) {
+    const int n = int(std::min<long>(s.recorded, Stats::frames));
+    auto mean = [&](int series) {
+        double sum = 0;
+        for (int i = 0; i < n; ++i) sum += s.ms[std::size_t(series)][std::size_t((s.head - 1 - i + Stats::frames) % Stats::frames)];
+        return n > 0 ? sum / n : 0.0;
+    };
+    nlohmann::json cpu = nlohmann::json::object(), gpu = nlohmann::json::object();
+    for (int k = 0; k < stage_count; ++k) cpu[std::string(to_string(Stage(k)))] = mean(k);
+    const char* gpu_names[] = {"upload", "sprites", "blur", "composite"};
+    for (int k = 0; k < 4; ++k) gpu[gpu_names[k]] = mean(stage_count + k);
+    nlohmann::json j = {{"frames", n}, {"frame_ms", s.frame_ms}, {"tracer", s.tracer}, {"lights_traced", s.lights_traced},
+                        {"cpu_ms", cpu}, {"gpu_ms", gpu}};
+    return j.dump(2) + "\n";
+}
+
 void run_script_step(App& app) {
     if (!app.script) return;
     Script& s = *app.script;
@@ -122,6 +142,13 @@ void run_script_step(App& app) {
         move_to(s.drag_path.front().first, s.drag_path.front().second);
         s.drag_path.erase(s.drag_path.begin());
         if (s.drag_path.empty()) s.release = 0;
+        return;
+    }
+    if (s.move_lights > 0) {
+        // The document's lights themselves move (no undo step per frame: an animation, not an edit).
+        const double dx = s.move_lights % 2 ? 1 : -1;
+        for (Light& l : app.editor.scene.lights) l.x += dx;
+        --s.move_lights;
         return;
     }
     if (s.wait > 0) {
@@ -268,6 +295,14 @@ void run_script_step(App& app) {
         } catch (const Error& err) {
             set_status(e, err.what(), true);
         }
+    } else if (step.op == "move-lights") {
+        s.move_lights = int(num(0));
+    } else if (step.op == "save-stats") {
+        try {
+            write_file_atomic(step.args[0], stats_json(app.stats));
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
     } else if (step.op == "export-final") {
         export_image(app, "final", step.args[0]);
     } else if (step.op == "export-tiled") {
@@ -379,6 +414,7 @@ void push_stats(App& app, const FrameReport& rep, double frame_ms, double dt) {
     s.ms[stage_count + 3][s.head] = ran.composite ? float(g.composite) : 0.0f;
     s.gpu_ran = {rep.retraced, ran.sprites, ran.blur, ran.composite};
     s.head = (s.head + 1) % Stats::frames;
+    ++s.recorded;
     s.last_ran = rep.ran;
     s.lights_traced = rep.lights_traced;
     if (!rep.tracer.empty()) s.tracer = std::string(rep.tracer);

@@ -30,7 +30,7 @@ Script load_script(const std::filesystem::path& path) {
             {"overlay", 2}, {"sweep", -1}, {"wait-sweep", 0}, {"long-work", 1}, {"apply-point", 1}, {"save-sweep", 1},
             {"tool", 1}, {"brush", 2}, {"view", 3}, {"click-tile", 2}, {"drag-tiles", 4}, {"new", 0}, {"fit", 0},
             {"open-dropped", 1}, {"check-glyphs", 1}, {"dump-panels", 1}, {"export-final", 1}, {"select", 1},
-            {"character", -1}, {"show", 1}, {"export-tiled", 1}};
+            {"character", -1}, {"show", 1}, {"export-tiled", 1}, {"move-lights", 1}, {"save-stats", 1}};
         bool known = false;
         for (auto [op, n] : arity)
             if (step.op == op) {
@@ -43,7 +43,7 @@ Script load_script(const std::filesystem::path& path) {
         // Numbers are checked here, so a bad one is a message, not a crash mid-run.
         const bool numeric = step.op == "wait" || step.op == "click" || step.op == "rclick" || step.op == "drag" ||
                              step.op == "apply-point" || step.op == "view" || step.op == "click-tile" ||
-                             step.op == "drag-tiles";
+                             step.op == "drag-tiles" || step.op == "move-lights";
         if (step.op == "character" && step.args.size() != 1 && step.args.size() != 3)
             throw Error(path.string() + ":" + std::to_string(line) + ": character takes on|off [X Y]");
         if (step.op == "view" && step.args.size() == 3) {

@@ -19,7 +19,9 @@
 //   character on|off [X Y] | show accuracy|inspector|help|stats | export-tiled PATH.tmx |
 //   long-work undo|trace|cancel (how the script answers the "Long work" prompt: undo the
 //   change, the default; trace it, the script waiting until it is done; or trace it and
-//   press Cancel once it is under way)
+//   press Cancel once it is under way) | move-lights N (for N frames every light moves a
+//   pixel, right then left; the next command waits) | save-stats PATH (each stage's mean
+//   time over the frames the Stats panel keeps, JSON: cpu_ms, gpu_ms, tracer, frames)
 // Coordinates are window pixels; '#' starts a comment.
 #pragma once
 #include <filesystem>
@@ -46,6 +48,9 @@ struct Script {
     bool quit = false;
     bool waiting_sweep = false;  // wait-sweep: hold the script until the sweep ends
     std::string window_shot;     // window-shot: written once this frame is drawn
+    // move-lights N: for N frames every light moves a pixel (right, then
+    // left), as a game's lights do; the next command waits for the last.
+    int move_lights = 0;
 };
 
 // Parses a script file; throws Error naming the file and line.
