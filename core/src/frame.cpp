@@ -411,7 +411,7 @@ struct LightPlan {
 
 // A reused light's mask is moved out of the cache (copying 32 masks of 66 KB
 // was most of a frame where one light moved): the cache keeps each light's
-// place and clip for dirty_region, and render_frame drops the cache if the
+// place and clip for dirty_parts, and render_frame drops the cache if the
 // frame does not finish.
 LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edited, FrameReport& rep) {
     const Params& p = scene.params;
@@ -443,7 +443,7 @@ LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edi
         if (hit < c.lights.size()) {
             taken[hit] = 1;
             const TracedLight& old = c.lights[hit];
-            t.mask = std::move(c.lights[hit].mask);  // (its clip, a plain copy, stays behind for dirty_region)
+            t.mask = std::move(c.lights[hit].mask);  // (its clip, a plain copy, stays behind for dirty_parts)
             ++rep.lights_reused;
             if (old.colour != t.colour || old.intensity != t.intensity)
                 plan.recoloured.push_back(i);
