@@ -134,7 +134,7 @@ void register_whole_frames() {
         std::vector<LightMask> masks;
         for (const auto& t : s.frame.cache.lights) masks.push_back(t.mask);
         for (auto _ : st)
-            for (LightMask& m : masks) correct_with_ground_lines(m, s.frame.cache.ground, s.world->placed, s.frame.opacity);
+            for (LightMask& m : masks) correct_with_ground_lines(m, s.frame.cache.ground);
     })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("stage/correction_reference/forest", [](benchmark::State& st) {
         ScreenScene& s = screen("forest", 1);
@@ -202,8 +202,7 @@ void print_floor_ratios() {
     Set forest_areas(area_bytes(forest));
     print_ratio("correction_times_floor", interleaved([&] {
                     for (LightMask& m : masks)
-                        correct_with_ground_lines(m, forest.frame.cache.ground, forest.world->placed,
-                                                  forest.frame.opacity);
+                        correct_with_ground_lines(m, forest.frame.cache.ground);
                 }, 3, forest_areas, 30, pairs), "<= 4", 2);
 
     print_ratio("threads2_frame_speedup", interleaved([&] { step(one, 32); }, 3, [&] { step(two, 32); }, 3, pairs),

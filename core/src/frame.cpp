@@ -497,7 +497,6 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     const bool over = p.rays_over_obstacles && p.mode != Mode::shadow;
     const std::size_t n = plan.todo.size();
     std::vector<double> trace_ms(n, 0), correct_ms(n, 0);
-    std::vector<int> touched(n, 0);
 
     // Another tracer (the app's GPU) first, on this thread, when one is set.
     bool traced_elsewhere = false;
@@ -539,10 +538,10 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             }
             const auto t1 = Clock::now();
             // The ground lines when every sprite's ground fits them; the reference otherwise.
-            if (correct)
-                touched[k] = st.cache.ground.exact
-                                 ? correct_with_ground_lines(tl.mask, st.cache.ground, world.placed, st.opacity)
-                                 : correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
+            if (correct && st.cache.ground.exact)
+                correct_with_ground_lines(tl.mask, st.cache.ground);
+            else if (correct)
+                correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
             if (shaped(p)) shape_light(tl.mask, p);  // beyond the paper: round lights, a fade to the border
             trace_ms[k] = ms_between(t0, t1);
             correct_ms[k] = ms_between(t1, Clock::now());
@@ -600,7 +599,6 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             rep.ms[int(Stage::opacity_correction)] += wall * (1 - share);
         }
         rep.lights_traced = int(n);
-        for (int t : touched) rep.sprites_corrected += t;
         std::vector<Rect> traced;
         for (std::size_t k : plan.todo) traced.push_back(plan.traced[k].mask.clip);
         traced = disjoint_union(std::move(traced));

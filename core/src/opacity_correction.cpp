@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "cpu_dispatch.hpp"
@@ -118,16 +119,39 @@ void repaint_ground_lines(GroundLines& lines, const PlacedMap& placed, const std
 
 namespace {
 
+// 32 pixels of a row as one value: GCC's vector extensions, which the
+// baseline build lowers to two SSE2 halves and the AVX2 build to one register.
+// (Loads and stores by memcpy: unaligned, and no vector crosses a call.)
+using Bytes32 = std::uint8_t __attribute__((vector_size(32)));
+
+// One row of the byte lines, `w` pixels: value = none ? value : (stands
+// above ? min(fx, vy) : 0), where "stands above" is below8 <= top.
+[[gnu::always_inline]] inline void correct_byte_row(std::uint8_t* value, std::uint8_t* reached, const std::uint8_t* below8,
+                                                    const std::uint8_t* fx, std::uint8_t vy, std::uint8_t top, int w) {
+    int x = 0;
+    if (w >= 32) {
+        const Bytes32 vys = Bytes32{} + vy, tops = Bytes32{} + top, zero{};
+        for (; x + 32 <= w; x += 32) {
+            Bytes32 b, f, v;
+            std::memcpy(&b, below8 + x, 32), std::memcpy(&f, fx + x, 32), std::memcpy(&v, value + x, 32);
+            const Bytes32 keep = Bytes32(b == zero), lit = Bytes32(b <= tops) & ~keep;
+            v = (v & keep) | ((f < vys ? f : vys) & lit);
+            std::memcpy(value + x, &v, 32);
+        }
+    }
+    for (; x < w; ++x) {
+        const std::uint8_t b = below8[x], f = fx[x] < vy ? fx[x] : vy;
+        value[x] = b == 0 ? value[x] : b <= top ? f : 0;
+    }
+    if (reached)
+        for (x = 0; x < w; ++x) reached[x] = below8[x] == 0 ? reached[x] : std::uint8_t(1);
+}
+
 // The pass at two widths (isolux/cpu.hpp): the same code, vectorised twice.
-[[gnu::always_inline]] inline int correct_lines(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
-                                                const std::vector<Mask>& opacity) {
+[[gnu::always_inline]] inline void correct_lines(LightMask& mask, const GroundLines& lines) {
     const Rect clip = mask.clip;
-    // The count the report shows: sprites whose opacity map meets the mask.
-    const int touched = int(count_instances_in(placed, clip, true, [&](const SpriteInstance& in) {
-        return !intersect({in.x, in.y, opacity[in.sprite].width, opacity[in.sprite].height}, clip).empty();
-    }));
     const Rect r = intersect(clip, lines.rect);
-    if (r.empty() || touched == 0) return touched;
+    if (r.empty()) return;
     // falloff(max(|dx|, |dy|)) = min(falloff(|dx|), falloff(|dy|)): it never
     // increases. Tabulated by distance once, kept while the scale holds.
     thread_local std::vector<std::uint8_t> by_d;
@@ -138,19 +162,23 @@ namespace {
     // (A light centred far outside its clip does not grow the table.)
     for (std::size_t d = by_d.size(); d <= std::min<std::size_t>(far, 1 << 16); ++d)
         by_d.push_back(falloff(std::int64_t(d), mask.falloff_scale));
+    // (The tables' pointers read once: each use of a thread_local calls its guard.)
+    const std::uint8_t* const table = by_d.data();
+    const std::size_t table_size = by_d.size();
     auto fall = [&](std::int64_t d) {
-        return std::size_t(d) < by_d.size() ? by_d[std::size_t(d)] : falloff(d, mask.falloff_scale);
+        return std::size_t(d) < table_size ? table[std::size_t(d)] : falloff(d, mask.falloff_scale);
     };
     thread_local std::vector<std::uint8_t> by_x;
     by_x.resize(std::size_t(r.w));
-    for (int x = 0; x < r.w; ++x) by_x[std::size_t(x)] = fall(std::llabs(r.x + x - mask.cx));
+    std::uint8_t* const fx = by_x.data();
+    for (int x = 0; x < r.w; ++x) fx[x] = fall(std::llabs(r.x + x - mask.cx));
     const bool shadow = !mask.reached.empty();
-    const std::uint8_t* fx = by_x.data();
     constexpr int ahead = 2;
     for (int y = r.y; y < r.y + r.h; ++y) {
         const std::size_t line = std::size_t(y - lines.rect.y) * lines.rect.w + std::size_t(r.x - lines.rect.x);
         const std::size_t m = std::size_t(y - clip.y) * clip.w + std::size_t(r.x - clip.x);
         std::uint8_t* value = &mask.value[m];
+        std::uint8_t* reached = shadow ? &mask.reached[m] : nullptr;
         const std::uint8_t vy = fall(std::llabs(y - mask.cy));
         // The lines are a world-wide array: each of the light's rows is a
         // short piece of it on another page, which the hardware does not
@@ -164,20 +192,8 @@ namespace {
         // A sprite stands above the centre when ground_y < cy, i.e. below < cy - y.
         if (lines.wide[std::size_t(y - lines.rect.y)] == 0) {
             // below < cy - y  <=>  below8 = below + 128 <= cy - y + 127 (below8 >= 1).
-            const std::uint8_t* below8 = &lines.below8[line];
             const std::uint8_t top = std::uint8_t(std::clamp<std::int64_t>(mask.cy - y + 127, 0, 255));
-            for (int x = 0; x < r.w; ++x) {  // branch-free, so that it vectorises
-                const std::uint8_t b = below8[x];
-                std::uint8_t f = fx[x];
-                f = f < vy ? f : vy;
-                const std::uint8_t keep = std::uint8_t(-std::uint8_t(b == 0));
-                const std::uint8_t lit = std::uint8_t(-std::uint8_t(b <= top));
-                value[x] = std::uint8_t((value[x] & keep) | (f & lit & std::uint8_t(~keep)));
-            }
-            if (shadow) {
-                std::uint8_t* reached = &mask.reached[m];
-                for (int x = 0; x < r.w; ++x) reached[x] = below8[x] == 0 ? reached[x] : std::uint8_t(1);
-            }
+            correct_byte_row(value, reached, &lines.below8[line], fx, vy, top, r.w);
             continue;
         }
         const std::int16_t* below = &lines.below[line];
@@ -190,29 +206,18 @@ namespace {
             const std::uint8_t lit = std::uint8_t(-std::uint8_t(b < above));
             value[x] = std::uint8_t((value[x] & keep) | (f & lit & std::uint8_t(~keep)));
         }
-        if (shadow) {
-            std::uint8_t* reached = &mask.reached[m];
+        if (shadow)
             for (int x = 0; x < r.w; ++x) reached[x] = below[x] == GroundLines::none ? reached[x] : std::uint8_t(1);
-        }
     }
-    return touched;
 }
 
-int correct_lines_baseline(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
-                           const std::vector<Mask>& opacity) {
-    return correct_lines(mask, lines, placed, opacity);
-}
-ISOLUX_AVX2 int correct_lines_avx2(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
-                                   const std::vector<Mask>& opacity) {
-    return correct_lines(mask, lines, placed, opacity);
-}
+void correct_lines_baseline(LightMask& mask, const GroundLines& lines) { correct_lines(mask, lines); }
+ISOLUX_AVX2 void correct_lines_avx2(LightMask& mask, const GroundLines& lines) { correct_lines(mask, lines); }
 
 }  // namespace
 
-int correct_with_ground_lines(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
-                              const std::vector<Mask>& opacity) {
-    return wide_kernels() ? correct_lines_avx2(mask, lines, placed, opacity)
-                          : correct_lines_baseline(mask, lines, placed, opacity);
+void correct_with_ground_lines(LightMask& mask, const GroundLines& lines) {
+    wide_kernels() ? correct_lines_avx2(mask, lines) : correct_lines_baseline(mask, lines);
 }
 
 }  // namespace isolux

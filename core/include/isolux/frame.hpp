@@ -26,7 +26,6 @@ struct FrameReport {
     std::array<double, stage_count> ms{};  // wall time per stage, milliseconds
     int lights_traced = 0;       // lights whose rays were traced this frame
     int lights_reused = 0;       // lights whose traced pixels were still valid (not traced again)
-    int sprites_corrected = 0;   // sprite instances the opacity correction touched
     bool retraced = false;       // FrameState::traced changed this frame
     Rect dirty;                  // where it changed (what an upload must send); empty when it did not
     // World pixels whose sprites and obstacle map were rebuilt after an edit

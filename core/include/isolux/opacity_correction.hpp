@@ -33,7 +33,8 @@ int correct_with_opacity_maps(LightMask& mask, const PlacedMap& placed, const st
 // meets the ground, stored as ground_y - y in 16 bits (`none`: no opaque
 // sprite). The rule above then reads, per pixel, "none: keep; stands above
 // the light's centre: its intensity; otherwise: unlit", one branch-free pass
-// over the light's area whatever the number of sprites.
+// over the light's area whatever the number of sprites. Applying it twice
+// gives the same bytes (a pixel is kept, or set from the lines alone).
 //
 // The pass reads a byte per pixel: below8 = below + 128 (1..255 for below in
 // [-127, 127], 0 for none), so that "stands above" is one unsigned compare
@@ -54,8 +55,7 @@ GroundLines ground_lines(const PlacedMap& placed, const std::vector<Mask>& opaci
 void repaint_ground_lines(GroundLines& lines, const PlacedMap& placed, const std::vector<Mask>& opacity, Rect part);
 
 // correct_with_opacity_maps's bytes from the ground lines (which must be
-// exact). Returns how many sprites met the mask, as it does.
-int correct_with_ground_lines(LightMask& mask, const GroundLines& lines, const PlacedMap& placed,
-                              const std::vector<Mask>& opacity);
+// exact). It reads no sprite, so it does not count them.
+void correct_with_ground_lines(LightMask& mask, const GroundLines& lines);
 
 }  // namespace isolux
