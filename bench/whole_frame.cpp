@@ -147,6 +147,10 @@ void register_whole_frames() {
         Copy copy(screen("default", 1).frame.traced.rgb.size());
         for (auto _ : st) copy();
     })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("stage/floor/memset_forest_areas", [](benchmark::State& st) {
+        Set set(area_bytes(screen("forest", 1)));
+        for (auto _ : st) set();
+    })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("whole_frame/floor/memcpy_final_memset_areas", [](benchmark::State& st) {
         ScreenScene& s = screen("default", 1);
         Copy copy(s.frame.final.rgba.size());

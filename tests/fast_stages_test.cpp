@@ -301,6 +301,49 @@ TEST(FastCorrection, RowsTooTallForAByteReadTheWideLinesAndEqualTheRule) {
     EXPECT_GT(changed, 30);
 }
 
+TEST(FastCorrection, EveryRowWidthEqualsTheRule) {
+    // Rows narrower than a vector, a vector and a pixel, several vectors and
+    // a tail: each width's own path through the byte rows, on random masks
+    // (a traced mask's values often equal what the rule writes).
+    const Tileset ts = test::default_tileset();
+    Scene s;
+    s.width = s.height = 8;
+    const World w = make_world(ts, s);
+    FrameState st;
+    render_frame(st, w, s, Camera{}, 0);
+    const GroundLines lines = ground_lines(w.placed, st.opacity, w.placed.bounds);
+    ASSERT_TRUE(lines.exact);
+    Pcg32 rng(12);
+    int changed = 0, byte_rows = 0;
+    for (int a = 0; a <= 40; ++a) {
+        LightMask m;
+        m.cx = w.placed.bounds.x + w.placed.bounds.w / 4 + std::int64_t(rng.below(std::uint32_t(w.placed.bounds.w / 2)));
+        m.cy = w.placed.bounds.y + w.placed.bounds.h / 4 + std::int64_t(rng.below(std::uint32_t(w.placed.bounds.h / 2)));
+        m.a = a, m.b = 40;
+        m.clip = Rect{int(m.cx) - m.a, int(m.cy) - m.b, 2 * m.a + 1, 2 * m.b + 1};
+        m.value.resize(std::size_t(m.clip.w) * m.clip.h);
+        for (std::uint8_t& v : m.value) v = std::uint8_t(rng.below(256));
+        if (a % 2) {
+            m.reached.resize(m.value.size());
+            for (std::uint8_t& v : m.reached) v = std::uint8_t(rng.below(2));
+        }
+        for (int y = m.clip.y; y < m.clip.y + m.clip.h; ++y) byte_rows += lines.wide[std::size_t(y - lines.rect.y)] == 0;
+        LightMask want = m;
+        correct_with_opacity_maps(want, w.placed, st.opacity);
+        for (bool wide : both_widths()) {
+            set_wide_kernels(wide);
+            LightMask got = m;
+            correct_with_ground_lines(got, lines);
+            EXPECT_EQ(got.value, want.value) << "width " << m.clip.w << " wide " << wide;
+            EXPECT_EQ(got.reached, want.reached) << "width " << m.clip.w << " wide " << wide;
+        }
+        set_wide_kernels(true);
+        changed += want.value != m.value;
+    }
+    EXPECT_GT(byte_rows, 41 * 81 / 2) << "the byte rows are what this test is for";
+    EXPECT_GT(changed, 30);
+}
+
 TEST(FastCorrection, ARepaintEqualsFreshLines) {
     HandPlaced h;
     const Rect region{h.placed.bounds.x - 20, h.placed.bounds.y - 20, h.placed.bounds.w + 40, h.placed.bounds.h + 40};
