@@ -230,6 +230,39 @@ TEST(FastCorrection, GroundLinesEqualThePerSpriteCorrection) {
 
 namespace {
 
+// A light's mask of random values (and random reached flags in shadow mode):
+// a traced mask's values often equal what the correction writes.
+LightMask random_mask(Pcg32& rng, std::int64_t cx, std::int64_t cy, int a, int b, double scale, bool shadow) {
+    LightMask m;
+    m.cx = cx, m.cy = cy, m.a = a, m.b = b;
+    m.falloff_scale = scale;
+    m.clip = Rect{int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1};
+    m.value.resize(std::size_t(m.clip.w) * m.clip.h);
+    for (std::uint8_t& v : m.value) v = std::uint8_t(rng.below(256));
+    if (shadow) {
+        m.reached.resize(m.value.size());
+        for (std::uint8_t& v : m.reached) v = std::uint8_t(rng.below(2));
+    }
+    return m;
+}
+
+// The correction of `m` by the ground lines, in both builds, against the
+// rule's; returns the rule's.
+LightMask both_builds_equal_the_rule(const LightMask& m, const GroundLines& lines, const PlacedMap& placed,
+                                     const std::vector<Mask>& opacity) {
+    LightMask want = m;
+    correct_with_opacity_maps(want, placed, opacity);
+    for (bool wide : both_widths()) {
+        set_wide_kernels(wide);
+        LightMask got = m;
+        correct_with_ground_lines(got, lines);
+        EXPECT_EQ(got.value, want.value) << "light " << m.cx << "," << m.cy << " width " << m.clip.w << " wide " << wide;
+        EXPECT_EQ(got.reached, want.reached) << "light " << m.cx << "," << m.cy << " width " << m.clip.w << " wide " << wide;
+    }
+    set_wide_kernels(true);
+    return want;
+}
+
 // Overlays placed by hand (no tileset): sprite 0 a 40x300 column standing
 // on its bottom row (its top 299 rows above its ground: too far for the
 // byte lines), sprite 1 a 30x60 block whose ground is 50 rows above its
@@ -274,28 +307,11 @@ TEST(FastCorrection, RowsTooTallForAByteReadTheWideLinesAndEqualTheRule) {
     Pcg32 rng(6);
     int changed = 0;
     for (int k = 0; k < 60; ++k) {
-        LightMask m;
-        m.cx = h.placed.bounds.x + std::int64_t(rng.below(std::uint32_t(h.placed.bounds.w)));
-        m.cy = h.placed.bounds.y + std::int64_t(rng.below(std::uint32_t(h.placed.bounds.h)));
-        m.a = 20 + int(rng.below(150)), m.b = 20 + int(rng.below(150));
-        m.falloff_scale = k % 3 ? 1.0 : 2.5;
-        m.clip = Rect{int(m.cx) - m.a, int(m.cy) - m.b, 2 * m.a + 1, 2 * m.b + 1};
-        m.value.resize(std::size_t(m.clip.w) * m.clip.h);
-        for (std::uint8_t& v : m.value) v = std::uint8_t(rng.below(256));
-        if (k % 2) {
-            m.reached.resize(m.value.size());
-            for (std::uint8_t& v : m.reached) v = std::uint8_t(rng.below(2));
-        }
-        LightMask want = m;
-        correct_with_opacity_maps(want, h.placed, h.opacity);
-        for (bool wide : both_widths()) {
-            set_wide_kernels(wide);
-            LightMask got = m;
-            correct_with_ground_lines(got, lines);
-            EXPECT_EQ(got.value, want.value) << "light " << m.cx << "," << m.cy << " wide " << wide;
-            EXPECT_EQ(got.reached, want.reached) << "light " << m.cx << "," << m.cy << " wide " << wide;
-        }
-        set_wide_kernels(true);
+        const std::int64_t cx = h.placed.bounds.x + std::int64_t(rng.below(std::uint32_t(h.placed.bounds.w)));
+        const std::int64_t cy = h.placed.bounds.y + std::int64_t(rng.below(std::uint32_t(h.placed.bounds.h)));
+        const int a = 20 + int(rng.below(150)), b = 20 + int(rng.below(150));
+        const LightMask m = random_mask(rng, cx, cy, a, b, k % 3 ? 1.0 : 2.5, k % 2);
+        const LightMask want = both_builds_equal_the_rule(m, lines, h.placed, h.opacity);
         changed += want.value != m.value;
     }
     EXPECT_GT(changed, 30);
@@ -316,28 +332,11 @@ TEST(FastCorrection, EveryRowWidthEqualsTheRule) {
     Pcg32 rng(12);
     int changed = 0, byte_rows = 0;
     for (int a = 0; a <= 40; ++a) {
-        LightMask m;
-        m.cx = w.placed.bounds.x + w.placed.bounds.w / 4 + std::int64_t(rng.below(std::uint32_t(w.placed.bounds.w / 2)));
-        m.cy = w.placed.bounds.y + w.placed.bounds.h / 4 + std::int64_t(rng.below(std::uint32_t(w.placed.bounds.h / 2)));
-        m.a = a, m.b = 40;
-        m.clip = Rect{int(m.cx) - m.a, int(m.cy) - m.b, 2 * m.a + 1, 2 * m.b + 1};
-        m.value.resize(std::size_t(m.clip.w) * m.clip.h);
-        for (std::uint8_t& v : m.value) v = std::uint8_t(rng.below(256));
-        if (a % 2) {
-            m.reached.resize(m.value.size());
-            for (std::uint8_t& v : m.reached) v = std::uint8_t(rng.below(2));
-        }
+        const std::int64_t cx = w.placed.bounds.x + w.placed.bounds.w / 4 + std::int64_t(rng.below(std::uint32_t(w.placed.bounds.w / 2)));
+        const std::int64_t cy = w.placed.bounds.y + w.placed.bounds.h / 4 + std::int64_t(rng.below(std::uint32_t(w.placed.bounds.h / 2)));
+        const LightMask m = random_mask(rng, cx, cy, a, 40, 1.0, a % 2);
         for (int y = m.clip.y; y < m.clip.y + m.clip.h; ++y) byte_rows += lines.wide[std::size_t(y - lines.rect.y)] == 0;
-        LightMask want = m;
-        correct_with_opacity_maps(want, w.placed, st.opacity);
-        for (bool wide : both_widths()) {
-            set_wide_kernels(wide);
-            LightMask got = m;
-            correct_with_ground_lines(got, lines);
-            EXPECT_EQ(got.value, want.value) << "width " << m.clip.w << " wide " << wide;
-            EXPECT_EQ(got.reached, want.reached) << "width " << m.clip.w << " wide " << wide;
-        }
-        set_wide_kernels(true);
+        const LightMask want = both_builds_equal_the_rule(m, lines, w.placed, st.opacity);
         changed += want.value != m.value;
     }
     EXPECT_GT(byte_rows, 41 * 81 / 2) << "the byte rows are what this test is for";
