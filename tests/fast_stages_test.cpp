@@ -319,8 +319,7 @@ TEST(FastCorrection, RowsTooTallForAByteReadTheWideLinesAndEqualTheRule) {
 
 TEST(FastCorrection, EveryRowWidthEqualsTheRule) {
     // Rows narrower than a vector, a vector and a pixel, several vectors and
-    // a tail: each width's own path through the byte rows, on random masks
-    // (a traced mask's values often equal what the rule writes).
+    // a tail: each width's own path through the byte rows.
     const Tileset ts = test::default_tileset();
     Scene s;
     s.width = s.height = 8;

@@ -131,16 +131,14 @@ using Bytes32 = std::uint8_t __attribute__((vector_size(32)));
 // at a time.)
 [[gnu::always_inline]] inline void correct_byte_row(std::uint8_t* value, std::uint8_t* reached, const std::uint8_t* below8,
                                                     const std::uint8_t* fx, std::uint8_t vy, std::uint8_t top, int w) {
+    const Bytes32 vys = Bytes32{} + vy, tops = Bytes32{} + top, zero{};
     int x = 0;
-    if (w >= 32) {
-        const Bytes32 vys = Bytes32{} + vy, tops = Bytes32{} + top, zero{};
-        for (; x + 32 <= w; x += 32) {
-            Bytes32 b, f, v;
-            std::memcpy(&b, below8 + x, 32), std::memcpy(&f, fx + x, 32), std::memcpy(&v, value + x, 32);
-            const Bytes32 keep = Bytes32(b == zero), lit = Bytes32(b <= tops) & ~keep;
-            v = (v & keep) | ((f < vys ? f : vys) & lit);
-            std::memcpy(value + x, &v, 32);
-        }
+    for (; x + 32 <= w; x += 32) {
+        Bytes32 b, f, v;
+        std::memcpy(&b, below8 + x, 32), std::memcpy(&f, fx + x, 32), std::memcpy(&v, value + x, 32);
+        const Bytes32 keep = Bytes32(b == zero), lit = Bytes32(b <= tops) & ~keep;
+        v = (v & keep) | ((f < vys ? f : vys) & lit);
+        std::memcpy(value + x, &v, 32);
     }
     for (; x < w; ++x) {  // branch-free: the pixels' kinds do not follow a pattern
         const std::uint8_t b = below8[x], f = fx[x] < vy ? fx[x] : vy;
