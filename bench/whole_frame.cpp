@@ -12,6 +12,7 @@
 #include "isolux/cpu.hpp"
 #include "isolux/composite.hpp"
 #include "isolux/hash.hpp"
+#include "isolux/light_trace.hpp"
 #include "isolux/opacity_correction.hpp"
 #include "ratio.hpp"
 #include "scenes.hpp"
@@ -106,6 +107,7 @@ void register_whole_frames() {
                     ScreenScene& s = screen(map, threads);
                     std::array<double, stage_count> ms{};
                     double n = 0, composited = 0;
+                    const TreeTraces trees_before = tree_traces();
                     for (auto _ : st) {
                         const FrameReport r = step(s, std::size_t(moved));
                         for (int k = 0; k < stage_count; ++k) ms[std::size_t(k)] += r.ms[std::size_t(k)];
@@ -115,6 +117,12 @@ void register_whole_frames() {
                     stage_counters(st, ms, n);
                     // The share of the view each frame composited again (its changed parts).
                     st.counters["composited_share"] = composited / n / (double(s.camera.width) * s.camera.height);
+                    // Lights whose ray tree was walked (too many obstacles to prune) or pruned, per
+                    // frame; counted per thread, so only where this thread traces them all.
+                    if (threads == 1) {
+                        st.counters["trees_walked"] = double(tree_traces().walked - trees_before.walked) / n;
+                        st.counters["trees_pruned"] = double(tree_traces().pruned - trees_before.pruned) / n;
+                    }
                 })->Unit(benchmark::kMillisecond)->UseRealTime();
             }
     // Each stage alone on the frame's own buffers, one thread.
