@@ -71,6 +71,13 @@ std::size_t area_bytes(const ScreenScene& s) {
     return n;
 }
 
+// Copies of the frame's traced masks, for a stage to work on in place.
+std::vector<LightMask> traced_masks(const ScreenScene& s) {
+    std::vector<LightMask> masks;
+    for (const auto& t : s.frame.cache.lights) masks.push_back(t.mask);
+    return masks;
+}
+
 // memcpy of n bytes into a buffer of its own (kept between calls, as the
 // frame keeps its buffers).
 struct Copy {
@@ -139,8 +146,7 @@ void register_whole_frames() {
     })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("stage/correction/forest", [](benchmark::State& st) {
         ScreenScene& s = screen("forest", 1);
-        std::vector<LightMask> masks;
-        for (const auto& t : s.frame.cache.lights) masks.push_back(t.mask);
+        std::vector<LightMask> masks = traced_masks(s);
         for (auto _ : st)
             for (LightMask& m : masks) correct_with_ground_lines(m, s.frame.cache.ground);
     })->Unit(benchmark::kMillisecond);
@@ -149,16 +155,14 @@ void register_whole_frames() {
     // when the pass is bound by its work per row, not by memory.
     benchmark::RegisterBenchmark("stage/correction_8_in_a_row/forest", [](benchmark::State& st) {
         ScreenScene& s = screen("forest", 1);
-        std::vector<LightMask> masks;
-        for (const auto& t : s.frame.cache.lights) masks.push_back(t.mask);
+        std::vector<LightMask> masks = traced_masks(s);
         for (auto _ : st)
             for (LightMask& m : masks)
                 for (int i = 0; i < 8; ++i) correct_with_ground_lines(m, s.frame.cache.ground);
     })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("stage/correction_reference/forest", [](benchmark::State& st) {
         ScreenScene& s = screen("forest", 1);
-        std::vector<LightMask> masks;
-        for (const auto& t : s.frame.cache.lights) masks.push_back(t.mask);
+        std::vector<LightMask> masks = traced_masks(s);
         for (auto _ : st)
             for (LightMask& m : masks) correct_with_opacity_maps(m, s.world->placed, s.frame.opacity);
     })->Unit(benchmark::kMillisecond);
@@ -220,8 +224,7 @@ void print_floor_ratios() {
     // place as the frame does it. The correction is idempotent (each pixel
     // kept, set to its falloff or cleared by the ground lines alone), so
     // correcting the same masks again does the same work on the same bytes.
-    std::vector<LightMask> masks;
-    for (const auto& t : forest.frame.cache.lights) masks.push_back(t.mask);
+    std::vector<LightMask> masks = traced_masks(forest);
     Set forest_areas(area_bytes(forest));
     print_ratio("correction_times_floor", interleaved([&] {
                     for (LightMask& m : masks)
