@@ -8,6 +8,10 @@
 #include <memory>
 #include <string>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "isolux/blur.hpp"
 #include "isolux/cpu.hpp"
 #include "isolux/composite.hpp"
@@ -97,6 +101,54 @@ struct Set {
     }
 };
 
+// The correction's bytes without its rule: over each light's rows, its
+// ground lines read and its mask read and written (value ^= below8), in the
+// correction's vector width, with its prefetch of the lines two rows ahead.
+// Its ratio to the memset of the areas says how much of
+// correction_times_floor is the traffic itself.
+template <class XorRow>
+void correction_streams(const GroundLines& lines, std::vector<LightMask>& masks, XorRow xor_row) {
+    const std::size_t stride = std::size_t(lines.rect.w);
+    for (LightMask& m : masks) {
+        const Rect r = intersect(m.clip, lines.rect);
+        for (int y = r.y; y < r.y + r.h; ++y) {
+            const std::uint8_t* b = &lines.below8[std::size_t(y - lines.rect.y) * stride + std::size_t(r.x - lines.rect.x)];
+            std::uint8_t* v = &m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(r.x - m.clip.x)];
+            if (y + 2 < r.y + r.h)
+                for (int x = 0; x < r.w; x += 64) __builtin_prefetch(b + 2 * stride + x);
+            xor_row(v, b, r.w);
+        }
+        benchmark::DoNotOptimize(m.value.data());
+    }
+}
+
+#if defined(__x86_64__)
+__attribute__((target("avx2"))) inline void xor_row_avx2(std::uint8_t* v, const std::uint8_t* b, int w) {
+    int x = 0;
+    for (; x + 32 <= w; x += 32) {
+        __m256i* at = reinterpret_cast<__m256i*>(v + x);
+        _mm256_storeu_si256(at, _mm256_xor_si256(_mm256_loadu_si256(at), _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + x))));
+    }
+    for (; x < w; ++x) v[x] ^= b[x];
+}
+__attribute__((target("avx2"))) void correction_streams_avx2(const GroundLines& lines, std::vector<LightMask>& masks) {
+    correction_streams(lines, masks, xor_row_avx2);
+}
+#endif
+
+struct CorrectionStreams {
+    const GroundLines& lines;
+    std::vector<LightMask>& masks;
+    void operator()() const {
+#if defined(__x86_64__)
+        if (wide_kernels()) return correction_streams_avx2(lines, masks);
+#endif
+        correction_streams(lines, masks, [](std::uint8_t* __restrict v, const std::uint8_t* __restrict b, int w) {
+            for (int x = 0; x < w; ++x) v[x] ^= b[x];
+        });
+    }
+};
+
 void stage_counters(benchmark::State& st, const std::array<double, stage_count>& ms, double n) {
     for (int k = 0; k < stage_count; ++k)
         if (ms[std::size_t(k)] > 0) st.counters[std::string(to_string(Stage(k))) + "_ms"] = ms[std::size_t(k)] / n;
@@ -174,6 +226,12 @@ void register_whole_frames() {
         Set set(area_bytes(screen("forest", 1)));
         for (auto _ : st) set();
     })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("stage/floor/correction_streams/forest", [](benchmark::State& st) {
+        ScreenScene& s = screen("forest", 1);
+        std::vector<LightMask> masks = traced_masks(s);
+        const CorrectionStreams streams{s.frame.cache.ground, masks};
+        for (auto _ : st) streams();
+    })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("whole_frame/floor/memcpy_final_memset_areas", [](benchmark::State& st) {
         ScreenScene& s = screen("default", 1);
         Copy copy(s.frame.final.rgba.size());
@@ -230,6 +288,10 @@ void print_floor_ratios() {
                     for (LightMask& m : masks)
                         correct_with_ground_lines(m, forest.frame.cache.ground);
                 }, 3, forest_areas, 30, pairs), "<= 4", 2);
+    // The same areas' bytes read and written as the correction moves them, with no rule.
+    std::vector<LightMask> stream_masks = traced_masks(forest);
+    const CorrectionStreams streams{forest.frame.cache.ground, stream_masks};
+    print_ratio("correction_streams_times_floor", interleaved(streams, 3, forest_areas, 30, pairs), nullptr, 2);
 
     print_ratio("threads2_frame_speedup", interleaved([&] { step(one, 32); }, 3, [&] { step(two, 32); }, 3, pairs),
                 ">= 1.6", 2);
