@@ -70,6 +70,30 @@ TEST(FastBlur, EqualsTheReferenceForEveryRadiusAndSize) {
     EXPECT_GE(checked, 50);
 }
 
+TEST(FastBlur, WideRowsOfExtremeTexelsEqualTheReference) {
+    // Rows wide enough for the AVX2 interior's 32-value steps and a tail,
+    // of 0s and 255s in runs (the largest window sums, and every quotient
+    // from 0 to 255 at the runs' edges).
+    for (const Rect r : {Rect{3, -2, 300, 24}, Rect{0, 0, 97, 20}}) {
+        LightTexture t(r);
+        for (int y = 0; y < r.h; ++y)
+            for (int x = 0; x < r.w; ++x)
+                for (int c = 0; c < 3; ++c)
+                    t.rgb[(std::size_t(y) * r.w + x) * 3 + c] = (x / 16 + y / 8 + c) % 3 ? 255 : 0;
+        for (int radius : {1, 2, 3}) {
+            const LightTexture want = box_blur_reference(t, radius);
+            for (bool wide : both_widths()) {
+                set_wide_kernels(wide);
+                EXPECT_EQ(box_blur(t, radius).rgb, want.rgb) << r.w << " r " << radius << " wide " << wide;
+            }
+            set_wide_kernels(true);
+            int top = 0;
+            for (std::uint8_t v : want.rgb) top += v == 255;
+            EXPECT_GT(top, 0) << "some windows must be all 255";
+        }
+    }
+}
+
 TEST(FastBlur, ARegionWritesOnlyItsTexelsAndTheirFullValues) {
     const Rect r{-20, 7, 61, 45};
     const LightTexture t = random_texture(r, 9);

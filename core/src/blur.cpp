@@ -11,6 +11,9 @@
 
 #include "cpu_dispatch.hpp"
 #include "isolux/cpu.hpp"
+#if ISOLUX_X86_DISPATCH
+#include <immintrin.h>
+#endif
 
 namespace isolux {
 
@@ -165,10 +168,46 @@ void blur_region(const LightTexture& tex, int radius, Rect z, LightTexture& out)
     }
 }
 
+#if ISOLUX_X86_DISPATCH
+// The interior of an output row, [j, end), 32 values per step, as
+// blur_region_small's loop computes it (the same integer steps): written
+// out by hand because GCC loads each 32-byte window twice to widen its two
+// halves and masks the quotients before packing them (they are at most 255,
+// the reciprocal having been checked for every sum). Returns where it
+// stopped; the rest is the loop's.
+ISOLUX_AVX2 inline __m256i widened(const std::uint8_t* at) {
+    return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(at)));
+}
+
+template <int R>
+ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_t* col, std::uint16_t* s,
+                                           std::uint8_t* dst, std::size_t j, std::size_t end, std::uint16_t half,
+                                           std::uint16_t mul, int shift) {
+    const __m256i halves = _mm256_set1_epi16(std::int16_t(half)), muls = _mm256_set1_epi16(std::int16_t(mul));
+    const __m128i shifts = _mm_cvtsi32_si128(shift);
+    for (; j + 32 <= end; j += 32) {
+        const std::uint8_t* p = src + j;
+        __m256i v0 = widened(p - 3 * R), v1 = widened(p + 16 - 3 * R);
+        for (int t = 1 - R; t <= R; ++t)
+            v0 = _mm256_add_epi16(v0, widened(p + 3 * t)), v1 = _mm256_add_epi16(v1, widened(p + 16 + 3 * t));
+        __m256i* c = reinterpret_cast<__m256i*>(col + j);
+        __m256i* o = reinterpret_cast<__m256i*>(s + j);
+        const __m256i c0 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c), v0), _mm256_loadu_si256(o));
+        const __m256i c1 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c + 1), v1), _mm256_loadu_si256(o + 1));
+        _mm256_storeu_si256(c, c0), _mm256_storeu_si256(c + 1, c1);
+        _mm256_storeu_si256(o, v0), _mm256_storeu_si256(o + 1, v1);
+        const __m256i q0 = _mm256_srl_epi16(_mm256_mulhi_epu16(_mm256_add_epi16(c0, halves), muls), shifts);
+        const __m256i q1 = _mm256_srl_epi16(_mm256_mulhi_epu16(_mm256_add_epi16(c1, halves), muls), shifts);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + j), _mm256_permute4x64_epi64(_mm256_packus_epi16(q0, q1), 0xD8));
+    }
+    return j;
+}
+#endif
+
 // Radius 1 to 3, the common case: each row one fused pass (the new row's
 // horizontal sums from its bytes, the column sums slid, the divide, the
 // store), the few clamped edge texels one by one.
-template <int R>
+template <int R, bool Avx2>
 [[gnu::always_inline]] inline void blur_region_small(const LightTexture& tex, Rect z, LightTexture& out) {
     constexpr int span = 2 * R + 1;
     const int w = tex.rect.w, h = tex.rect.h;
@@ -205,7 +244,11 @@ template <int R>
         };
         for (std::size_t j = 0; j < a; ++j) put(j, clamped(j));
         for (std::size_t j = b; j < m; ++j) put(j, clamped(j));
-        for (std::size_t j = a; j < b; ++j) {
+        std::size_t from = a;
+#if ISOLUX_X86_DISPATCH
+        if constexpr (Avx2 && Write) from = blur_interior_avx2<R>(src, col, s, dst, a, b, half, mul, shift);
+#endif
+        for (std::size_t j = from; j < b; ++j) {
             std::uint16_t v = 0;
             for (int t = -R; t <= R; ++t) v = std::uint16_t(v + src[std::ptrdiff_t(j) + 3 * t]);
             const std::uint16_t c = std::uint16_t(col[j] + v - s[j]);
@@ -221,14 +264,15 @@ template <int R>
 }
 
 // Radius 1 to 3 at two widths (isolux/cpu.hpp): the same code, vectorised twice.
+template <bool Avx2>
 [[gnu::always_inline]] inline void blur_small_any(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
-    if (radius == 1) blur_region_small<1>(tex, z, out);
-    if (radius == 2) blur_region_small<2>(tex, z, out);
-    if (radius == 3) blur_region_small<3>(tex, z, out);
+    if (radius == 1) blur_region_small<1, Avx2>(tex, z, out);
+    if (radius == 2) blur_region_small<2, Avx2>(tex, z, out);
+    if (radius == 3) blur_region_small<3, Avx2>(tex, z, out);
 }
-void blur_small(int radius, const LightTexture& tex, Rect z, LightTexture& out) { blur_small_any(radius, tex, z, out); }
+void blur_small(int radius, const LightTexture& tex, Rect z, LightTexture& out) { blur_small_any<false>(radius, tex, z, out); }
 ISOLUX_AVX2 void blur_small_avx2(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
-    blur_small_any(radius, tex, z, out);
+    blur_small_any<true>(radius, tex, z, out);
 }
 
 }  // namespace
