@@ -242,8 +242,9 @@ template <int R, bool Avx2>
             for (int t = -R; t <= R; ++t) v = std::uint16_t(v + row[std::size_t(std::clamp(x + t, 0, w - 1)) * 3 + c]);
             return v;
         };
+        // Left to right, as the row's bytes arrive (its right end read
+        // first would wait for memory on every row).
         for (std::size_t j = 0; j < a; ++j) put(j, clamped(j));
-        for (std::size_t j = b; j < m; ++j) put(j, clamped(j));
         std::size_t from = a;
 #if ISOLUX_X86_DISPATCH
         if constexpr (Avx2 && Write) from = blur_interior_avx2<R>(src, col, s, dst, a, b, half, mul, shift);
@@ -256,6 +257,7 @@ template <int R, bool Avx2>
             s[j] = v;
             if constexpr (Write) dst[j] = std::uint8_t(std::uint16_t((std::uint32_t(std::uint16_t(c + half)) * mul) >> 16) >> shift);
         }
+        for (std::size_t j = b; j < m; ++j) put(j, clamped(j));
     };
     for (int i = y0 - R; i < y0 + R; ++i) row_in.template operator()<false>(i, slot(i), nullptr);
     // Row y + R comes in (into the slot of row y - R - 1, which leaves), and row y is written.
