@@ -227,8 +227,11 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
         };
         return _mm_set_epi32(texel(3), texel(2), texel(1), texel(0));
     };
-    int i = 0;
-    for (; i + 8 <= n; i += 8) {
+    if (n < 8) return shade_row_sse2<Shadow, Surface, DarkUnlit>(s, l, n, k, d);
+    // The last step ends at the row's end, over pixels the step before may
+    // have written: each pixel's bytes depend on its texel and light alone.
+    for (int i0 = 0; i0 < n; i0 += 8) {
+        const int i = std::min(i0, n - 8);
         const __m256i sp = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + std::size_t(i) * 4));
         const std::uint8_t* lp = l + std::size_t(i) * 3;
         // Eight RGB texels into eight lanes: one 32-byte load, the second
@@ -280,8 +283,6 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
             for (int q = 0; q < 8; ++q)
                 if ((redo >> q) & 1) exact_pixel(s + std::size_t(i + q) * 4, lp + 3 * q, *k.params, d + std::size_t(i + q) * 4);
     }
-    if (i < n) shade_row_sse2<Shadow, Surface, DarkUnlit>(s + std::size_t(i) * 4, l + std::size_t(i) * 3, n - i, k,
-                                                           d + std::size_t(i) * 4);
 }
 #define ISOLUX_HAS_SHADE_AVX2 1
 #endif
@@ -317,6 +318,7 @@ ShadeRow shade_row_for(const Params& p) {
 void composite_into(const Image& colour, Rect view, const LightTexture& light, const Params& p, Rect region, Image& out) {
     assert(colour.width == view.w && colour.height == view.h);
     assert(p.ambient_clarity >= 0 && p.ambient_clarity <= 1);
+    assert(&colour != &out);  // a row's last step re-reads texels the step before it wrote over
     if (out.width != view.w || out.height != view.h) out = Image(view.w, view.h);
     const Rect z = intersect(region, view);
     if (z.empty()) return;
