@@ -636,26 +636,30 @@ TEST(Accumulate, WhiteLightsAddTheirValueToEveryChannelSaturating) {
 }
 
 TEST(Accumulate, WhiteRowsWiderThanAVectorSaturateInBothBuilds) {
-    // 37 columns: two 16-texel vectors and a tail, over a texture with values already in it.
-    const Rect area{-3, 2, 37, 5};
-    LightMask m;
-    m.clip = area;
-    Pcg32 rng(12);
-    m.value.resize(std::size_t(area.w) * area.h);
-    for (std::uint8_t& v : m.value) v = std::uint8_t(rng.below(256));
-    const LightTexture before = random_texture({area.x - 2, area.y - 1, area.w + 5, area.h + 2}, 13);
-    for (bool wide : both_widths()) {
-        set_wide_kernels(wide);
-        LightTexture tex = before;
-        accumulate_light(tex, m, Light{0, 0}, Params{});
-        for (int y = tex.rect.y; y < tex.rect.y + tex.rect.h; ++y)
-            for (int x = tex.rect.x; x < tex.rect.x + tex.rect.w; ++x)
-                for (int c = 0; c < 3; ++c) {
-                    const int add = area.contains(x, y) ? m.value[std::size_t(y - area.y) * area.w + (x - area.x)] : 0;
-                    ASSERT_EQ(tex.at(x, y)[c], std::min(255, before.at(x, y)[c] + add)) << x << "," << y << " wide " << wide;
-                }
+    // Rows of every kind of width (under, at and over 16 and 32 texels, a
+    // light's 257), over a texture with values already in it.
+    for (int width : {1, 15, 16, 17, 31, 32, 33, 37, 63, 64, 65, 100, 257}) {
+        SCOPED_TRACE(width);
+        const Rect area{-3, 2, width, 5};
+        LightMask m;
+        m.clip = area;
+        Pcg32 rng(std::uint64_t(12 + width));
+        m.value.resize(std::size_t(area.w) * area.h);
+        for (std::uint8_t& v : m.value) v = std::uint8_t(rng.below(256));
+        const LightTexture before = random_texture({area.x - 2, area.y - 1, area.w + 5, area.h + 2}, 13);
+        for (bool wide : both_widths()) {
+            set_wide_kernels(wide);
+            LightTexture tex = before;
+            accumulate_light(tex, m, Light{0, 0}, Params{});
+            for (int y = tex.rect.y; y < tex.rect.y + tex.rect.h; ++y)
+                for (int x = tex.rect.x; x < tex.rect.x + tex.rect.w; ++x)
+                    for (int c = 0; c < 3; ++c) {
+                        const int add = area.contains(x, y) ? m.value[std::size_t(y - area.y) * area.w + (x - area.x)] : 0;
+                        ASSERT_EQ(tex.at(x, y)[c], std::min(255, before.at(x, y)[c] + add)) << x << "," << y << " wide " << wide;
+                    }
+        }
+        set_wide_kernels(true);
     }
-    set_wide_kernels(true);
 }
 
 // Long work (TraceControl): progress in trace_work's steps, the same bytes

@@ -16,7 +16,7 @@ namespace isolux {
 namespace {
 
 // out[3x + c] += v[x] for every channel c, saturating: a white light's row.
-// The AVX2 build (isolux/cpu.hpp) spreads 16 values over 48 bytes with three
+// The AVX2 build (isolux/cpu.hpp) spreads 32 values over 96 bytes with three
 // byte shuffles; the baseline writes the spread row, then adds it.
 void add_white_row(std::uint8_t* out, const std::uint8_t* v, int w, std::vector<std::uint8_t>& rgb) {
     for (int x = 0; x < w; ++x) rgb[std::size_t(x) * 3 + 0] = rgb[std::size_t(x) * 3 + 1] = rgb[std::size_t(x) * 3 + 2] = v[x];
@@ -27,17 +27,62 @@ void add_white_row(std::uint8_t* out, const std::uint8_t* v, int w, std::vector<
 }
 
 #if ISOLUX_X86_DISPATCH
+// 32 values spread over 96 bytes of three 32-byte vectors: byte shuffles
+// work within 16-byte lanes, so each vector's lanes are first filled with
+// the values they take theirs from (the first 16 values in both lanes, the
+// 32 as loaded, the last 16 in both).
+struct WhiteSpread32 {
+    __m256i lo, mid, hi;
+};
+
+ISOLUX_AVX2 inline WhiteSpread32 white_spread32(const std::uint8_t* v) {
+    const __m256i s0 = _mm256_setr_epi8(0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5,  //
+                                        5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10);
+    const __m256i s1 = _mm256_setr_epi8(10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15, 15,  //
+                                        0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5);
+    const __m256i s2 = _mm256_setr_epi8(5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10,  //
+                                        10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15, 15);
+    const __m128i first = _mm_loadu_si128(reinterpret_cast<const __m128i*>(v));
+    const __m128i last = _mm_loadu_si128(reinterpret_cast<const __m128i*>(v + 16));
+    return {_mm256_shuffle_epi8(_mm256_set_m128i(first, first), s0),
+            _mm256_shuffle_epi8(_mm256_set_m128i(last, first), s1),
+            _mm256_shuffle_epi8(_mm256_set_m128i(last, last), s2)};
+}
+
 ISOLUX_AVX2 void add_white_row_avx2(std::uint8_t* out, const std::uint8_t* v, int w) {
-    const __m128i spread0 = _mm_setr_epi8(0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5);
-    const __m128i spread1 = _mm_setr_epi8(5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10);
-    const __m128i spread2 = _mm_setr_epi8(10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15, 15);
+    auto at = [&](int x, int k) { return reinterpret_cast<__m256i*>(out + std::size_t(x) * 3 + std::size_t(k) * 32); };
+    if (w >= 32) {
+        // The row's last 32 texels summed from the bytes there before any
+        // store, and stored last: where they overlap the loop's last step
+        // the loop wrote the same sums (a saturating add is not idempotent,
+        // so they must not be read back after it).
+        const int x_last = w - 32;
+        const WhiteSpread32 t = white_spread32(v + x_last);
+        const __m256i last0 = _mm256_adds_epu8(_mm256_loadu_si256(at(x_last, 0)), t.lo);
+        const __m256i last1 = _mm256_adds_epu8(_mm256_loadu_si256(at(x_last, 1)), t.mid);
+        const __m256i last2 = _mm256_adds_epu8(_mm256_loadu_si256(at(x_last, 2)), t.hi);
+        for (int x = 0; x + 32 <= w; x += 32) {
+            const WhiteSpread32 s = white_spread32(v + x);
+            _mm256_storeu_si256(at(x, 0), _mm256_adds_epu8(_mm256_loadu_si256(at(x, 0)), s.lo));
+            _mm256_storeu_si256(at(x, 1), _mm256_adds_epu8(_mm256_loadu_si256(at(x, 1)), s.mid));
+            _mm256_storeu_si256(at(x, 2), _mm256_adds_epu8(_mm256_loadu_si256(at(x, 2)), s.hi));
+        }
+        _mm256_storeu_si256(at(x_last, 0), last0);
+        _mm256_storeu_si256(at(x_last, 1), last1);
+        _mm256_storeu_si256(at(x_last, 2), last2);
+        return;
+    }
     int x = 0;
-    for (; x + 16 <= w; x += 16) {
-        const __m128i values = _mm_loadu_si128(reinterpret_cast<const __m128i*>(v + x));
-        __m128i* o = reinterpret_cast<__m128i*>(out + std::size_t(x) * 3);
+    if (w >= 16) {  // 16 values over 48 bytes, then the rest one by one
+        const __m128i spread0 = _mm_setr_epi8(0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5);
+        const __m128i spread1 = _mm_setr_epi8(5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10);
+        const __m128i spread2 = _mm_setr_epi8(10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15, 15);
+        const __m128i values = _mm_loadu_si128(reinterpret_cast<const __m128i*>(v));
+        __m128i* o = reinterpret_cast<__m128i*>(out);
         _mm_storeu_si128(o, _mm_adds_epu8(_mm_loadu_si128(o), _mm_shuffle_epi8(values, spread0)));
         _mm_storeu_si128(o + 1, _mm_adds_epu8(_mm_loadu_si128(o + 1), _mm_shuffle_epi8(values, spread1)));
         _mm_storeu_si128(o + 2, _mm_adds_epu8(_mm_loadu_si128(o + 2), _mm_shuffle_epi8(values, spread2)));
+        x = 16;
     }
     for (; x < w; ++x)
         for (int c = 0; c < 3; ++c) {
