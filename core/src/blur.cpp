@@ -265,7 +265,8 @@ template <int R, bool Avx2>
         row_in.template operator()<true>(y + R, slot(y + R), &out.rgb[(std::size_t(y) * w + x0) * 3]);
 }
 
-// Radius 1 to 3 at two widths (isolux/cpu.hpp): the same code, vectorised twice.
+// Radius 1 to 3 at two widths (isolux/cpu.hpp): the same code, vectorised
+// twice, the AVX2 build's row interior written by hand (blur_interior_avx2).
 template <bool Avx2>
 [[gnu::always_inline]] inline void blur_small_any(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
     if (radius == 1) blur_region_small<1, Avx2>(tex, z, out);
