@@ -72,19 +72,8 @@ ISOLUX_AVX2 void add_white_row_avx2(std::uint8_t* out, const std::uint8_t* v, in
         _mm256_storeu_si256(at(x_last, 2), last2);
         return;
     }
-    int x = 0;
-    if (w >= 16) {  // 16 values over 48 bytes, then the rest one by one
-        const __m128i spread0 = _mm_setr_epi8(0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5);
-        const __m128i spread1 = _mm_setr_epi8(5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10);
-        const __m128i spread2 = _mm_setr_epi8(10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15, 15);
-        const __m128i values = _mm_loadu_si128(reinterpret_cast<const __m128i*>(v));
-        __m128i* o = reinterpret_cast<__m128i*>(out);
-        _mm_storeu_si128(o, _mm_adds_epu8(_mm_loadu_si128(o), _mm_shuffle_epi8(values, spread0)));
-        _mm_storeu_si128(o + 1, _mm_adds_epu8(_mm_loadu_si128(o + 1), _mm_shuffle_epi8(values, spread1)));
-        _mm_storeu_si128(o + 2, _mm_adds_epu8(_mm_loadu_si128(o + 2), _mm_shuffle_epi8(values, spread2)));
-        x = 16;
-    }
-    for (; x < w; ++x)
+    // Rows narrower than a step (a light cut by the view's edge): one by one.
+    for (int x = 0; x < w; ++x)
         for (int c = 0; c < 3; ++c) {
             std::uint8_t& d = out[std::size_t(x) * 3 + std::size_t(c)];
             d = std::uint8_t(std::min(255, d + v[x]));
