@@ -11,6 +11,7 @@
 
 #include "cpu_dispatch.hpp"
 #include "isolux/cpu.hpp"
+#include "rows_ahead.hpp"
 
 namespace isolux {
 
@@ -187,14 +188,10 @@ using Bytes32 = std::uint8_t __attribute__((vector_size(32)));
             const std::uint8_t* below8 = &lines.below8[line];
             std::uint8_t* value = &mask.value[m];
             std::uint8_t* reached = shadow ? &mask.reached[m] : nullptr;
+            // The lines are a world-wide array (rows_ahead.hpp).
+            for (int k = 0; k < rows_ahead && y + k < y1; ++k) ask_for_row(below8 + std::size_t(k) * stride, std::size_t(r.w));
             for (; y < y1; ++y, below8 += stride, value += clip.w, reached += shadow ? clip.w : 0) {
-                // The lines are a world-wide array: each of the light's rows
-                // is a short piece of it on another page, which the hardware
-                // does not fetch ahead. The row two below is asked for now.
-                if (y + 2 < y1) {
-                    for (int x = 0; x < r.w; x += 64) __builtin_prefetch(below8 + 2 * stride + x);
-                    __builtin_prefetch(below8 + 2 * stride + r.w - 1);
-                }
+                if (y + rows_ahead < y1) ask_for_row(below8 + std::size_t(rows_ahead) * stride, std::size_t(r.w));
                 // below < cy - y  <=>  below8 = below + 128 <= cy - y + 127 (below8 >= 1).
                 const std::uint8_t top = std::uint8_t(std::clamp<std::int64_t>(mask.cy - y + 127, 0, 255));
                 correct_byte_row(value, reached, below8, fx, fall(std::llabs(y - mask.cy)), top, r.w);
