@@ -366,6 +366,59 @@ TEST(FastCorrection, EveryRowWidthEqualsTheRule) {
     EXPECT_GT(changed, 30);
 }
 
+TEST(FastCorrection, MasksClippedAwayFromTheirCentreEqualTheRule) {
+    // The falloff by column is the distance table read outwards from the
+    // centre's column: here the mask's clip (a view's edge) leaves that
+    // column to its left, to its right, or the centre's row above or below,
+    // in a forest where every column of the clip has sprites.
+    const Tileset ts = test::default_tileset();
+    Scene s;
+    s.width = s.height = 10;
+    World w = make_world(ts, s);
+    const std::vector<int> trees = w.tileset.find(SpriteKind::overlay, "tree");
+    for (std::size_t i = 0; i < w.map.tiles.size(); ++i) {
+        w.map.tiles[i].overlay_count = 1;
+        w.map.tiles[i].overlays[0] = {trees[i % trees.size()], 0, 0};
+    }
+    w.placed = place_sprites(w.map, w.tileset);
+    FrameState st;
+    render_frame(st, w, s, Camera{}, 0);
+    const GroundLines lines = ground_lines(w.placed, st.opacity, w.placed.bounds);
+    ASSERT_TRUE(lines.exact);
+    const Rect b = w.placed.bounds;
+    Pcg32 rng(21);
+    int changed = 0;
+    for (int k = 0; k < 32; ++k) {
+        const int a = 30 + int(rng.below(60)), h = 30 + int(rng.below(60));
+        const std::int64_t cx = b.x + b.w / 3 + std::int64_t(rng.below(std::uint32_t(b.w / 3)));
+        const std::int64_t cy = b.y + b.h / 3 + std::int64_t(rng.below(std::uint32_t(b.h / 3)));
+        LightMask m = random_mask(rng, cx, cy, a, h, k % 3 ? 1.0 : 2.5, k % 2);
+        // The clip starts or ends 1 to a/2 pixels past the centre.
+        const int d = 1 + int(rng.below(std::uint32_t(std::min(a, h) / 2)));
+        const Rect area = m.clip;
+        Rect keep = area;
+        switch (k % 4) {
+            case 0: keep = {int(cx) + d, area.y, area.w, area.h}; break;            // centre left of the clip
+            case 1: keep = {area.x, area.y, int(cx) - d - area.x + 1, area.h}; break;  // right of it
+            case 2: keep = {area.x, int(cy) + d, area.w, area.h}; break;            // above it
+            case 3: keep = {area.x, area.y, area.w, int(cy) - d - area.y + 1}; break;  // below it
+        }
+        m.clip = intersect(area, keep);
+        ASSERT_FALSE(m.clip.contains(int(cx), int(cy)));
+        std::vector<std::uint8_t> value, reached;
+        for (int y = m.clip.y; y < m.clip.y + m.clip.h; ++y)
+            for (int x = m.clip.x; x < m.clip.x + m.clip.w; ++x) {
+                const std::size_t at = std::size_t(y - area.y) * area.w + std::size_t(x - area.x);
+                value.push_back(m.value[at]);
+                if (!m.reached.empty()) reached.push_back(m.reached[at]);
+            }
+        m.value = value, m.reached = reached;
+        const LightMask want = both_builds_equal_the_rule(m, lines, w.placed, st.opacity);
+        changed += want.value != m.value;
+    }
+    EXPECT_EQ(changed, 32) << "every clip has sprite pixels to correct";
+}
+
 TEST(FastCorrection, ARepaintEqualsFreshLines) {
     HandPlaced h;
     const Rect region{h.placed.bounds.x - 20, h.placed.bounds.y - 20, h.placed.bounds.w + 40, h.placed.bounds.h + 40};

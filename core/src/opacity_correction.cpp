@@ -137,8 +137,10 @@ using Bytes32 = std::uint8_t __attribute__((vector_size(32)));
     for (; x + 32 <= w; x += 32) {
         Bytes32 b, f, v;
         std::memcpy(&b, below8 + x, 32), std::memcpy(&f, fx + x, 32), std::memcpy(&v, value + x, 32);
-        const Bytes32 keep = Bytes32(b == zero), lit = Bytes32(b <= tops) & ~keep;
-        v = (v & keep) | ((f < vys ? f : vys) & lit);
+        // Two selects (one vpblendvb, one and): two ops fewer than masks
+        // combined by hand.
+        const Bytes32 lit = b <= tops ? (f < vys ? f : vys) : zero;
+        v = b == zero ? v : lit;
         std::memcpy(value + x, &v, 32);
     }
     for (; x < w; ++x) {  // branch-free: the pixels' kinds do not follow a pattern
@@ -174,7 +176,16 @@ using Bytes32 = std::uint8_t __attribute__((vector_size(32)));
     thread_local std::vector<std::uint8_t> by_x;
     by_x.resize(std::size_t(r.w));
     std::uint8_t* const fx = by_x.data();
-    for (int x = 0; x < r.w; ++x) fx[x] = fall(std::llabs(r.x + x - mask.cx));
+    if (far < table_size) {
+        // The table itself, read outwards from the centre's column (c) and
+        // mirrored left of it: a copy, not a lookup per pixel.
+        const std::int64_t c = mask.cx - r.x;
+        const int left = int(std::clamp<std::int64_t>(c + 1, 0, r.w));
+        for (int x = 0; x < left; ++x) fx[x] = table[std::size_t(c - x)];
+        if (left < r.w) std::memcpy(fx + left, table + std::size_t(left - c), std::size_t(r.w - left));
+    } else {
+        for (int x = 0; x < r.w; ++x) fx[x] = fall(std::llabs(r.x + x - mask.cx));
+    }
     const bool shadow = !mask.reached.empty();
     const std::size_t stride = std::size_t(lines.rect.w);
     for (int y = r.y; y < r.y + r.h;) {
