@@ -203,18 +203,26 @@ void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const S
 template <bool Shadow, bool Surface, bool DarkUnlit>
 ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k,
                                 std::uint8_t* d) {
-    const __m256i bytes = _mm256_set1_epi32(0xFF), zero = _mm256_setzero_si256();
+    const __m256i zero = _mm256_setzero_si256();
     const __m128i rgb_bytes = _mm_set1_epi32(0xFFFFFF);
     const __m256i up_a_lane = _mm256_setr_epi32(0, 1, 2, 3, 3, 4, 5, 6);
     const __m256i spread_rgb = _mm256_setr_epi8(0, 1, 2, -128, 3, 4, 5, -128, 6, 7, 8, -128, 9, 10, 11, -128,  //
                                                 0, 1, 2, -128, 3, 4, 5, -128, 6, 7, 8, -128, 9, 10, 11, -128);
+    // Byte ch of each pixel alone in its 32-bit lane (-128: a zero byte).
+    const __m256i channel[3] = {
+        _mm256_setr_epi8(0, -128, -128, -128, 4, -128, -128, -128, 8, -128, -128, -128, 12, -128, -128, -128, 0, -128, -128, -128, 4, -128, -128, -128, 8, -128, -128, -128, 12, -128, -128, -128),
+        _mm256_setr_epi8(1, -128, -128, -128, 5, -128, -128, -128, 9, -128, -128, -128, 13, -128, -128, -128, 1, -128, -128, -128, 5, -128, -128, -128, 9, -128, -128, -128, 13, -128, -128, -128),
+        _mm256_setr_epi8(2, -128, -128, -128, 6, -128, -128, -128, 10, -128, -128, -128, 14, -128, -128, -128, 2, -128, -128, -128, 6, -128, -128, -128, 10, -128, -128, -128, 14, -128, -128, -128)};
     const std::uint8_t* l_end = k.light_end ? k.light_end : l;
-    const __m256 inv255 = _mm256_set1_ps(1.0f / 255.0f), top = _mm256_set1_ps(255.0f), half = _mm256_set1_ps(0.5f),
-                 magic = _mm256_set1_ps(8388608.0f), near = _mm256_set1_ps(1.0f / 2048.0f),
+    const __m256 inv255 = _mm256_set1_ps(1.0f / 255.0f), top = _mm256_set1_ps(255.0f),
+                 half_less_near = _mm256_set1_ps(0.5f - 1.0f / 2048.0f),
                  no_sign = _mm256_castsi256_ps(_mm256_set1_epi32(0x7FFFFFFF)), one = _mm256_set1_ps(1.0f),
                  three_quarters = _mm256_set1_ps(0.75f), ts = _mm256_set1_ps(k.tex_scale),
-                 light_scale = _mm256_set1_ps(k.inv_denom / 255.0f), kr = _mm256_set1_ps(0.349f),
-                 kg = _mm256_set1_ps(0.114f), kb = _mm256_set1_ps(0.537f), fzero = _mm256_setzero_ps();
+                 light_scale = _mm256_set1_ps(k.inv_denom / 255.0f), fzero = _mm256_setzero_ps();
+    // The luminance weights with the light's scale in them (one rounding each, in double).
+    const double scale = double(k.inv_denom) / 255.0;
+    const __m256 kr = _mm256_set1_ps(float(0.349 * scale)), kg = _mm256_set1_ps(float(0.114 * scale)),
+                 kb = _mm256_set1_ps(float(0.537 * scale));
     auto four_texels = [&](const std::uint8_t* lp) {
         if (lp + 16 <= l_end) {
             const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(lp));
@@ -244,15 +252,14 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
         // In 0..255 units: composite_pixel's terms times 255, its constants
         // folded (fewer roundings than shade_row_sse2, the same bound).
         __m256 c[3], L[3];
-        for (int ch = 0; ch < 3; ++ch) {
-            c[ch] = _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32(sp, 8 * ch), bytes));
-            L[ch] = _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32(lv, 8 * ch), bytes));
+        for (int ch = 0; ch < 3; ++ch) {  // byte ch of each pixel into its lane: one shuffle
+            c[ch] = _mm256_cvtepi32_ps(_mm256_shuffle_epi8(sp, channel[ch]));
+            L[ch] = _mm256_cvtepi32_ps(_mm256_shuffle_epi8(lv, channel[ch]));
         }
         const __m256i alpha = _mm256_srli_epi32(sp, 24);
         // The luminance with the light's scale in it (luminance mix): one multiply per channel below.
-        const __m256 luminance = _mm256_mul_ps(
-            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(c[0], kr), _mm256_mul_ps(c[1], kg)), _mm256_mul_ps(c[2], kb)),
-            light_scale);
+        const __m256 luminance =
+            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(c[0], kr), _mm256_mul_ps(c[1], kg)), _mm256_mul_ps(c[2], kb));
         __m256 bad = fzero;
         __m256i packed = _mm256_slli_epi32(alpha, 24);
         for (int ch = 0; ch < 3; ++ch) {
@@ -270,10 +277,14 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
                 }
                 v = Shadow ? _mm256_sub_ps(tex_factor, light_factor) : _mm256_add_ps(tex_factor, light_factor);
             }
-            const __m256 x = _mm256_add_ps(_mm256_min_ps(_mm256_max_ps(v, fzero), top), half);
-            const __m256 off = _mm256_and_ps(_mm256_sub_ps(x, _mm256_sub_ps(_mm256_add_ps(x, magic), magic)), no_sign);
-            bad = _mm256_or_ps(bad, _mm256_cmp_ps(off, near, _CMP_LT_OQ));
-            packed = _mm256_or_si256(packed, _mm256_slli_epi32(_mm256_cvttps_epi32(x), 8 * ch));
+            // Rounded to the nearest level: floor(x + 1/2) unless x lies
+            // within 1/2048 of a level's half, where the pixel is redone
+            // (ties included, so the rounding's tie rule never shows).
+            const __m256 x = _mm256_min_ps(_mm256_max_ps(v, fzero), top);
+            const __m256 level = _mm256_round_ps(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+            const __m256 off = _mm256_and_ps(_mm256_sub_ps(x, level), no_sign);
+            bad = _mm256_or_ps(bad, _mm256_cmp_ps(off, half_less_near, _CMP_GT_OQ));
+            packed = _mm256_or_si256(packed, _mm256_slli_epi32(_mm256_cvttps_epi32(level), 8 * ch));
         }
         const __m256i transparent = _mm256_cmpeq_epi32(alpha, zero);
         packed = _mm256_andnot_si256(transparent, packed);
