@@ -103,7 +103,8 @@ struct Set {
 
 // The correction's bytes without its rule: over each light's rows, its
 // ground lines read and its mask read and written (value ^= below8), in the
-// correction's vector width, with its prefetch of the lines two rows ahead.
+// correction's vector width, with its prefetch of the lines eight rows ahead
+// (core/src/opacity_correction.cpp's rows_ahead).
 // Its ratio to the memset of the areas says how much of
 // correction_times_floor is the traffic itself.
 template <class XorRow>
@@ -114,8 +115,11 @@ void correction_streams(const GroundLines& lines, std::vector<LightMask>& masks,
         for (int y = r.y; y < r.y + r.h; ++y) {
             const std::uint8_t* b = &lines.below8[std::size_t(y - lines.rect.y) * stride + std::size_t(r.x - lines.rect.x)];
             std::uint8_t* v = &m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(r.x - m.clip.x)];
-            if (y + 2 < r.y + r.h)
-                for (int x = 0; x < r.w; x += 64) __builtin_prefetch(b + 2 * stride + x);
+            if (y == r.y)
+                for (int k = 0; k < 8 && y + k < r.y + r.h; ++k)
+                    for (int x = 0; x < r.w; x += 64) __builtin_prefetch(b + std::size_t(k) * stride + std::size_t(x));
+            if (y + 8 < r.y + r.h)
+                for (int x = 0; x < r.w; x += 64) __builtin_prefetch(b + 8 * stride + std::size_t(x));
             xor_row(v, b, r.w);
         }
         benchmark::DoNotOptimize(m.value.data());

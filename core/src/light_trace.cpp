@@ -14,8 +14,6 @@
 #include <tuple>
 #include <utility>
 
-#include "rows_ahead.hpp"
-
 namespace isolux {
 
 namespace {
@@ -338,10 +336,8 @@ std::int64_t prune_tree(const RayTree& t, const TreeValues& v, const std::uint8_
     // 1. The obstacle nodes, read from the obstacle map in place (each
     // obstacle byte found by memchr, as area_is_clear does; bytes are 0 or 1).
     cut.clear();
-    for (int k = 0; k < rows_ahead && k < h; ++k) ask_for_row(ob + k * ob_stride, std::size_t(w));
     for (int y = 0; y < h; ++y) {
         const std::uint8_t* row = ob + y * ob_stride;
-        if (y + rows_ahead < h) ask_for_row(row + rows_ahead * ob_stride, std::size_t(w));
         for (const void* hit = std::memchr(row, 1, std::size_t(w)); hit;) {
             const std::size_t x = std::size_t(static_cast<const std::uint8_t*>(hit) - row);
             const std::size_t p = std::size_t(y) * std::size_t(w) + x;
@@ -499,14 +495,9 @@ void trace_light_into(LightMask& m, const Mask& obstacles, std::int64_t cx, std:
                 // The walk: the area's obstacles copied row by row into the mask's layout first.
                 thread_local std::vector<std::uint8_t> local;
                 local.resize(n);
-                // (Rows of a world-wide array: asked for ahead, rows_ahead.hpp.)
-                const std::size_t ob_width = std::size_t(obstacles.width);
-                for (int k = 0; k < rows_ahead && k < clip.h; ++k) ask_for_row(ob_area + std::size_t(k) * ob_width, std::size_t(clip.w));
-                for (int y = 0; y < clip.h; ++y) {
-                    if (y + rows_ahead < clip.h)
-                        ask_for_row(ob_area + std::size_t(y + rows_ahead) * ob_width, std::size_t(clip.w));
-                    std::memcpy(&local[std::size_t(y) * clip.w], ob_area + std::size_t(y) * ob_width, std::size_t(clip.w));
-                }
+                for (int y = 0; y < clip.h; ++y)
+                    std::memcpy(&local[std::size_t(y) * clip.w], ob_area + std::size_t(y) * obstacles.width,
+                                std::size_t(clip.w));
                 visited = p.mode == Mode::light
                               ? walk_tree<Mode::light>(values->node.data(), nodes, local.data(), m.value.data(), nullptr)
                               : walk_tree<Mode::shadow>(values->node.data(), nodes, local.data(), m.value.data(),
