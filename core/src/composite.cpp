@@ -203,7 +203,7 @@ void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const S
 template <bool Shadow, bool Surface, bool DarkUnlit>
 ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k,
                                 std::uint8_t* d) {
-    const __m256i zero = _mm256_setzero_si256();
+    const __m256i zero = _mm256_setzero_si256(), alpha_byte = _mm256_set1_epi32(std::int32_t(0xFF000000u));
     const __m128i rgb_bytes = _mm_set1_epi32(0xFFFFFF);
     const __m256i up_a_lane = _mm256_setr_epi32(0, 1, 2, 3, 3, 4, 5, 6);
     const __m256i spread_rgb = _mm256_setr_epi8(0, 1, 2, -128, 3, 4, 5, -128, 6, 7, 8, -128, 9, 10, 11, -128,  //
@@ -256,12 +256,12 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
             c[ch] = _mm256_cvtepi32_ps(_mm256_shuffle_epi8(sp, channel[ch]));
             L[ch] = _mm256_cvtepi32_ps(_mm256_shuffle_epi8(lv, channel[ch]));
         }
-        const __m256i alpha = _mm256_srli_epi32(sp, 24);
+        const __m256i alpha = _mm256_and_si256(sp, alpha_byte);  // in place: the output's alpha as it is
         // The luminance with the light's scale in it (luminance mix): one multiply per channel below.
         const __m256 luminance =
             _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(c[0], kr), _mm256_mul_ps(c[1], kg)), _mm256_mul_ps(c[2], kb));
         __m256 bad = fzero;
-        __m256i packed = _mm256_slli_epi32(alpha, 24);
+        __m256i packed = alpha;
         for (int ch = 0; ch < 3; ++ch) {
             __m256 v;
             if constexpr (Surface && Shadow) {
@@ -280,7 +280,9 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
             // Rounded to the nearest level: floor(x + 1/2) unless x lies
             // within 1/2048 of a level's half, where the pixel is redone
             // (ties included, so the rounding's tie rule never shows).
-            const __m256 x = _mm256_min_ps(_mm256_max_ps(v, fzero), top);
+            // (Only shadow mode's difference can fall below 0: elsewhere v
+            // is a sum of products of terms >= 0.)
+            const __m256 x = _mm256_min_ps(Shadow && !Surface ? _mm256_max_ps(v, fzero) : v, top);
             const __m256 level = _mm256_round_ps(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
             const __m256 off = _mm256_and_ps(_mm256_sub_ps(x, level), no_sign);
             bad = _mm256_or_ps(bad, _mm256_cmp_ps(off, half_less_near, _CMP_GT_OQ));
