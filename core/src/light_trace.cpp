@@ -300,6 +300,22 @@ template <Mode M>
     const WalkNode* at = node;
     const WalkNode* const stop = node + n;
     while (at < stop) {
+        if (M == Mode::light) {
+            // Four nodes at a time while none is an obstacle (about one node
+            // in 200 is, in the default map): one branch per four, not one
+            // per node; the loop was bound by its instructions, not by memory.
+            while (at + 4 <= stop) {
+                const std::uint32_t w0 = at[0].word, w1 = at[1].word, w2 = at[2].word, w3 = at[3].word;
+                const std::size_t o0 = w0 >> 8, o1 = w1 >> 8, o2 = w2 >> 8, o3 = w3 >> 8;
+                if (ob[o0] | ob[o1] | ob[o2] | ob[o3]) break;
+                value[o0] = std::uint8_t(w0);
+                value[o1] = std::uint8_t(w1);
+                value[o2] = std::uint8_t(w2);
+                value[o3] = std::uint8_t(w3);
+                at += 4;
+            }
+            if (at >= stop) break;
+        }
         const std::uint32_t w = at->word;
         const std::size_t o = w >> 8;
         if (ob[o]) {
