@@ -201,9 +201,11 @@ void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const S
 // redone exactly, a quarter as many pixels as shade_row_sse2's 1/512. The
 // light's eight texels come from two of shade_row_sse2's four-texel loads.
 template <bool Shadow, bool Surface, bool DarkUnlit>
-ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k,
+ISOLUX_AVX2_FMA void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k,
                                 std::uint8_t* d) {
-    const __m256i zero = _mm256_setzero_si256(), alpha_byte = _mm256_set1_epi32(std::int32_t(0xFF000000u));
+    const __m256i zero = _mm256_setzero_si256();
+    const __m256i by_pixel = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15,  //
+                                              0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
     const __m128i rgb_bytes = _mm_set1_epi32(0xFFFFFF);
     const __m256i up_a_lane = _mm256_setr_epi32(0, 1, 2, 3, 3, 4, 5, 6);
     const __m256i spread_rgb = _mm256_setr_epi8(0, 1, 2, -128, 3, 4, 5, -128, 6, 7, 8, -128, 9, 10, 11, -128,  //
@@ -214,7 +216,7 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
         _mm256_setr_epi8(1, -128, -128, -128, 5, -128, -128, -128, 9, -128, -128, -128, 13, -128, -128, -128, 1, -128, -128, -128, 5, -128, -128, -128, 9, -128, -128, -128, 13, -128, -128, -128),
         _mm256_setr_epi8(2, -128, -128, -128, 6, -128, -128, -128, 10, -128, -128, -128, 14, -128, -128, -128, 2, -128, -128, -128, 6, -128, -128, -128, 10, -128, -128, -128, 14, -128, -128, -128)};
     const std::uint8_t* l_end = k.light_end ? k.light_end : l;
-    const __m256 inv255 = _mm256_set1_ps(1.0f / 255.0f), top = _mm256_set1_ps(255.0f),
+    const __m256 inv255 = _mm256_set1_ps(1.0f / 255.0f),
                  half_less_near = _mm256_set1_ps(0.5f - 1.0f / 2048.0f),
                  no_sign = _mm256_castsi256_ps(_mm256_set1_epi32(0x7FFFFFFF)), one = _mm256_set1_ps(1.0f),
                  three_quarters = _mm256_set1_ps(0.75f), ts = _mm256_set1_ps(k.tex_scale),
@@ -256,12 +258,11 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
             c[ch] = _mm256_cvtepi32_ps(_mm256_shuffle_epi8(sp, channel[ch]));
             L[ch] = _mm256_cvtepi32_ps(_mm256_shuffle_epi8(lv, channel[ch]));
         }
-        const __m256i alpha = _mm256_and_si256(sp, alpha_byte);  // in place: the output's alpha as it is
+        const __m256i alpha = _mm256_srli_epi32(sp, 24);
         // The luminance with the light's scale in it (luminance mix): one multiply per channel below.
-        const __m256 luminance =
-            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(c[0], kr), _mm256_mul_ps(c[1], kg)), _mm256_mul_ps(c[2], kb));
+        const __m256 luminance = _mm256_fmadd_ps(c[2], kb, _mm256_fmadd_ps(c[1], kg, _mm256_mul_ps(c[0], kr)));
         __m256 bad = fzero;
-        __m256i packed = alpha;
+        __m256i level[3];
         for (int ch = 0; ch < 3; ++ch) {
             __m256 v;
             if constexpr (Surface && Shadow) {
@@ -270,26 +271,30 @@ ISOLUX_AVX2 void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, in
             } else {
                 const __m256 light_factor =
                     Surface ? _mm256_mul_ps(_mm256_mul_ps(c[ch], L[ch]), light_scale) : _mm256_mul_ps(luminance, L[ch]);
-                __m256 tex_factor = _mm256_mul_ps(c[ch], ts);
                 if constexpr (DarkUnlit) {
                     const __m256 lu = _mm256_mul_ps(L[ch], inv255);
-                    tex_factor = _mm256_mul_ps(tex_factor, Shadow ? _mm256_sub_ps(one, lu) : lu);
+                    const __m256 tex_factor = _mm256_mul_ps(_mm256_mul_ps(c[ch], ts), Shadow ? _mm256_sub_ps(one, lu) : lu);
+                    v = Shadow ? _mm256_sub_ps(tex_factor, light_factor) : _mm256_add_ps(tex_factor, light_factor);
+                } else {
+                    v = Shadow ? _mm256_fmsub_ps(c[ch], ts, light_factor) : _mm256_fmadd_ps(c[ch], ts, light_factor);
                 }
-                v = Shadow ? _mm256_sub_ps(tex_factor, light_factor) : _mm256_add_ps(tex_factor, light_factor);
             }
             // Rounded to the nearest level: floor(x + 1/2) unless x lies
             // within 1/2048 of a level's half, where the pixel is redone
-            // (ties included, so the rounding's tie rule never shows).
-            // (Only shadow mode's difference can fall below 0: elsewhere v
-            // is a sum of products of terms >= 0.)
-            const __m256 x = _mm256_min_ps(Shadow && !Surface ? _mm256_max_ps(v, fzero) : v, top);
-            const __m256 level = _mm256_round_ps(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
-            const __m256 off = _mm256_and_ps(_mm256_sub_ps(x, level), no_sign);
+            // (ties included, so the rounding's tie rule never shows). Not
+            // clamped here: the packs below saturate to 0..255, and a value
+            // beyond those bounds by more than the error bound saturates the
+            // same whichever way it rounds (one nearer is checked as any).
+            const __m256 rounded = _mm256_round_ps(v, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+            const __m256 off = _mm256_and_ps(_mm256_sub_ps(v, rounded), no_sign);
             bad = _mm256_or_ps(bad, _mm256_cmp_ps(off, half_less_near, _CMP_GT_OQ));
-            packed = _mm256_or_si256(packed, _mm256_slli_epi32(_mm256_cvttps_epi32(level), 8 * ch));
+            level[ch] = _mm256_cvttps_epi32(rounded);
         }
+        // r, g, b, alpha as 32-bit lanes to bytes, saturating: per 16-byte
+        // lane r0-3 g0-3 b0-3 a0-3, then each pixel's four bytes together.
+        const __m256i bytes = _mm256_packus_epi16(_mm256_packus_epi32(level[0], level[1]), _mm256_packus_epi32(level[2], alpha));
         const __m256i transparent = _mm256_cmpeq_epi32(alpha, zero);
-        packed = _mm256_andnot_si256(transparent, packed);
+        const __m256i packed = _mm256_andnot_si256(transparent, _mm256_shuffle_epi8(bytes, by_pixel));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + std::size_t(i) * 4), packed);
         const int redo = _mm256_movemask_ps(_mm256_andnot_ps(_mm256_castsi256_ps(transparent), bad));
         if (redo)
