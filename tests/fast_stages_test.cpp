@@ -514,6 +514,43 @@ TEST(OnlyWhatChanged, TheDisjointUnionCoversEachPixelOfThePartsOnce) {
     EXPECT_EQ(disjoint_union({{0, 0, 10, 5}, {0, 5, 10, 5}}), (std::vector<Rect>{{0, 0, 10, 10}}));
 }
 
+TEST(OnlyWhatChanged, AGapJoinsCloseRunsOfABandAndNothingElse) {
+    // Runs 6 apart join with a gap of 6 (the pixels between included), not
+    // with 5; runs in other bands, and parts farther apart, stay apart.
+    const std::vector<Rect> parts = {{0, 0, 10, 4}, {16, 0, 10, 4}, {100, 0, 5, 4}, {0, 10, 5, 2}};
+    EXPECT_EQ(disjoint_union(parts, 5), disjoint_union(parts));
+    EXPECT_EQ(disjoint_union(parts, 6), (std::vector<Rect>{{0, 0, 26, 4}, {100, 0, 5, 4}, {0, 10, 5, 2}}));
+    // Random parts: disjoint, covering the union, and every pixel added lies
+    // between two runs of its row at most `gap` apart.
+    Pcg32 rng(6);
+    for (int round = 0; round < 300; ++round) {
+        std::vector<Rect> random(rng.below(10));
+        for (Rect& r : random) r = {int(rng.below(60)), int(rng.below(30)), int(rng.below(15)), int(rng.below(15))};
+        const int gap = int(rng.below(12));
+        std::vector<int> in(100 * 50, 0), got(100 * 50, 0);
+        for (const Rect& r : random)
+            for (int y = r.y; y < r.y + r.h; ++y)
+                for (int x = r.x; x < r.x + r.w; ++x) in[std::size_t(y) * 100 + std::size_t(x)] = 1;
+        for (const Rect& r : disjoint_union(random, gap))
+            for (int y = r.y; y < r.y + r.h; ++y)
+                for (int x = r.x; x < r.x + r.w; ++x) got[std::size_t(y) * 100 + std::size_t(x)] += 1;
+        for (int y = 0; y < 50; ++y)
+            for (int x = 0; x < 100; ++x) {
+                const std::size_t i = std::size_t(y) * 100 + std::size_t(x);
+                ASSERT_LE(got[i], 1) << "round " << round << ": pixel twice";
+                if (in[i]) {
+                    ASSERT_EQ(got[i], 1) << "round " << round << ": pixel of the union left out";
+                }
+                if (got[i] && !in[i]) {  // added: the union's nearest pixels left and right are at most gap + 1 apart
+                    int l = x, r = x;
+                    while (l >= 0 && !in[std::size_t(y) * 100 + std::size_t(l)]) --l;
+                    while (r < 100 && !in[std::size_t(y) * 100 + std::size_t(r)]) ++r;
+                    ASSERT_TRUE(l >= 0 && r < 100 && r - l - 1 <= gap) << "round " << round << " at " << x << "," << y;
+                }
+            }
+    }
+}
+
 TEST(OnlyWhatChanged, LightsFarApartAreRedoneApart) {
     // Two lights at opposite corners of the view move: the blur and the
     // composite redo their two areas, not the box spanning the view.

@@ -13,7 +13,7 @@ Rect bounding(const Rect& a, const Rect& b) {
     return {x0, y0, x1 - x0, y1 - y0};
 }
 
-std::vector<Rect> disjoint_union(std::vector<Rect> parts) {
+std::vector<Rect> disjoint_union(std::vector<Rect> parts, int gap) {
     std::erase_if(parts, [](const Rect& r) { return r.empty(); });
     if (parts.size() <= 1) return parts;
     std::vector<int> edges;
@@ -32,7 +32,7 @@ std::vector<Rect> disjoint_union(std::vector<Rect> parts) {
         here.clear();
         for (std::size_t i = 0; i < runs.size();) {
             int x0 = runs[i].first, x1 = runs[i].second;
-            for (++i; i < runs.size() && runs[i].first <= x1; ++i) x1 = std::max(x1, runs[i].second);
+            for (++i; i < runs.size() && runs[i].first <= x1 + gap; ++i) x1 = std::max(x1, runs[i].second);
             const auto same = std::find_if(above.begin(), above.end(), [&](std::size_t k) {
                 return out[k].x == x0 && out[k].w == x1 - x0;
             });

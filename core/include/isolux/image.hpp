@@ -31,8 +31,11 @@ Rect bounding(const Rect& a, const Rect& b);
 // Every pixel of the parts once: disjoint rectangles covering exactly their
 // union, top to bottom. Cut into bands at the parts' top and bottom edges,
 // each band's runs merged, a run joining the same run of the band above, so
-// that a frame redoes several lights' areas and nothing between them.
-std::vector<Rect> disjoint_union(std::vector<Rect> parts);
+// that a frame redoes several lights' areas and nothing between them. With
+// `gap` > 0, two runs of a band at most `gap` pixels apart are joined with
+// the pixels between them (for a pass that may redo pixels: fewer, longer
+// rows cost less than the pixels they add).
+std::vector<Rect> disjoint_union(std::vector<Rect> parts, int gap = 0);
 
 // An 8-bit RGBA image, row-major, straight (not premultiplied) alpha.
 struct Image {
