@@ -200,6 +200,18 @@ void register_whole_frames() {
         for (auto _ : st)
             composite_into(s.frame.sprites, s.frame.view, s.frame.cache.blurred, s.scene.params, s.frame.view, out);
     })->Unit(benchmark::kMillisecond);
+    // The same composite over the whole view in vertical strips: the same
+    // pixels in shorter pieces of rows (what the frame's join_gap is for).
+    for (int strip : {1920, 960, 480})
+        benchmark::RegisterBenchmark(("stage/composite_strips/" + std::to_string(strip)).c_str(), [strip](benchmark::State& st) {
+            ScreenScene& s = screen("default", 1);
+            Image out(s.frame.view.w, s.frame.view.h);
+            const Rect v = s.frame.view;
+            for (auto _ : st)
+                for (int x = 0; x < v.w; x += strip)
+                    composite_into(s.frame.sprites, v, s.frame.cache.blurred, s.scene.params,
+                                   Rect{v.x + x, v.y, std::min(strip, v.w - x), v.h}, out);
+        })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("stage/correction/forest", [](benchmark::State& st) {
         ScreenScene& s = screen("forest", 1);
         std::vector<LightMask> masks = traced_masks(s);

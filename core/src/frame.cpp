@@ -659,8 +659,8 @@ void keep_trace(FrameState& st, const Scene& scene, LightPlan& plan, FrameReport
 // Pieces of the blur's and the composite's rows closer than this are done as
 // one, the pixels between them (unchanged, so redone to the same bytes)
 // included: each piece of a row starts the hardware's prefetch anew, which
-// costs what a few hundred pixels do (`stage/composite` over the whole view
-// took 1.92 ms in full rows, 2.58 ms in 960-pixel strips, 3.09 ms in 480).
+// costs what a few hundred pixels do (isolux-bench's stage/composite_strips:
+// the same pixels in full rows and in 960- and 480-pixel strips).
 constexpr int join_gap = 256;
 
 // Paper 3.2 and Algorithm 3 on the CPU: the blur, and the composite reading
