@@ -11,6 +11,8 @@ STAGE_OF = [
     ("trace_light_into", "trace"),
     ("trace_fast", "trace"),
     ("prune_tree", "trace"),
+    ("obstacle_pixels", "trace"),
+    ("copy_area_rows", "trace"),
     ("tree_values", "trace"),
     ("area_is_clear", "trace"),
     ("accumulate_light", "trace"),
