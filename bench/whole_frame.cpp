@@ -104,7 +104,7 @@ struct Set {
 // The correction's bytes without its rule: over each light's rows, its
 // ground lines read and its mask read and written (value ^= below8), in the
 // correction's vector width, with its prefetch of the lines eight rows ahead
-// (core/src/opacity_correction.cpp's rows_ahead).
+// (core/src/rows_ahead.hpp).
 // Its ratio to the memset of the areas says how much of
 // correction_times_floor is the traffic itself.
 template <class XorRow>

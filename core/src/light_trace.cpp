@@ -14,6 +14,8 @@
 #include <tuple>
 #include <utility>
 
+#include "rows_ahead.hpp"
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -402,12 +404,12 @@ std::int64_t prune_tree(const RayTree& t, const TreeValues& v, const std::uint8_
     // here at random (one place per obstacle pixel, one per node): each
     // round of reads is asked for first, so that their trips to memory
     // overlap (one after the other they were most of a pruned light).
-    thread_local std::vector<std::uint32_t> at;
-    obstacle_pixels(ob, pixels, at);
-    for (const std::uint32_t p : at) __builtin_prefetch(&t.pixel_start[p]);
-    for (const std::uint32_t p : at) __builtin_prefetch(&t.pixel_nodes[std::size_t(t.pixel_start[p])]);
+    thread_local std::vector<std::uint32_t> hit;
+    obstacle_pixels(ob, pixels, hit);
+    for (const std::uint32_t p : hit) __builtin_prefetch(&t.pixel_start[p]);
+    for (const std::uint32_t p : hit) __builtin_prefetch(&t.pixel_nodes[std::size_t(t.pixel_start[p])]);
     cut.clear();
-    for (const std::uint32_t p : at)
+    for (const std::uint32_t p : hit)
         cut.insert(cut.end(), t.pixel_nodes.begin() + t.pixel_start[p], t.pixel_nodes.begin() + t.pixel_start[p + 1]);
     for (const std::int32_t j : cut) __builtin_prefetch(&v.node[std::size_t(j)]);
     // 3. The outermost of their subtrees, and how many nodes they cut (each
@@ -436,17 +438,11 @@ std::int64_t prune_tree(const RayTree& t, const TreeValues& v, const std::uint8_
 }
 
 // Rows [0, h) of `w` bytes from `from` (rows `stride` apart) into `to`,
-// contiguous, each asked for `rows_ahead` rows before it is copied.
-constexpr int rows_ahead = 8;
+// contiguous: rows of a world-wide array, asked for ahead (rows_ahead.hpp).
 void copy_area_rows(const std::uint8_t* from, std::ptrdiff_t stride, int w, int h, std::uint8_t* to) {
-    auto ask_for = [&](int y) {
-        const std::uint8_t* row = from + y * stride;
-        for (int x = 0; x < w; x += 64) __builtin_prefetch(row + x);
-        __builtin_prefetch(row + w - 1);
-    };
-    for (int y = 0; y < std::min(h, rows_ahead); ++y) ask_for(y);
+    for (int y = 0; y < std::min(h, rows_ahead); ++y) ask_for_row(from + y * stride, std::size_t(w));
     for (int y = 0; y < h; ++y) {
-        if (y + rows_ahead < h) ask_for(y + rows_ahead);
+        if (y + rows_ahead < h) ask_for_row(from + (y + rows_ahead) * stride, std::size_t(w));
         std::memcpy(to + std::size_t(y) * std::size_t(w), from + y * stride, std::size_t(w));
     }
 }
@@ -569,10 +565,10 @@ void trace_light_into(LightMask& m, const Mask& obstacles, std::int64_t cx, std:
             std::uint8_t* reached_all = p.mode == Mode::shadow ? m.reached.data() : nullptr;
             // The area's obstacles copied row by row into the mask's layout
             // first: both the prune and the walk read them so. The rows are
-            // short pieces of the world-wide map on pages of their own, which
-            // have left the caches since the last frame: each is asked for
-            // `rows_ahead` rows before it is copied (the copy was a trip to
-            // memory per row, 16.7 us a light; with this 7.5 us).
+            // short pieces of the world-wide map, which have left the caches
+            // since the last frame: each is asked for `rows_ahead` rows before
+            // it is copied (the copy was a trip to memory per row, 16.7 us a
+            // light; with this 7.5 us).
             const std::uint8_t* ob_area =
                 &obstacles.bits[std::size_t(clip.y - obstacles.y0) * obstacles.width + std::size_t(clip.x - obstacles.x0)];
             thread_local std::vector<std::uint8_t> local;

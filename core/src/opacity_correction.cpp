@@ -11,6 +11,7 @@
 
 #include "cpu_dispatch.hpp"
 #include "isolux/cpu.hpp"
+#include "rows_ahead.hpp"
 
 namespace isolux {
 
@@ -119,20 +120,6 @@ void repaint_ground_lines(GroundLines& lines, const PlacedMap& placed, const std
 
 namespace {
 
-// The lines are a world-wide array: each of a light's rows is a short piece
-// of it on another page, which the hardware does not fetch ahead, and in a
-// whole frame those rows have left every cache (the blur and the composite
-// stream tens of MB between two traces). The pass asks for the row
-// `rows_ahead` below the one it corrects: enough rows to cover a trip to
-// memory at its 10-20 ns per row of a 257-pixel area (two did not).
-constexpr int rows_ahead = 8;
-
-void ask_for_row(const std::uint8_t* row, std::size_t bytes) {
-    if (bytes == 0) return;
-    for (std::size_t x = 0; x < bytes; x += 64) __builtin_prefetch(row + x);
-    __builtin_prefetch(row + bytes - 1);
-}
-
 // 32 pixels of a row as one value: GCC's vector extensions, which the
 // baseline build lowers to two SSE2 halves and the AVX2 build to one register.
 // (Loads and stores by memcpy: unaligned, and no vector crosses a call.)
@@ -212,6 +199,7 @@ using Bytes32 = std::uint8_t __attribute__((vector_size(32)));
             const std::uint8_t* below8 = &lines.below8[line];
             std::uint8_t* value = &mask.value[m];
             std::uint8_t* reached = shadow ? &mask.reached[m] : nullptr;
+            // The lines are a world-wide array (rows_ahead.hpp).
             for (int k = 0; k < rows_ahead && y + k < y1; ++k) ask_for_row(below8 + std::size_t(k) * stride, std::size_t(r.w));
             for (; y < y1; ++y, below8 += stride, value += clip.w, reached += shadow ? clip.w : 0) {
                 if (y + rows_ahead < y1) ask_for_row(below8 + std::size_t(rows_ahead) * stride, std::size_t(r.w));
