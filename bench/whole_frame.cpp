@@ -235,7 +235,7 @@ void register_whole_frames() {
             for (LightMask& m : masks) correct_with_opacity_maps(m, s.world->placed, s.frame.opacity);
     })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("stage/floor/memcpy_traced", [](benchmark::State& st) {
-        Copy copy(screen("default", 1).frame.traced.rgb.size());
+        Copy copy(screen("default", 1).frame.traced.texels.size());
         for (auto _ : st) copy();
     })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("stage/floor/memset_forest_areas", [](benchmark::State& st) {
@@ -270,7 +270,7 @@ void print_floor_ratios() {
     // Each stage alone, one thread, into the buffer the frame keeps.
     const LightTexture& traced = one.frame.traced;
     LightTexture blurred(traced.rect);
-    Copy traced_copy(traced.rgb.size());
+    Copy traced_copy(traced.texels.size());
     print_ratio("blur_times_floor",
                 interleaved([&] { box_blur_into(traced, 2, traced.rect, blurred); }, 5, traced_copy, 30, pairs), "<= 4",
                 2);
@@ -286,9 +286,10 @@ void print_floor_ratios() {
                     interleaved(baseline, 5, [&] { box_blur_into(traced, 2, traced.rect, blurred); }, 5, pairs), nullptr, 2);
     }
 
-    // The composite reads the view's sprites (RGBA) and the light at the view (RGB).
+    // The composite reads the view's sprites (RGBA) and the light at the view
+    // (grey here, the frame's lights being white: one byte a texel).
     const Rect view = one.frame.view;
-    Copy composite_copy(std::size_t(view.w) * view.h * 7);
+    Copy composite_copy(std::size_t(view.w) * view.h * std::size_t(4 + blurred.channels));
     Image out(view.w, view.h);
     print_ratio("composite_times_floor", interleaved([&] {
                     composite_into(one.frame.sprites, view, blurred, one.scene.params, view, out);

@@ -37,8 +37,8 @@ SweepOptions quick() {
 
 TEST(Accuracy, metricsCountWhatDiffers) {
     LightTexture a(Rect{0, 0, 4, 1}), b(Rect{0, 0, 4, 1});
-    a.rgb = {0, 0, 0, 10, 10, 10, 200, 200, 200, 5, 5, 5};
-    b.rgb = {0, 0, 0, 0, 0, 0, 190, 200, 200, 5, 5, 5};
+    a.texels = {0, 0, 0, 10, 10, 10, 200, 200, 200, 5, 5, 5};
+    b.texels = {0, 0, 0, 0, 0, 0, 190, 200, 200, 5, 5, 5};
     ErrorMetrics m = compare_light(a, b);
     EXPECT_DOUBLE_EQ(m.lit_mismatch, 0.25);  // texel 1 is lit in a only
     EXPECT_DOUBLE_EQ(m.differing, 0.5);      // texels 1 and 2

@@ -30,9 +30,9 @@ namespace {
 LightTexture random_texture(Rect r, std::uint64_t seed) {
     LightTexture t(r);
     Pcg32 rng(seed);
-    for (std::size_t i = 0; i < t.rgb.size(); ++i) {
+    for (std::size_t i = 0; i < t.texels.size(); ++i) {
         const std::uint32_t k = rng.below(10);
-        t.rgb[i] = k < 4 ? 0 : k < 6 ? 255 : std::uint8_t(rng.below(256));
+        t.texels[i] = k < 4 ? 0 : k < 6 ? 255 : std::uint8_t(rng.below(256));
     }
     return t;
 }
@@ -62,7 +62,7 @@ TEST(FastBlur, EqualsTheReferenceForEveryRadiusAndSize) {
             const LightTexture want = box_blur_reference(t, radius);
             for (bool wide : both_widths()) {
                 set_wide_kernels(wide);
-                EXPECT_EQ(box_blur(t, radius).rgb, want.rgb) << r.w << "x" << r.h << " r " << radius << " wide " << wide;
+                EXPECT_EQ(box_blur(t, radius).texels, want.texels) << r.w << "x" << r.h << " r " << radius << " wide " << wide;
             }
             set_wide_kernels(true);
             ++checked;
@@ -79,16 +79,16 @@ TEST(FastBlur, WideRowsOfExtremeTexelsEqualTheReference) {
         for (int y = 0; y < r.h; ++y)
             for (int x = 0; x < r.w; ++x)
                 for (int c = 0; c < 3; ++c)
-                    t.rgb[(std::size_t(y) * r.w + x) * 3 + c] = (x / 16 + y / 8 + c) % 3 ? 255 : 0;
+                    t.texels[(std::size_t(y) * r.w + x) * 3 + c] = (x / 16 + y / 8 + c) % 3 ? 255 : 0;
         for (int radius : {1, 2, 3}) {
             const LightTexture want = box_blur_reference(t, radius);
             for (bool wide : both_widths()) {
                 set_wide_kernels(wide);
-                EXPECT_EQ(box_blur(t, radius).rgb, want.rgb) << r.w << " r " << radius << " wide " << wide;
+                EXPECT_EQ(box_blur(t, radius).texels, want.texels) << r.w << " r " << radius << " wide " << wide;
             }
             set_wide_kernels(true);
             int top = 0;
-            for (std::uint8_t v : want.rgb) top += v == 255;
+            for (std::uint8_t v : want.texels) top += v == 255;
             EXPECT_GT(top, 0) << "some windows must be all 255";
         }
     }
@@ -106,7 +106,7 @@ TEST(FastBlur, ARegionWritesOnlyItsTexelsAndTheirFullValues) {
             for (bool wide : both_widths()) {
                 set_wide_kernels(wide);
                 LightTexture out(r);
-                std::fill(out.rgb.begin(), out.rgb.end(), std::uint8_t(77));
+                std::fill(out.texels.begin(), out.texels.end(), std::uint8_t(77));
                 box_blur_into(t, radius, region, out);
                 for (int y = r.y; y < r.y + r.h; ++y)
                     for (int x = r.x; x < r.x + r.w; ++x)
@@ -160,7 +160,7 @@ TEST(FastComposite, EveryColourAndLightPairAtTheDefaults) {
         for (int x = 0; x < 256; ++x) {
             std::uint8_t* c = colour.at(x, y);
             c[0] = std::uint8_t(x), c[1] = std::uint8_t(255 - x), c[2] = std::uint8_t((x * 7 + y) & 255), c[3] = 255;
-            std::uint8_t* l = &light.rgb[(std::size_t(y) * 256 + x) * 3];
+            std::uint8_t* l = &light.texels[(std::size_t(y) * 256 + x) * 3];
             l[0] = std::uint8_t(y), l[1] = std::uint8_t((y * 3) & 255), l[2] = std::uint8_t(255 - y);
         }
     for (double ac : {0.4, 0.25, 0.9}) {
@@ -470,8 +470,8 @@ TEST(OnlyWhatChanged, OneMovedLightRedoesItsAreasAndEqualsAFreshFrame) {
             const FrameReport r = render_frame(st, w, s, cam, f);
             FrameState fresh;
             render_frame(fresh, w, s, cam, 0);
-            ASSERT_EQ(st.traced.rgb, fresh.traced.rgb) << "frame " << f;
-            ASSERT_EQ(st.light.rgb, fresh.light.rgb) << "frame " << f;
+            ASSERT_EQ(st.traced.texels, fresh.traced.texels) << "frame " << f;
+            ASSERT_EQ(st.light.texels, fresh.light.texels) << "frame " << f;
             ASSERT_EQ(st.final.rgba, fresh.final.rgba) << "frame " << f << ", " << threads << " threads";
             EXPECT_EQ(r.lights_traced, 1);
             // The blur and composite touched a part, not the whole texture or view.
@@ -617,7 +617,7 @@ TEST(OnlyWhatChanged, LightsSharingAPlaceEachKeepTheirMask) {
         EXPECT_EQ(r.lights_reused, 2);
         FrameState fresh;
         render_frame(fresh, w, s, cam, 0);
-        ASSERT_EQ(st.traced.rgb, fresh.traced.rgb) << "frame " << f;
+        ASSERT_EQ(st.traced.texels, fresh.traced.texels) << "frame " << f;
         ASSERT_EQ(st.final.rgba, fresh.final.rgba) << "frame " << f;
     }
 }
@@ -636,7 +636,7 @@ TEST(OnlyWhatChanged, RadiusAndModeChangesRedoEverything) {
         FrameState fresh;
         render_frame(fresh, w, s, Camera{}, 0);
         EXPECT_EQ(st.final.rgba, fresh.final.rgba) << "radius " << radius;
-        EXPECT_EQ(st.light.rgb, fresh.light.rgb) << "radius " << radius;
+        EXPECT_EQ(st.light.texels, fresh.light.texels) << "radius " << radius;
     }
 }
 
@@ -722,7 +722,7 @@ TEST(Accumulate, WhiteLightsAddTheirValueToEveryChannelSaturating) {
     accumulate_light(tex, m, white, p);
     accumulate_light(tex, m, white, p);
     const std::vector<std::uint8_t> want = {0, 0, 0, 200, 200, 200, 255, 255, 255, 255, 255, 255};
-    EXPECT_EQ(tex.rgb, want);
+    EXPECT_EQ(tex.texels, want);
 }
 
 TEST(Accumulate, WhiteRowsWiderThanAVectorSaturateInBothBuilds) {
@@ -814,7 +814,7 @@ TEST(LongWork, ACancelledFrameThrowsKeepsNothingAndTheNextFrameIsAFreshOne) {
         EXPECT_LT(double(done.load()), 0.5 * total) << "stopped late (" << seconds << " s)";
         EXPECT_FALSE(st.cache.has_trace);
         EXPECT_TRUE(st.cache.lights.empty());
-        EXPECT_TRUE(st.traced.rgb.empty());
+        EXPECT_TRUE(st.traced.texels.empty());
         EXPECT_EQ(st.options.threads, threads);  // the options are kept
         // The same state, not cancelled, on a scene small enough to finish: a fresh frame's bytes.
         cancel = false;
@@ -825,7 +825,7 @@ TEST(LongWork, ACancelledFrameThrowsKeepsNothingAndTheNextFrameIsAFreshOne) {
         fresh.options.threads = threads;
         render_frame(fresh, w, small, cam, 0);
         EXPECT_EQ(st.final.rgba, fresh.final.rgba);
-        EXPECT_EQ(st.traced.rgb, fresh.traced.rgb);
+        EXPECT_EQ(st.traced.texels, fresh.traced.texels);
     }
 }
 

@@ -106,12 +106,12 @@ TEST(Gl, blurAndCompositeMatchTheCpuReference) {
         renderer_upload_light(r, cpu.traced, cpu.traced.rect);
         renderer_draw_with_colour(r, cpu.sprites, cpu.view, s.params, CompositeOptions{});
         // The blurred light texture: exactly box_blur's 8-bit values.
-        const LightTexture ref = box_blur(cpu.traced, s.params.blur_radius);
+        const LightTexture ref = rgb_texture(box_blur(cpu.traced, s.params.blur_radius));
         Image blurred = renderer_read_blurred(r);
         int worst_blur = 0;
-        for (std::size_t i = 0; i < ref.rgb.size() / 3; ++i)
+        for (std::size_t i = 0; i < ref.texels.size() / 3; ++i)
             for (int k = 0; k < 3; ++k)
-                worst_blur = std::max(worst_blur, std::abs(int(blurred.rgba[i * 4 + k]) - int(ref.rgb[i * 3 + k])));
+                worst_blur = std::max(worst_blur, std::abs(int(blurred.rgba[i * 4 + k]) - int(ref.texels[i * 3 + k])));
         EXPECT_EQ(worst_blur, 0) << c.name << ": the GPU blur differs from box_blur";
         const int worst = max_diff(renderer_read_final(r), cpu.final);
         EXPECT_LE(worst, 2) << c.name << ": GPU composite differs from core's by " << worst << "/255";
@@ -250,7 +250,7 @@ TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
         const FrameReport rg = render_frame(gpu, world(), s, Camera{}, f);
         EXPECT_EQ(rc.tracer, "cpu");
         EXPECT_EQ(rg.tracer, "gpu");
-        EXPECT_EQ(gpu.traced.rgb, cpu.traced.rgb) << "frame " << f;
+        EXPECT_EQ(gpu.traced.texels, cpu.traced.texels) << "frame " << f;
         EXPECT_EQ(gpu.final.rgba, cpu.final.rgba) << "frame " << f;
     }
     // A new frame state on another map, with the same tracer: its obstacle
@@ -264,6 +264,6 @@ TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
     render_frame(cpu2, w2, s, Camera{}, 0);
     const FrameReport r2 = render_frame(gpu2, w2, s, Camera{}, 0);
     EXPECT_EQ(r2.tracer, "gpu");
-    EXPECT_EQ(gpu2.traced.rgb, cpu2.traced.rgb) << "a second frame state";
+    EXPECT_EQ(gpu2.traced.texels, cpu2.traced.texels) << "a second frame state";
     gpu_tracer_free(tracer);
 }

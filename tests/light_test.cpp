@@ -127,7 +127,7 @@ TEST(Trace, equalsTheUnionOfThePapersRays) {
         accumulate_light(tex, m, Light{}, p);
         for (std::size_t i = 0; i < ref.size(); ++i) {
             EXPECT_EQ(m.value[i], ref[i]) << "trial " << trial;  // the same intensities
-            EXPECT_EQ(tex.rgb[i * 3], ref[i]) << "trial " << trial;
+            EXPECT_EQ(tex.texels[i * 3], ref[i]) << "trial " << trial;
         }
         for (std::size_t i = 0; i < m.value.size(); ++i)
             if (obstacles.bits[i]) {
@@ -153,7 +153,7 @@ TEST(Trace, lightAndShadowAreComplementaryInsideTheArea) {
             for (std::size_t i = 0; i < lit.value.size(); ++i) {
                 const bool in_shadow = shadow.reached[i] && !shadow.lit(i);
                 ASSERT_NE(lit.lit(i), in_shadow) << "pixel " << i << " is in both or neither";
-                ASSERT_EQ(tl.rgb[i * 3] + ts.rgb[i * 3], tf.rgb[i * 3]);
+                ASSERT_EQ(tl.texels[i * 3] + ts.texels[i * 3], tf.texels[i * 3]);
             }
         }
     }
@@ -267,19 +267,19 @@ TEST(Blur, isTheClampedBoxMean) {
     LightTexture t(Rect{0, 0, 3, 1});
     const std::uint8_t v[3] = {0, 90, 180};
     for (int x = 0; x < 3; ++x)
-        for (int k = 0; k < 3; ++k) t.rgb[x * 3 + k] = v[x];
+        for (int k = 0; k < 3; ++k) t.texels[x * 3 + k] = v[x];
     LightTexture b = box_blur(t, 1);
     // Clamped at the edges: x=0 sees 0,0,90; x=1 sees 0,90,180; x=2 sees 90,180,180.
-    EXPECT_EQ(b.rgb[0], 30);
-    EXPECT_EQ(b.rgb[3], 90);
-    EXPECT_EQ(b.rgb[6], 150);
+    EXPECT_EQ(b.texels[0], 30);
+    EXPECT_EQ(b.texels[3], 90);
+    EXPECT_EQ(b.texels[6], 150);
     // A radius far larger than the texture: the clamp weights the edges.
     LightTexture big = box_blur(t, 50);
     // Window of 101 over x in [-50, 50+x]: 51 - x texels of 0 ... exact mean.
     const int n = 101;
     const int sum0 = 0 * 51 + 90 * 1 + 180 * 49;
-    EXPECT_EQ(big.rgb[0], (sum0 + n / 2) / n);
-    EXPECT_EQ(box_blur(t, 0).rgb, t.rgb);
+    EXPECT_EQ(big.texels[0], (sum0 + n / 2) / n);
+    EXPECT_EQ(box_blur(t, 0).texels, t.texels);
 }
 
 TEST(Composite, equalsAlgorithm3AtChosenPixels) {
@@ -295,7 +295,7 @@ TEST(Composite, equalsAlgorithm3AtChosenPixels) {
         std::copy(k.c, k.c + 3, colour.at(0, 0));
         colour.at(0, 0)[3] = 255;
         LightTexture light(Rect{0, 0, 1, 1});
-        light.rgb = {k.l, k.l, k.l};
+        light.texels = {k.l, k.l, k.l};
         Params p;
         p.ambient_clarity = k.ambient;
         p.dark_unlit = k.dark;
@@ -349,7 +349,7 @@ TEST(Frame, theShiftedTextureEqualsAFreshTraceOfTheMovedView) {
         FrameState moving;
         Camera cam{300, 150, 400, 300};
         render_frame(moving, test_world(), s, cam, 0);
-        ASSERT_GT(*std::max_element(moving.light.rgb.begin(), moving.light.rgb.end()), 100);
+        ASSERT_GT(*std::max_element(moving.light.texels.begin(), moving.light.texels.end()), 100);
         for (long f = 1; f < 4; ++f) {
             cam.x += 7;
             cam.y += 4.5;  // sub-pixel steps too
@@ -359,7 +359,7 @@ TEST(Frame, theShiftedTextureEqualsAFreshTraceOfTheMovedView) {
             FrameState fresh;
             render_frame(fresh, test_world(), s, cam, 0);
             EXPECT_EQ(moving.light.rect, fresh.light.rect);
-            EXPECT_EQ(moving.light.rgb, fresh.light.rgb) << "blur " << blur << " frame " << f;
+            EXPECT_EQ(moving.light.texels, fresh.light.texels) << "blur " << blur << " frame " << f;
             EXPECT_EQ(moving.final.rgba, fresh.final.rgba);
         }
     }
@@ -424,7 +424,7 @@ TEST(Frame, lightsOutsideTheMapLightWhatTheyReach) {
     FrameReport r = render_frame(st, test_world(), s, Camera{}, 0);
     EXPECT_EQ(r.lights_traced, 1);
     long lit = 0;
-    for (std::uint8_t v : st.light.rgb) lit += v > 0;
+    for (std::uint8_t v : st.light.texels) lit += v > 0;
     EXPECT_GT(lit, 0);
     s.lights = {Light{1e8, 1e8}};  // far away: nothing to trace
     FrameState st2;

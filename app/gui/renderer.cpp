@@ -106,14 +106,14 @@ GLuint make_texture() {
     return t;
 }
 
-// RGB8 light texture to RGBA8 rows (GL row 0 = the texture's top row).
+// The light texture (RGB or grey) to RGBA8 rows (GL row 0 = the texture's top row).
 std::vector<std::uint8_t> to_rgba(const LightTexture& tex, Rect r) {
     std::vector<std::uint8_t> out(std::size_t(r.w) * r.h * 4);
     for (int y = 0; y < r.h; ++y)
         for (int x = 0; x < r.w; ++x) {
-            const std::uint8_t* s = tex.at(r.x + x, r.y + y);
             std::uint8_t* d = &out[(std::size_t(y) * r.w + x) * 4];
-            d[0] = s[0], d[1] = s[1], d[2] = s[2], d[3] = 255;
+            for (int k = 0; k < 3; ++k) d[k] = tex.value(r.x + x, r.y + y, k);
+            d[3] = 255;
         }
     return out;
 }

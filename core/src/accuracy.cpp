@@ -78,7 +78,8 @@ std::string num(double v, int precision = 4) {
 
 ErrorMetrics compare_light(const LightTexture& test, const LightTexture& ref) {
     if (!(test.rect == ref.rect)) throw Error("compare_light: textures cover different rectangles");
-    return compare_raw(test.rgb.data(), ref.rgb.data(), test.rect.w, test.rect.h, 3, 3);
+    const LightTexture t = rgb_texture(test), r = rgb_texture(ref);  // either may be grey
+    return compare_raw(t.texels.data(), r.texels.data(), test.rect.w, test.rect.h, 3, 3);
 }
 
 ErrorMetrics compare_images(const Image& test, const Image& ref) {
@@ -155,9 +156,11 @@ void compare_in_areas(const LightTexture& model, const LightTexture& ref, const 
             if (!inside[std::size_t(x - r.x)]) continue;
             const std::size_t i = std::size_t(y - r.y) * r.w + (x - r.x);
             const int kind = surface.instance[i] >= 0 ? 1 : 0;
-            const std::uint8_t zero[3] = {0, 0, 0};
-            const std::uint8_t* a = model.rect.contains(x, y) ? model.at(x, y) : zero;
-            const std::uint8_t* b = ref.rect.contains(x, y) ? ref.at(x, y) : zero;
+            std::uint8_t a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
+            for (int k = 0; k < 3; ++k) {
+                if (model.rect.contains(x, y)) a[k] = model.value(x, y, k);
+                if (ref.rect.contains(x, y)) b[k] = ref.value(x, y, k);
+            }
             double e = 0;
             for (int k = 0; k < 3; ++k) e += double(a[k] - b[k]) * double(a[k] - b[k]);
             const bool lit_a = a[0] || a[1] || a[2], lit_b = b[0] || b[1] || b[2];

@@ -20,7 +20,8 @@ namespace isolux {
 namespace {
 
 bool valid(const LightTexture& tex) {
-    return tex.rgb.size() == std::size_t(std::max(0, tex.rect.w)) * std::max(0, tex.rect.h) * 3;
+    return (tex.channels == 1 || tex.channels == 3) &&
+           tex.texels.size() == std::size_t(std::max(0, tex.rect.w)) * std::max(0, tex.rect.h) * std::size_t(tex.channels);
 }
 
 // round(v / n) for the window sums v <= 255 n, n odd: floor(v / n + 1/2).
@@ -79,74 +80,75 @@ void divide_row_16(const std::uint16_t* sum, std::size_t count, std::uint16_t ha
 
 // One row's horizontal window sums over local columns [x0, x0 + w) of a
 // texture `width` wide: each the sum of 2r+1 texels, clamped at the edges.
-template <class Sum>
+// C: the texture's channels (a texel's bytes), here and below.
+template <class Sum, int C>
 struct RowSums {
     int r, width, x0, w;
     std::vector<Sum> pad, prefix;
 
     RowSums(int radius, int tex_width, int col0, int cols)
-        : r(radius), width(tex_width), x0(col0), w(cols), pad(std::size_t(cols + 2 * radius) * 3),
-          prefix(radius > 3 ? pad.size() + 3 : 0) {}
+        : r(radius), width(tex_width), x0(col0), w(cols), pad(std::size_t(cols + 2 * radius) * C),
+          prefix(radius > 3 ? pad.size() + C : 0) {}
 
     void operator()(const std::uint8_t* row, Sum* out) {
         // The row with its clamped border: pad[i] is texel x0 - r + i.
         const int n = w + 2 * r;
         const int inner0 = std::clamp(r - x0, 0, n), inner1 = std::clamp(width + r - x0, inner0, n);
         for (int i = 0; i < inner0; ++i)
-            for (int c = 0; c < 3; ++c) pad[std::size_t(i) * 3 + c] = row[c];
-        const std::uint8_t* src = row + std::size_t(x0 - r + inner0) * 3;
-        for (std::size_t j = 0, m = std::size_t(inner1 - inner0) * 3; j < m; ++j) pad[std::size_t(inner0) * 3 + j] = src[j];
+            for (int c = 0; c < C; ++c) pad[std::size_t(i) * C + c] = row[c];
+        const std::uint8_t* src = row + std::size_t(x0 - r + inner0) * C;
+        for (std::size_t j = 0, m = std::size_t(inner1 - inner0) * C; j < m; ++j) pad[std::size_t(inner0) * C + j] = src[j];
         for (int i = inner1; i < n; ++i)
-            for (int c = 0; c < 3; ++c) pad[std::size_t(i) * 3 + c] = row[std::size_t(width - 1) * 3 + c];
-        const std::size_t m = std::size_t(w) * 3;
+            for (int c = 0; c < C; ++c) pad[std::size_t(i) * C + c] = row[std::size_t(width - 1) * C + c];
+        const std::size_t m = std::size_t(w) * C;
         // Small windows: the 2r+1 shifted rows added in one vector loop.
         const Sum* p = pad.data();
         switch (r) {
             case 1:
-                for (std::size_t j = 0; j < m; ++j) out[j] = Sum(p[j] + p[j + 3] + p[j + 6]);
+                for (std::size_t j = 0; j < m; ++j) out[j] = Sum(p[j] + p[j + C] + p[j + 2 * C]);
                 return;
             case 2:
-                for (std::size_t j = 0; j < m; ++j) out[j] = Sum(p[j] + p[j + 3] + p[j + 6] + p[j + 9] + p[j + 12]);
+                for (std::size_t j = 0; j < m; ++j) out[j] = Sum(p[j] + p[j + C] + p[j + 2 * C] + p[j + 3 * C] + p[j + 4 * C]);
                 return;
             case 3:
                 for (std::size_t j = 0; j < m; ++j)
-                    out[j] = Sum(p[j] + p[j + 3] + p[j + 6] + p[j + 9] + p[j + 12] + p[j + 15] + p[j + 18]);
+                    out[j] = Sum(p[j] + p[j + C] + p[j + 2 * C] + p[j + 3 * C] + p[j + 4 * C] + p[j + 5 * C] + p[j + 6 * C]);
                 return;
             default: break;
         }
-        // Wider windows: differences of running sums (prefix[k + 3] = sum of
+        // Wider windows: differences of running sums (prefix[k + C] = sum of
         // pad[<= k] per channel), exact modulo 2^bits since a window's sum fits.
-        prefix[0] = prefix[1] = prefix[2] = 0;
-        for (std::size_t k = 0; k < pad.size(); ++k) prefix[k + 3] = Sum(prefix[k] + pad[k]);
-        const std::size_t span = std::size_t(2 * r + 1) * 3;
+        for (int c = 0; c < C; ++c) prefix[std::size_t(c)] = 0;
+        for (std::size_t k = 0; k < pad.size(); ++k) prefix[k + C] = Sum(prefix[k] + pad[k]);
+        const std::size_t span = std::size_t(2 * r + 1) * C;
         for (std::size_t j = 0; j < m; ++j) out[j] = Sum(prefix[j + span] - prefix[j]);
     }
 };
 
 // The window sums in 16 bits while (2r+1)^2 * 255 fits (r <= 7: twice the
 // texels per vector instruction), else 32.
-template <class Sum>
+template <class Sum, int C>
 void blur_region(const LightTexture& tex, int radius, Rect z, LightTexture& out) {
     const int w = tex.rect.w, h = tex.rect.h;
     const int x0 = z.x - tex.rect.x, y0 = z.y - tex.rect.y;
-    const std::size_t m = std::size_t(z.w) * 3;
+    const std::size_t m = std::size_t(z.w) * C;
     // Rows are visited top to bottom; the 2r+1 rows of horizontal sums in the
     // window live in a ring (slot of window row i: i mod 2r+1) and their
     // column sums are updated as the window slides: new row in, old row out.
     const int span = 2 * radius + 1;
     const std::uint32_t n = std::uint32_t(span) * std::uint32_t(span);
-    RowSums<Sum> row_sums(radius, w, x0, z.w);
+    RowSums<Sum, C> row_sums(radius, w, x0, z.w);
     const Reciprocal& reciprocal = reciprocal_for(radius);
     std::vector<Sum> ring(std::size_t(span) * m), column(m, 0), incoming(m);
     auto slot = [&](int i) { return &ring[std::size_t(((i % span) + span) % span) * m]; };
-    auto texel_row = [&](int i) { return &tex.rgb[std::size_t(std::clamp(i, 0, h - 1)) * w * 3]; };
+    auto texel_row = [&](int i) { return &tex.texels[std::size_t(std::clamp(i, 0, h - 1)) * w * C]; };
     for (int i = y0 - radius; i <= y0 + radius; ++i) {
         Sum* s = slot(i);
         row_sums(texel_row(i), s);
         for (std::size_t j = 0; j < m; ++j) column[j] = Sum(column[j] + s[j]);
     }
     for (int y = y0; y < y0 + z.h; ++y) {
-        std::uint8_t* dst = &out.rgb[(std::size_t(y) * w + x0) * 3];
+        std::uint8_t* dst = &out.texels[(std::size_t(y) * w + x0) * C];
         if constexpr (std::is_same_v<Sum, std::uint16_t>) {
             if (reciprocal.exact) {
                 divide_row_16(column.data(), m, std::uint16_t((n - 1) / 2), reciprocal, dst);
@@ -179,7 +181,7 @@ ISOLUX_AVX2 inline __m256i widened(const std::uint8_t* at) {
     return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(at)));
 }
 
-template <int R>
+template <int R, int C>
 ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_t* col, std::uint16_t* s,
                                            std::uint8_t* dst, std::size_t j, std::size_t end, std::uint16_t half,
                                            std::uint16_t mul, int shift) {
@@ -187,9 +189,9 @@ ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_
     const __m128i shifts = _mm_cvtsi32_si128(shift);
     for (; j + 32 <= end; j += 32) {
         const std::uint8_t* p = src + j;
-        __m256i v0 = widened(p - 3 * R), v1 = widened(p + 16 - 3 * R);
+        __m256i v0 = widened(p - C * R), v1 = widened(p + 16 - C * R);
         for (int t = 1 - R; t <= R; ++t)
-            v0 = _mm256_add_epi16(v0, widened(p + 3 * t)), v1 = _mm256_add_epi16(v1, widened(p + 16 + 3 * t));
+            v0 = _mm256_add_epi16(v0, widened(p + C * t)), v1 = _mm256_add_epi16(v1, widened(p + 16 + C * t));
         __m256i* c = reinterpret_cast<__m256i*>(col + j);
         __m256i* o = reinterpret_cast<__m256i*>(s + j);
         const __m256i c0 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c), v0), _mm256_loadu_si256(o));
@@ -207,26 +209,26 @@ ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_
 // Radius 1 to 3, the common case: each row one fused pass (the new row's
 // horizontal sums from its bytes, the column sums slid, the divide, the
 // store), the few clamped edge texels one by one.
-template <int R, bool Avx2>
+template <int R, int C, bool Avx2>
 [[gnu::always_inline]] inline void blur_region_small(const LightTexture& tex, Rect z, LightTexture& out) {
     constexpr int span = 2 * R + 1;
     const int w = tex.rect.w, h = tex.rect.h;
     const int x0 = z.x - tex.rect.x, y0 = z.y - tex.rect.y;
-    const std::size_t m = std::size_t(z.w) * 3;
+    const std::size_t m = std::size_t(z.w) * C;
     const Reciprocal& k = reciprocal_for(R);
     const std::uint16_t half = std::uint16_t((span * span - 1) / 2), mul = k.m;
     const int shift = k.shift;
     std::vector<std::uint16_t> ring(std::size_t(span) * m), column(m, 0);
     auto slot = [&](int i) { return &ring[std::size_t(((i % span) + span) % span) * m]; };
-    auto texel_row = [&](int i) { return &tex.rgb[std::size_t(std::clamp(i, 0, h - 1)) * w * 3]; };
+    auto texel_row = [&](int i) { return &tex.texels[std::size_t(std::clamp(i, 0, h - 1)) * w * C]; };
     // Columns [a, b) of the region read no clamped texel: x - R >= 0, x + R < w.
-    const std::size_t a = std::size_t(std::clamp(R - x0, 0, z.w)) * 3;
-    const std::size_t b = std::max(a, std::size_t(std::clamp(w - R - x0, 0, z.w)) * 3);
+    const std::size_t a = std::size_t(std::clamp(R - x0, 0, z.w)) * C;
+    const std::size_t b = std::max(a, std::size_t(std::clamp(w - R - x0, 0, z.w)) * C);
     // Texel row i comes in: its horizontal sums replace those in slot `s`
     // (the row leaving the window, or zeros) and the column sums move by the
     // difference; with Write, the column then gives output row `dst`.
     auto row_in = [&]<bool Write>(int i, std::uint16_t* __restrict s, std::uint8_t* __restrict dst) __attribute__((always_inline)) {
-        const std::uint8_t* __restrict src = texel_row(i) + std::size_t(x0) * 3;
+        const std::uint8_t* __restrict src = texel_row(i) + std::size_t(x0) * C;
         std::uint16_t* __restrict col = column.data();
         auto put = [&](std::size_t j, std::uint16_t v) {
             const std::uint16_t c = std::uint16_t(col[j] + v - s[j]);
@@ -237,9 +239,9 @@ template <int R, bool Avx2>
         // The few edge values whose window is clamped, one by one.
         auto clamped = [&](std::size_t j) {
             const std::uint8_t* row = texel_row(i);
-            const int x = x0 + int(j / 3), c = int(j % 3);
+            const int x = x0 + int(j / C), c = int(j % C);
             std::uint16_t v = 0;
-            for (int t = -R; t <= R; ++t) v = std::uint16_t(v + row[std::size_t(std::clamp(x + t, 0, w - 1)) * 3 + c]);
+            for (int t = -R; t <= R; ++t) v = std::uint16_t(v + row[std::size_t(std::clamp(x + t, 0, w - 1)) * C + c]);
             return v;
         };
         // Left to right, as the row's bytes arrive (its right end read
@@ -247,11 +249,11 @@ template <int R, bool Avx2>
         for (std::size_t j = 0; j < a; ++j) put(j, clamped(j));
         std::size_t from = a;
 #if ISOLUX_X86_DISPATCH
-        if constexpr (Avx2 && Write) from = blur_interior_avx2<R>(src, col, s, dst, a, b, half, mul, shift);
+        if constexpr (Avx2 && Write) from = blur_interior_avx2<R, C>(src, col, s, dst, a, b, half, mul, shift);
 #endif
         for (std::size_t j = from; j < b; ++j) {
             std::uint16_t v = 0;
-            for (int t = -R; t <= R; ++t) v = std::uint16_t(v + src[std::ptrdiff_t(j) + 3 * t]);
+            for (int t = -R; t <= R; ++t) v = std::uint16_t(v + src[std::ptrdiff_t(j) + C * t]);
             const std::uint16_t c = std::uint16_t(col[j] + v - s[j]);
             col[j] = c;
             s[j] = v;
@@ -262,16 +264,21 @@ template <int R, bool Avx2>
     for (int i = y0 - R; i < y0 + R; ++i) row_in.template operator()<false>(i, slot(i), nullptr);
     // Row y + R comes in (into the slot of row y - R - 1, which leaves), and row y is written.
     for (int y = y0; y < y0 + z.h; ++y)
-        row_in.template operator()<true>(y + R, slot(y + R), &out.rgb[(std::size_t(y) * w + x0) * 3]);
+        row_in.template operator()<true>(y + R, slot(y + R), &out.texels[(std::size_t(y) * w + x0) * C]);
 }
 
 // Radius 1 to 3 at two widths (isolux/cpu.hpp): the same code, vectorised
 // twice, the AVX2 build's row interior written by hand (blur_interior_avx2).
+template <bool Avx2, int C>
+[[gnu::always_inline]] inline void blur_small_channels(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
+    if (radius == 1) blur_region_small<1, C, Avx2>(tex, z, out);
+    if (radius == 2) blur_region_small<2, C, Avx2>(tex, z, out);
+    if (radius == 3) blur_region_small<3, C, Avx2>(tex, z, out);
+}
 template <bool Avx2>
 [[gnu::always_inline]] inline void blur_small_any(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
-    if (radius == 1) blur_region_small<1, Avx2>(tex, z, out);
-    if (radius == 2) blur_region_small<2, Avx2>(tex, z, out);
-    if (radius == 3) blur_region_small<3, Avx2>(tex, z, out);
+    if (tex.channels == 1) blur_small_channels<Avx2, 1>(radius, tex, z, out);
+    else blur_small_channels<Avx2, 3>(radius, tex, z, out);
 }
 void blur_small(int radius, const LightTexture& tex, Rect z, LightTexture& out) { blur_small_any<false>(radius, tex, z, out); }
 ISOLUX_AVX2 void blur_small_avx2(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
@@ -282,30 +289,30 @@ ISOLUX_AVX2 void blur_small_avx2(int radius, const LightTexture& tex, Rect z, Li
 
 void box_blur_into(const LightTexture& tex, int radius, Rect region, LightTexture& out) {
     assert(radius >= 0 && valid(tex));
-    if (!(out.rect == tex.rect) || !valid(out)) out = LightTexture(tex.rect);
+    if (!(out.rect == tex.rect) || out.channels != tex.channels || !valid(out)) out = LightTexture(tex.rect, tex.channels);
     const Rect z = intersect(region, tex.rect);
     if (z.empty()) return;
     const int w = tex.rect.w;
     const int x0 = z.x - tex.rect.x, y0 = z.y - tex.rect.y;
+    const std::size_t c = std::size_t(tex.channels);
     if (radius == 0) {
         for (int y = y0; y < y0 + z.h; ++y)
-            std::memcpy(&out.rgb[(std::size_t(y) * w + x0) * 3], &tex.rgb[(std::size_t(y) * w + x0) * 3],
-                        std::size_t(z.w) * 3);
+            std::memcpy(&out.texels[(std::size_t(y) * w + x0) * c], &tex.texels[(std::size_t(y) * w + x0) * c], std::size_t(z.w) * c);
         return;
     }
     if (radius <= 3 && reciprocal_for(radius).exact) {
         if (wide_kernels()) blur_small_avx2(radius, tex, z, out);
         else blur_small(radius, tex, z, out);
     } else if (std::int64_t(2 * radius + 1) * (2 * radius + 1) * 255 < 65536)
-        blur_region<std::uint16_t>(tex, radius, z, out);
+        c == 1 ? blur_region<std::uint16_t, 1>(tex, radius, z, out) : blur_region<std::uint16_t, 3>(tex, radius, z, out);
     else
-        blur_region<std::uint32_t>(tex, radius, z, out);
+        c == 1 ? blur_region<std::uint32_t, 1>(tex, radius, z, out) : blur_region<std::uint32_t, 3>(tex, radius, z, out);
 }
 
 LightTexture box_blur(const LightTexture& tex, int radius) {
     assert(radius >= 0 && valid(tex));
     if (radius <= 0 || tex.rect.empty()) return tex;
-    LightTexture out(tex.rect);
+    LightTexture out(tex.rect, tex.channels);
     box_blur_into(tex, radius, tex.rect, out);
     return out;
 }
@@ -315,15 +322,16 @@ LightTexture box_blur_reference(const LightTexture& tex, int radius) {
     if (radius <= 0 || tex.rect.empty()) return tex;
     const int w = tex.rect.w, h = tex.rect.h;
     const std::uint64_t n = std::uint64_t(2 * radius + 1) * (2 * radius + 1);
-    LightTexture out(tex.rect);
+    const int channels = tex.channels;
+    LightTexture out(tex.rect, channels);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c) {
+            for (int c = 0; c < channels; ++c) {
                 std::uint64_t sum = 0;
                 for (int dy = -radius; dy <= radius; ++dy)
                     for (int dx = -radius; dx <= radius; ++dx)
-                        sum += tex.rgb[(std::size_t(std::clamp(y + dy, 0, h - 1)) * w + std::clamp(x + dx, 0, w - 1)) * 3 + c];
-                out.rgb[(std::size_t(y) * w + x) * 3 + c] = std::uint8_t((sum + n / 2) / n);
+                        sum += tex.texels[(std::size_t(std::clamp(y + dy, 0, h - 1)) * w + std::clamp(x + dx, 0, w - 1)) * channels + c];
+                out.texels[(std::size_t(y) * w + x) * channels + c] = std::uint8_t((sum + n / 2) / n);
             }
     return out;
 }

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 #include "cpu_dispatch.hpp"
 #if defined(__SSE2__)
@@ -46,10 +47,11 @@ void composite_pixel(const double c[3], const double L[3], const Params& p, doub
 
 namespace {
 
-// One pixel exactly as composite_pixel rounds it.
-void exact_pixel(const std::uint8_t* s, const std::uint8_t* l, const Params& p, std::uint8_t* d) {
+// One pixel exactly as composite_pixel rounds it (`l`: its texel, grey or
+// r, g, b; none outside the texture).
+void exact_pixel(const std::uint8_t* s, const std::uint8_t* l, bool grey, const Params& p, std::uint8_t* d) {
     double c[3] = {s[0] / 255.0, s[1] / 255.0, s[2] / 255.0}, L[3] = {0, 0, 0}, r[3];
-    if (l) L[0] = l[0] / 255.0, L[1] = l[1] / 255.0, L[2] = l[2] / 255.0;
+    if (l) L[0] = l[0] / 255.0, L[1] = l[grey ? 0 : 1] / 255.0, L[2] = l[grey ? 0 : 2] / 255.0;
     composite_pixel(c, L, p, r);
     for (int k = 0; k < 3; ++k) d[k] = std::uint8_t(r[k] * 255.0 + 0.5);
 }
@@ -68,10 +70,11 @@ struct ShadeConstants {
 
 // Three passes over runs of up to 256 pixels, so the arithmetic is one
 // loop over plain float arrays (vectorised): spread the bytes into floats
-// (table lookups, no conversions), shade, gather the bytes back.
-template <bool Shadow, bool Surface, bool DarkUnlit>
+// (table lookups, no conversions), shade, gather the bytes back. Grey: the
+// light's texels are one byte, the same in every channel.
+template <bool Shadow, bool Surface, bool DarkUnlit, bool Grey>
 void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k, std::uint8_t* d) {
-    constexpr int run = 256;
+    constexpr int run = 256, texel = Grey ? 1 : 3;
     constexpr float near = 1.0f / 512.0f, round_magic = 8388608.0f;  // 2^23: adding it rounds to an integer
     alignas(16) float c[3][run], L[3][run], t[3][run];
     alignas(16) std::int32_t bad[run];
@@ -80,9 +83,9 @@ void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeC
     for (int i0 = 0; i0 < n; i0 += run) {
         const int m = std::min(run, n - i0);
         const std::uint8_t* sp = s + std::size_t(i0) * 4;
-        const std::uint8_t* lp = l + std::size_t(i0) * 3;
+        const std::uint8_t* lp = l + std::size_t(i0) * texel;
         for (int i = 0; i < m; ++i)
-            for (int ch = 0; ch < 3; ++ch) c[ch][i] = k.unit[sp[4 * i + ch]], L[ch][i] = k.unit[lp[3 * i + ch]];
+            for (int ch = 0; ch < 3; ++ch) c[ch][i] = k.unit[sp[4 * i + ch]], L[ch][i] = k.unit[lp[texel * i + (Grey ? 0 : ch)]];
         for (int i = 0; i < m; ++i) lum[i] = c[0][i] * 0.349f + c[1][i] * 0.114f + c[2][i] * 0.537f, bad[i] = 0;
         for (int ch = 0; ch < 3; ++ch) {
             const float* cc = c[ch];
@@ -117,7 +120,7 @@ void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeC
             const std::uint8_t keep = alpha != 0 ? 0xFF : 0x00;  // transparent: all zero
             for (int ch = 0; ch < 3; ++ch) dp[4 * i + ch] = std::uint8_t(std::uint8_t(std::int32_t(t[ch][i])) & keep);
             dp[4 * i + 3] = alpha;
-            if (bad[i] & keep & 1) exact_pixel(sp + 4 * i, lp + 3 * i, *k.params, dp + 4 * i);
+            if (bad[i] & keep & 1) exact_pixel(sp + 4 * i, lp + texel * i, Grey, *k.params, dp + 4 * i);
         }
     }
 }
@@ -126,7 +129,7 @@ void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeC
 // The same arithmetic four pixels at a time in SSE2 (every x86-64 has it):
 // the bytes spread into lanes by shifts and masks, shaded, packed back. The
 // last n % 4 pixels take shade_row.
-template <bool Shadow, bool Surface, bool DarkUnlit>
+template <bool Shadow, bool Surface, bool DarkUnlit, bool Grey>
 void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k, std::uint8_t* d) {
     const __m128i bytes = _mm_set1_epi32(0xFF), rgb_bytes = _mm_set1_epi32(0xFFFFFF), zero = _mm_setzero_si128();
     const std::uint8_t* l_end = k.light_end ? k.light_end : l;
@@ -135,14 +138,20 @@ void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const S
                  minus_near = _mm_set1_ps(-1.0f / 512.0f), one = _mm_set1_ps(1.0f), three_quarters = _mm_set1_ps(0.75f),
                  ts = _mm_set1_ps(k.tex_scale), inv_denom = _mm_set1_ps(k.inv_denom), kr = _mm_set1_ps(0.349f),
                  kg = _mm_set1_ps(0.114f), kb = _mm_set1_ps(0.537f), fzero = _mm_setzero_ps();
+    constexpr int texel = Grey ? 1 : 3;
     int i = 0;
     for (; i + 4 <= n; i += 4) {
         const __m128i sp = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + std::size_t(i) * 4));
-        const std::uint8_t* lp = l + std::size_t(i) * 3;
+        const std::uint8_t* lp = l + std::size_t(i) * texel;
         // Four RGB texels into four lanes: one 16-byte load where the
         // buffer has 4 bytes to spare past them, byte shifts and unpacks.
+        // Four grey ones: one 4-byte load, widened.
         __m128i lv;
-        if (lp + 16 <= l_end) {
+        if constexpr (Grey) {
+            std::int32_t four;
+            std::memcpy(&four, lp, 4);
+            lv = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(four), zero), zero);
+        } else if (lp + 16 <= l_end) {
             const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(lp));
             const __m128i t01 = _mm_unpacklo_epi32(v, _mm_srli_si128(v, 3));
             const __m128i t23 = _mm_unpacklo_epi32(_mm_srli_si128(v, 6), _mm_srli_si128(v, 9));
@@ -156,7 +165,7 @@ void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const S
         __m128 c[3], L[3];
         for (int ch = 0; ch < 3; ++ch) {
             c[ch] = _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(_mm_srli_epi32(sp, 8 * ch), bytes)), inv255);
-            L[ch] = _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(_mm_srli_epi32(lv, 8 * ch), bytes)), inv255);
+            L[ch] = Grey && ch > 0 ? L[0] : _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(_mm_srli_epi32(lv, 8 * ch), bytes)), inv255);
         }
         const __m128i alpha = _mm_srli_epi32(sp, 24);
         const __m128 luminance = _mm_add_ps(_mm_add_ps(_mm_mul_ps(c[0], kr), _mm_mul_ps(c[1], kg)), _mm_mul_ps(c[2], kb));
@@ -184,10 +193,10 @@ void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const S
         const int redo = _mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(transparent), bad));
         if (redo)
             for (int q = 0; q < 4; ++q)
-                if ((redo >> q) & 1) exact_pixel(s + std::size_t(i + q) * 4, lp + 3 * q, *k.params, d + std::size_t(i + q) * 4);
+                if ((redo >> q) & 1) exact_pixel(s + std::size_t(i + q) * 4, lp + texel * q, Grey, *k.params, d + std::size_t(i + q) * 4);
     }
-    if (i < n) shade_row<Shadow, Surface, DarkUnlit>(s + std::size_t(i) * 4, l + std::size_t(i) * 3, n - i, k,
-                                                      d + std::size_t(i) * 4);
+    if (i < n) shade_row<Shadow, Surface, DarkUnlit, Grey>(s + std::size_t(i) * 4, l + std::size_t(i) * texel, n - i, k,
+                                                            d + std::size_t(i) * 4);
 }
 #endif
 
@@ -200,7 +209,7 @@ void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const S
 // of a level: a value within 1/2048 of a level's half (2.4 times that) is
 // redone exactly, a quarter as many pixels as shade_row_sse2's 1/512. The
 // light's eight texels come from two of shade_row_sse2's four-texel loads.
-template <bool Shadow, bool Surface, bool DarkUnlit>
+template <bool Shadow, bool Surface, bool DarkUnlit, bool Grey>
 ISOLUX_AVX2_FMA void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k,
                                 std::uint8_t* d) {
     const __m256i zero = _mm256_setzero_si256();
@@ -237,16 +246,19 @@ ISOLUX_AVX2_FMA void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l
         };
         return _mm_set_epi32(texel(3), texel(2), texel(1), texel(0));
     };
-    if (n < 8) return shade_row_sse2<Shadow, Surface, DarkUnlit>(s, l, n, k, d);
+    constexpr int texel = Grey ? 1 : 3;
+    if (n < 8) return shade_row_sse2<Shadow, Surface, DarkUnlit, Grey>(s, l, n, k, d);
     // The last step ends at the row's end, over pixels the step before may
     // have written: each pixel's bytes depend on its texel and light alone.
     for (int i0 = 0; i0 < n; i0 += 8) {
         const int i = std::min(i0, n - 8);
         const __m256i sp = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + std::size_t(i) * 4));
-        const std::uint8_t* lp = l + std::size_t(i) * 3;
+        const std::uint8_t* lp = l + std::size_t(i) * texel;
         // Eight RGB texels into eight lanes: one 32-byte load, the second
         // half's bytes moved up a lane (dwords 3-6) and spread by a shuffle.
-        const __m256i lv = lp + 32 <= l_end
+        // Eight grey ones: one 8-byte load, widened.
+        const __m256i lv = Grey ? _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(lp)))
+                           : lp + 32 <= l_end
                                ? _mm256_shuffle_epi8(_mm256_permutevar8x32_epi32(
                                                          _mm256_loadu_si256(reinterpret_cast<const __m256i*>(lp)), up_a_lane),
                                                      spread_rgb)
@@ -256,7 +268,7 @@ ISOLUX_AVX2_FMA void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l
         __m256 c[3], L[3];
         for (int ch = 0; ch < 3; ++ch) {  // byte ch of each pixel into its lane: one shuffle
             c[ch] = _mm256_cvtepi32_ps(_mm256_shuffle_epi8(sp, channel[ch]));
-            L[ch] = _mm256_cvtepi32_ps(_mm256_shuffle_epi8(lv, channel[ch]));
+            L[ch] = Grey ? (ch == 0 ? _mm256_cvtepi32_ps(lv) : L[0]) : _mm256_cvtepi32_ps(_mm256_shuffle_epi8(lv, channel[ch]));
         }
         const __m256i alpha = _mm256_srli_epi32(sp, 24);
         // The luminance with the light's scale in it (luminance mix): one multiply per channel below.
@@ -299,7 +311,7 @@ ISOLUX_AVX2_FMA void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l
         const int redo = _mm256_movemask_ps(_mm256_andnot_ps(_mm256_castsi256_ps(transparent), bad));
         if (redo)
             for (int q = 0; q < 8; ++q)
-                if ((redo >> q) & 1) exact_pixel(s + std::size_t(i + q) * 4, lp + 3 * q, *k.params, d + std::size_t(i + q) * 4);
+                if ((redo >> q) & 1) exact_pixel(s + std::size_t(i + q) * 4, lp + texel * q, Grey, *k.params, d + std::size_t(i + q) * 4);
     }
 }
 #define ISOLUX_HAS_SHADE_AVX2 1
@@ -307,28 +319,29 @@ ISOLUX_AVX2_FMA void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l
 
 using ShadeRow = void (*)(const std::uint8_t*, const std::uint8_t*, int, const ShadeConstants&, std::uint8_t*);
 
-ShadeRow shade_row_for(const Params& p) {
-    const bool shadow = p.mode == Mode::shadow, surface = p.light_mix == LightMix::surface;
+// Every variant's function, indexed by shadow, surface, dark_unlit, grey (bits 3 to 0).
+template <template <bool, bool, bool, bool> class Variant, std::size_t... I>
+constexpr std::array<ShadeRow, sizeof...(I)> variants(std::index_sequence<I...>) {
+    return {Variant<bool(I & 8), bool(I & 4), bool(I & 2), bool(I & 1)>::shade...};
+}
 #if defined(__SSE2__)
-#define ISOLUX_SHADE shade_row_sse2
+template <bool A, bool B, bool C, bool D> struct Sse2 { static constexpr ShadeRow shade = shade_row_sse2<A, B, C, D>; };
 #else
-#define ISOLUX_SHADE shade_row
+template <bool A, bool B, bool C, bool D> struct Sse2 { static constexpr ShadeRow shade = shade_row<A, B, C, D>; };
 #endif
-    static constexpr ShadeRow table[2][2][2] = {
-        {{ISOLUX_SHADE<false, false, false>, ISOLUX_SHADE<false, false, true>},
-         {ISOLUX_SHADE<false, true, false>, ISOLUX_SHADE<false, true, true>}},
-        {{ISOLUX_SHADE<true, false, false>, ISOLUX_SHADE<true, false, true>},
-         {ISOLUX_SHADE<true, true, false>, ISOLUX_SHADE<true, true, true>}}};
-#undef ISOLUX_SHADE
 #if defined(ISOLUX_HAS_SHADE_AVX2)
-    static constexpr ShadeRow wide[2][2][2] = {
-        {{shade_row_avx2<false, false, false>, shade_row_avx2<false, false, true>},
-         {shade_row_avx2<false, true, false>, shade_row_avx2<false, true, true>}},
-        {{shade_row_avx2<true, false, false>, shade_row_avx2<true, false, true>},
-         {shade_row_avx2<true, true, false>, shade_row_avx2<true, true, true>}}};
-    if (wide_kernels()) return wide[shadow][surface][p.dark_unlit];
+template <bool A, bool B, bool C, bool D> struct Avx2 { static constexpr ShadeRow shade = shade_row_avx2<A, B, C, D>; };
 #endif
-    return table[shadow][surface][p.dark_unlit];
+
+ShadeRow shade_row_for(const Params& p, bool grey) {
+    const std::size_t at = std::size_t(p.mode == Mode::shadow) * 8 + std::size_t(p.light_mix == LightMix::surface) * 4 +
+                           std::size_t(p.dark_unlit) * 2 + std::size_t(grey);
+    static constexpr auto table = variants<Sse2>(std::make_index_sequence<16>());
+#if defined(ISOLUX_HAS_SHADE_AVX2)
+    static constexpr auto wide = variants<Avx2>(std::make_index_sequence<16>());
+    if (wide_kernels()) return wide[at];
+#endif
+    return table[at];
 }
 
 }  // namespace
@@ -348,10 +361,12 @@ void composite_into(const Image& colour, Rect view, const LightTexture& light, c
         return u;
     }();
     ShadeConstants k{&p, nullptr, float(std::sqrt(ac)), float(1.0 / (ac * ac + 0.1)), unit.data()};
-    const ShadeRow shade = shade_row_for(p);
+    const bool grey = light.channels == 1;
+    const ShadeRow shade = shade_row_for(p, grey);
     thread_local std::vector<std::uint8_t> unlit;  // zeros: light outside the texture
     unlit.assign(std::size_t(z.w) * 3 + 16, 0);
-    const std::uint8_t* light_end = light.rgb.data() + light.rgb.size();
+    const std::uint8_t* light_end = light.texels.data() + light.texels.size();
+    assert(light.channels == 1 || light.channels == 3);
     // Where the light texture covers each row (the rest reads 0, unlit).
     const int lx0 = std::clamp(light.rect.x, z.x, z.x + z.w), lx1 = std::clamp(light.rect.x + light.rect.w, lx0, z.x + z.w);
     for (int wy = z.y; wy < z.y + z.h; ++wy) {
@@ -384,7 +399,7 @@ Image composite_reference(const Image& colour, Rect view, const LightTexture& li
             d[3] = s[3];
             if (s[3] == 0) continue;
             const int wx = view.x + x, wy = view.y + y;
-            exact_pixel(s, light.rect.contains(wx, wy) ? light.at(wx, wy) : nullptr, p, d);
+            exact_pixel(s, light.rect.contains(wx, wy) ? light.at(wx, wy) : nullptr, light.channels == 1, p, d);
         }
     return out;
 }

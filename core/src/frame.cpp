@@ -470,17 +470,27 @@ LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edi
     return plan;
 }
 
-// Reuses the light texture when it has the right rectangle: only the areas
-// lights drew into last time hold anything, and they are cleared in
-// trace_and_accumulate. Returns those areas; `fresh` says the texture is new.
-std::vector<Rect> prepare_texture(FrameState& st, Rect tex_rect, bool& fresh) {
+// The light texture's channels for these lights: grey (1) when every one is
+// grey and the options allow it, else r, g, b (3).
+int texture_channels(const Scene& scene, const FrameOptions& options) {
+    const bool grey = options.grey_when_lights_are &&
+                      std::all_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return grey_light(l); });
+    return grey ? 1 : 3;
+}
+
+// Reuses the light texture when it has the right rectangle and channels:
+// only the areas lights drew into last time hold anything, and they are
+// cleared in trace_and_accumulate. Returns those areas; `fresh` says the
+// texture is new (every light is added again).
+std::vector<Rect> prepare_texture(FrameState& st, Rect tex_rect, int channels, bool& fresh) {
     std::vector<Rect> to_clear;
-    if (!(st.traced.rect == tex_rect) || st.traced.rgb.size() != std::size_t(tex_rect.w) * tex_rect.h * 3) {
-        st.traced = LightTexture(tex_rect);
+    if (!(st.traced.rect == tex_rect) || st.traced.channels != channels ||
+        st.traced.texels.size() != std::size_t(tex_rect.w) * tex_rect.h * std::size_t(channels)) {
+        st.traced = LightTexture(tex_rect, channels);
     } else {
         for (const TracedLight& c : st.cache.lights) to_clear.push_back(c.mask.clip);
     }
-    fresh = to_clear.empty() && !(!st.cache.lights.empty() && st.traced.rect == tex_rect);
+    fresh = to_clear.empty() && !(!st.cache.lights.empty() && st.traced.rect == tex_rect && st.traced.channels == channels);
     return to_clear;
 }
 
@@ -553,14 +563,15 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     // holds the sum of unchanged lights; everything they covered otherwise.
     // (Each texel once: lights' areas overlap.)
     const std::vector<Rect> clear = redo ? std::vector<Rect>{*redo} : disjoint_union(to_clear);
+    const std::size_t texel = std::size_t(st.traced.channels);
     auto accumulate_band = [&](int k) {
         const int y0 = tex_rect.y + int(std::int64_t(tex_rect.h) * k / bands);
         const int y1 = tex_rect.y + int(std::int64_t(tex_rect.h) * (k + 1) / bands);
         for (const Rect& c : clear) {
             const Rect z = intersect(intersect(c, tex_rect), Rect{tex_rect.x, y0, tex_rect.w, y1 - y0});
             for (int y = z.y; y < z.y + z.h; ++y)
-                std::memset(&st.traced.rgb[(std::size_t(y - tex_rect.y) * tex_rect.w + (z.x - tex_rect.x)) * 3], 0,
-                            std::size_t(z.w) * 3);
+                std::memset(&st.traced.texels[(std::size_t(y - tex_rect.y) * tex_rect.w + (z.x - tex_rect.x)) * texel], 0,
+                            std::size_t(z.w) * texel);
         }
         for (std::size_t i = 0; i < plan.lights.size(); ++i)
             accumulate_light(st.traced, plan.traced[i].mask, *plan.lights[i], p, y0, y1, redo);
@@ -677,7 +688,8 @@ void update_view(FrameState& st, const Params& p, Rect view, const WorldDelta& d
     if (!c.has_blur || radius_changed) {
         // The whole texture when it is new or the radius changed; else what
         // was traced since, grown by the radius (every texel it reaches).
-        const bool whole = radius_changed || !(c.blurred.rect == tex) || (p.blur_radius > 0 && c.blurred.rgb.empty());
+        const bool whole = radius_changed || !(c.blurred.rect == tex) || (p.blur_radius > 0 && c.blurred.texels.empty()) ||
+                           (p.blur_radius > 0 && c.blurred.channels != st.traced.channels);
         if (whole) {
             changed = {tex};
         } else {
@@ -686,7 +698,8 @@ void update_view(FrameState& st, const Params& p, Rect view, const WorldDelta& d
         }
         if (p.blur_radius > 0 && !changed.empty()) {
             Timer t{rep, Stage::blur};
-            if (!(c.blurred.rect == tex) || c.blurred.rgb.size() != st.traced.rgb.size()) c.blurred = LightTexture(tex);
+            if (!(c.blurred.rect == tex) || c.blurred.channels != st.traced.channels || c.blurred.texels.size() != st.traced.texels.size())
+                c.blurred = LightTexture(tex, st.traced.channels);
             in_row_bands(changed, threads, [&](Rect band) { box_blur_into(st.traced, p.blur_radius, band, c.blurred); });
             touch(rep, Stage::blur, changed);
         } else if (p.blur_radius == 0) {
@@ -747,7 +760,7 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_
     const TraceDecision trace = decide_retrace(st, scene, view, frame, obstacles);
     if (trace.retrace) {
         bool fresh = false;
-        const std::vector<Rect> to_clear = prepare_texture(st, tex_rect, fresh);
+        const std::vector<Rect> to_clear = prepare_texture(st, tex_rect, texture_channels(scene, st.options), fresh);
         const bool had_lights = !st.cache.lights.empty();
         if (trace.must) st.cache.lights.clear();  // nothing traced is reusable
         LightPlan plan = plan_lights(st.cache, scene, tex_rect, obstacles.part, rep);

@@ -3,6 +3,7 @@
 #include "isolux/light_texture.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include "cpu_dispatch.hpp"
@@ -81,7 +82,28 @@ ISOLUX_AVX2 void add_white_row_avx2(std::uint8_t* out, const std::uint8_t* v, in
 }
 #endif
 
+// out[x] += v[x], saturating: a grey texture's row (the compiler vectorises
+// it, at both widths).
+[[gnu::always_inline]] inline void add_grey_row_any(std::uint8_t* __restrict out, const std::uint8_t* __restrict v, int w) {
+    for (int x = 0; x < w; ++x) {
+        const std::uint8_t s = std::uint8_t(out[x] + v[x]);
+        out[x] = s < out[x] ? std::uint8_t(255) : s;
+    }
+}
+void add_grey_row(std::uint8_t* out, const std::uint8_t* v, int w) { add_grey_row_any(out, v, w); }
+#if ISOLUX_X86_DISPATCH
+ISOLUX_AVX2 void add_grey_row_avx2(std::uint8_t* out, const std::uint8_t* v, int w) { add_grey_row_any(out, v, w); }
+#endif
+
 }  // namespace
+
+LightTexture rgb_texture(const LightTexture& tex) {
+    if (tex.channels == 3) return tex;
+    LightTexture out(tex.rect);
+    for (std::size_t i = 0; i < tex.texels.size(); ++i)
+        out.texels[i * 3] = out.texels[i * 3 + 1] = out.texels[i * 3 + 2] = tex.texels[i];
+    return out;
+}
 
 int light_a(const Light& l, const Params& p) { return l.area_a.value_or(p.area_a); }
 int light_b(const Light& l, const Params& p) { return l.area_b.value_or(p.area_b); }
@@ -102,6 +124,8 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
     r.y = y0;
     r.h = y1 - y0;
     if (r.empty()) return;
+    assert(tex.channels == 3 || grey_light(light));
+    const bool grey = tex.channels == 1;
     const bool white = light.r == 255 && light.g == 255 && light.b == 255 && light.intensity == 1.0;
     // A white light's value v becomes round(v * intensity * colour / 255) per channel.
     std::uint8_t lut[3][256];
@@ -132,7 +156,21 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
                                           : 0;
             v = row.data();
         }
-        std::uint8_t* out = &tex.rgb[(std::size_t(y - tex.rect.y) * tex.rect.w + (r.x - tex.rect.x)) * 3];
+        std::uint8_t* out = &tex.texels[(std::size_t(y - tex.rect.y) * tex.rect.w + (r.x - tex.rect.x)) * std::size_t(tex.channels)];
+        if (grey) {  // one channel: the value itself, or its one table
+            if (!white) {
+                for (int x = 0; x < r.w; ++x) rgb[std::size_t(x)] = lut[0][v[x]];
+                v = rgb.data();
+            }
+#if ISOLUX_X86_DISPATCH
+            if (wide_kernels()) {
+                add_grey_row_avx2(out, v, r.w);
+                continue;
+            }
+#endif
+            add_grey_row(out, v, r.w);
+            continue;
+        }
         if (white) {  // the value itself in all three channels: no lookups
 #if ISOLUX_X86_DISPATCH
             if (wide_kernels()) {
@@ -161,18 +199,19 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
 }
 
 LightTexture shift_light_texture(const LightTexture& traced, Rect view) {
-    LightTexture out(view);
+    LightTexture out(view, traced.channels);
     const Rect r = intersect(traced.rect, view);
+    const std::size_t c = std::size_t(traced.channels);
     for (int y = r.y; y < r.y + r.h; ++y)
-        std::copy_n(traced.at(r.x, y), std::size_t(r.w) * 3,
-                    &out.rgb[(std::size_t(y - view.y) * view.w + (r.x - view.x)) * 3]);
+        std::copy_n(traced.at(r.x, y), std::size_t(r.w) * c,
+                    &out.texels[(std::size_t(y - view.y) * view.w + (r.x - view.x)) * c]);
     return out;
 }
 
 Image light_texture_image(const LightTexture& tex) {
     Image out(tex.rect.w, tex.rect.h);
     for (std::size_t i = 0, n = std::size_t(out.width) * out.height; i < n; ++i) {
-        for (int k = 0; k < 3; ++k) out.rgba[i * 4 + k] = tex.rgb[i * 3 + k];
+        for (int k = 0; k < 3; ++k) out.rgba[i * 4 + k] = tex.texels[i * std::size_t(tex.channels) + (tex.channels == 3 ? k : 0)];
         out.rgba[i * 4 + 3] = 255;
     }
     return out;

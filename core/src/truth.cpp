@@ -194,13 +194,11 @@ Image lit_difference(const LightTexture& model, const LightTexture& reference) {
     Image out(r.w, r.h);
     for (int y = 0; y < r.h; ++y)
         for (int x = 0; x < r.w; ++x) {
-            const std::uint8_t* m = model.at(r.x + x, r.y + y);
-            const bool lit_model = m[0] || m[1] || m[2];
-            bool lit_ref = false;
-            if (reference.rect.contains(r.x + x, r.y + y)) {
-                const std::uint8_t* f = reference.at(r.x + x, r.y + y);
-                lit_ref = f[0] || f[1] || f[2];
-            }
+            auto lit = [&](const LightTexture& t) {
+                return t.value(r.x + x, r.y + y, 0) || t.value(r.x + x, r.y + y, 1) || t.value(r.x + x, r.y + y, 2);
+            };
+            const bool lit_model = lit(model);
+            const bool lit_ref = reference.rect.contains(r.x + x, r.y + y) && lit(reference);
             if (lit_model != lit_ref) std::copy_n(lit_model ? lit_only_in_model : lit_only_in_reference, 4, out.at(x, y));
         }
     return out;
@@ -216,6 +214,7 @@ LightTexture reference_texture(const World& world, const Scene& scene, Rect rect
         st.options.opacity_correction = opacity_correction;
         st.options.cpu_sprites = false;
         st.options.cpu_blur_and_composite = false;
+        st.options.grey_when_lights_are = false;  // r, g, b, as the other references
         Scene s = scene;
         s.params = p;
         s.params.rays = Rays::every_pixel;

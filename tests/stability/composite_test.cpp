@@ -12,7 +12,7 @@ TEST(StabilityComposite, ambientZeroAndOneWithColoursZeroAndFull) {
                     Image c(1, 1);
                     c.rgba = {std::uint8_t(colour), std::uint8_t(colour), std::uint8_t(colour), 255};
                     LightTexture l(Rect{0, 0, 1, 1});
-                    l.rgb = {std::uint8_t(light), std::uint8_t(light), std::uint8_t(light)};
+                    l.texels = {std::uint8_t(light), std::uint8_t(light), std::uint8_t(light)};
                     Params p;
                     p.ambient_clarity = ambient;
                     p.dark_unlit = dark;

@@ -23,7 +23,7 @@ TEST(StabilitySkipBlur, aSkipLargerThanTheBorderTracesOneRay) {
 TEST(StabilitySkipBlur, blurRadiusLargerThanTheTexture) {
     LightTexture t(Rect{3, 4, 5, 2});
     Pcg32 rng(3);
-    for (auto& v : t.rgb) v = std::uint8_t(rng.below(256));
+    for (auto& v : t.texels) v = std::uint8_t(rng.below(256));
     for (int r : {6, 50, 255}) {
         LightTexture b = box_blur(t, r);
         EXPECT_EQ(b.rect, t.rect);
@@ -31,13 +31,13 @@ TEST(StabilitySkipBlur, blurRadiusLargerThanTheTexture) {
         // and every value stays within the input's range.
         for (int k = 0; k < 3; ++k) {
             int lo = 255, hi = 0;
-            for (std::size_t i = k; i < t.rgb.size(); i += 3) lo = std::min<int>(lo, t.rgb[i]), hi = std::max<int>(hi, t.rgb[i]);
-            for (std::size_t i = k; i < b.rgb.size(); i += 3) {
-                EXPECT_GE(b.rgb[i], lo);
-                EXPECT_LE(b.rgb[i], hi);
+            for (std::size_t i = k; i < t.texels.size(); i += 3) lo = std::min<int>(lo, t.texels[i]), hi = std::max<int>(hi, t.texels[i]);
+            for (std::size_t i = k; i < b.texels.size(); i += 3) {
+                EXPECT_GE(b.texels[i], lo);
+                EXPECT_LE(b.texels[i], hi);
             }
         }
-        EXPECT_EQ(box_blur(t, r).rgb, b.rgb);
+        EXPECT_EQ(box_blur(t, r).texels, b.texels);
     }
     Scene s = with_light(200, 150);
     s.params.blur_radius = 255;
@@ -49,7 +49,7 @@ TEST(StabilitySkipBlur, theBlursEdgeRuleIsTheShadersClampToEdge) {
     // on clamp(p + i, 0, size - 1)): a literal 2D transcription of that rule.
     LightTexture t(Rect{0, 0, 9, 6});
     Pcg32 rng(8);
-    for (auto& v : t.rgb) v = std::uint8_t(rng.below(256));
+    for (auto& v : t.texels) v = std::uint8_t(rng.below(256));
     for (int r : {1, 2, 4, 11}) {
         LightTexture b = box_blur(t, r);
         const int n = (2 * r + 1) * (2 * r + 1);
@@ -59,8 +59,8 @@ TEST(StabilitySkipBlur, theBlursEdgeRuleIsTheShadersClampToEdge) {
                     int sum = 0;
                     for (int j = -r; j <= r; ++j)
                         for (int i = -r; i <= r; ++i)
-                            sum += t.rgb[(std::clamp(y + j, 0, 5) * 9 + std::clamp(x + i, 0, 8)) * 3 + k];
-                    EXPECT_EQ(b.rgb[(y * 9 + x) * 3 + k], (sum + n / 2) / n) << x << "," << y << " r " << r;
+                            sum += t.texels[(std::clamp(y + j, 0, 5) * 9 + std::clamp(x + i, 0, 8)) * 3 + k];
+                    EXPECT_EQ(b.texels[(y * 9 + x) * 3 + k], (sum + n / 2) / n) << x << "," << y << " r " << r;
                 }
     }
 }

@@ -43,16 +43,17 @@ inline Frame frame(const Scene& scene, const Camera& camera = Camera{}, int thre
 inline Frame stable_frame(const Scene& scene, const Camera& camera = Camera{}) {
     Frame a = frame(scene, camera), b = frame(scene, camera);
     EXPECT_EQ(a.final.rgba, b.final.rgba) << "not deterministic";
-    EXPECT_EQ(a.light.rgb, b.light.rgb) << "not deterministic";
+    EXPECT_EQ(a.light.texels, b.light.texels) << "not deterministic";
     for (double ms : a.report.ms) EXPECT_TRUE(std::isfinite(ms) && ms >= 0);
     EXPECT_EQ(a.final.width, a.light.rect.w);
     EXPECT_EQ(a.final.height, a.light.rect.h);
     return a;
 }
 
-inline long lit_texels(const LightTexture& t) {
+inline long lit_texels(const LightTexture& grey_or_rgb) {
+    const LightTexture t = rgb_texture(grey_or_rgb);
     long n = 0;
-    for (std::size_t i = 0; i < t.rgb.size(); i += 3) n += (t.rgb[i] | t.rgb[i + 1] | t.rgb[i + 2]) != 0;
+    for (std::size_t i = 0; i < t.texels.size(); i += 3) n += (t.texels[i] | t.texels[i + 1] | t.texels[i + 2]) != 0;
     return n;
 }
 

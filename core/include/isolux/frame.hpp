@@ -72,6 +72,10 @@ struct FrameOptions {
     // blurred texture in place, so only callers that show or save the light
     // layer need the copy.
     bool view_light_texture = true;
+    // A grey light texture (LightTexture::channels 1) when every shown light
+    // is grey (r = g = b): the same pixels from a third of the bytes added,
+    // blurred and composited. Off: always r, g, b (the tests' oracle).
+    bool grey_when_lights_are = true;
     // Traces the lights instead of the CPU when set and it accepts them
     // (never for rays_over_obstacles, a CPU-only extension).
     LightTracer tracer;

@@ -1,4 +1,4 @@
-// The light texture (paper 3.2): what the traced rays draw, one RGB texel per
+// The light texture (paper 3.2): what the traced rays draw, one texel per
 // world pixel over a rectangle slightly larger than the view.
 #pragma once
 #include <cstdint>
@@ -12,18 +12,32 @@
 
 namespace isolux {
 
+// A texel is r, g, b, or (channels 1, "grey") one byte standing for all
+// three: a frame whose lights are all grey (r = g = b, white among them) adds,
+// blurs and reads a third of the bytes for the same pixels.
 struct LightTexture {
-    Rect rect;                       // world pixels
-    std::vector<std::uint8_t> rgb;   // rect.w * rect.h * 3
+    Rect rect;                          // world pixels
+    int channels = 3;                   // 3: r, g, b; 1: grey
+    std::vector<std::uint8_t> texels;   // rect.w * rect.h * channels, row by row
 
     LightTexture() = default;
-    explicit LightTexture(Rect r) : rect(r), rgb(std::size_t(r.w) * r.h * 3, 0) {}
+    explicit LightTexture(Rect r, int channel_count = 3)
+        : rect(r), channels(channel_count), texels(std::size_t(r.w) * r.h * std::size_t(channel_count), 0) {}
     const std::uint8_t* at(int wx, int wy) const {
-        return &rgb[(std::size_t(wy - rect.y) * rect.w + (wx - rect.x)) * 3];
+        return &texels[(std::size_t(wy - rect.y) * rect.w + (wx - rect.x)) * std::size_t(channels)];
     }
+    // Channel c (0 r, 1 g, 2 b) of the texel at world (wx, wy), in either layout.
+    std::uint8_t value(int wx, int wy, int c) const { return at(wx, wy)[channels == 3 ? c : 0]; }
 };
 
-// Adds one light's pixels to the texture: Mode::light and Mode::flat add the
+// Whether a light's texels are grey: every channel the same.
+inline bool grey_light(const Light& l) { return l.r == l.g && l.g == l.b; }
+
+// The texture with three channels (a grey one's value copied into each).
+LightTexture rgb_texture(const LightTexture& tex);
+
+// Adds one light's pixels to the texture (a grey texture takes grey lights
+// only): Mode::light and Mode::flat add the
 // lit pixels, Mode::shadow the reached-but-unlit ones, each with
 // falloff(d) * intensity * colour / 255 per channel, rounded. Sums saturate at
 // 255 per channel; since every contribution is >= 0 the result is
@@ -37,8 +51,8 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
                       const Rect* within = nullptr);
 
 // The paper's inverse translation between retraces: the texture of `view`
-// read from `traced` (a world-anchored texture of an earlier frame). Texels
-// outside `traced` are 0 (unlit).
+// read from `traced` (a world-anchored texture of an earlier frame), in its
+// channels. Texels outside `traced` are 0 (unlit).
 LightTexture shift_light_texture(const LightTexture& traced, Rect view);
 
 // The texture as an opaque RGBA image (for export and display).
