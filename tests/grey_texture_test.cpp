@@ -73,6 +73,44 @@ TEST(GreyTexture, BlursAsEachChannelOfItsRgbTexture) {
     EXPECT_EQ(checked, 32);
 }
 
+TEST(GreyTexture, DarkStretchesBlurToTheReferenceInBothLayouts) {
+    // Mostly unlit textures with lit patches: the AVX2 blur's dark steps
+    // (zeros in, zeros out, nothing else touched) start, stop and resume,
+    // and a region's dark steps overwrite what the output held before.
+    for (int channels : {1, 3})
+        for (int radius : {1, 2, 3})
+            for (std::uint64_t seed : {1u, 2u, 3u}) {
+                const Rect r{-5, 3, 333, 61};
+                LightTexture t(r, channels);
+                Pcg32 rng(seed * 7 + std::uint64_t(radius));
+                for (int patch = 0; patch < 6; ++patch) {
+                    const int px = int(rng.below(std::uint32_t(r.w))), py = int(rng.below(std::uint32_t(r.h)));
+                    const int pw = 1 + int(rng.below(70)), ph = 1 + int(rng.below(20));
+                    for (int y = py; y < std::min(r.h, py + ph); ++y)
+                        for (int x = px; x < std::min(r.w, px + pw); ++x)
+                            for (int c = 0; c < channels; ++c)
+                                t.texels[(std::size_t(y) * r.w + x) * channels + c] = std::uint8_t(1 + rng.below(255));
+                }
+                const LightTexture want = box_blur_reference(t, radius);
+                for (bool wide : widths()) {
+                    set_wide_kernels(wide);
+                    LightTexture out(r, channels);
+                    std::fill(out.texels.begin(), out.texels.end(), std::uint8_t(77));
+                    box_blur_into(t, radius, r, out);
+                    EXPECT_EQ(out.texels, want.texels) << channels << " channels, r " << radius << " seed " << seed << " wide " << wide;
+                    const Rect part{r.x + 40, r.y + 9, 250, 30};
+                    std::fill(out.texels.begin(), out.texels.end(), std::uint8_t(77));
+                    box_blur_into(t, radius, part, out);
+                    for (int y = r.y; y < r.y + r.h; ++y)
+                        for (int x = r.x; x < r.x + r.w; ++x)
+                            for (int c = 0; c < channels; ++c)
+                                ASSERT_EQ(out.value(x, y, c), part.contains(x, y) ? want.value(x, y, c) : 77)
+                                    << x << "," << y << " " << channels << " channels, r " << radius << " wide " << wide;
+                }
+                set_wide_kernels(true);
+            }
+}
+
 TEST(GreyTexture, ComposesAsItsRgbTextureInEveryVariant) {
     // Every light value against varied colours, in a texture covering part
     // of the view (the rest reads unlit), rows of every length mod 8.
