@@ -247,6 +247,24 @@ ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_
                                    : _mm256_permute4x64_epi64(_mm256_packus_epi16(q0, q1), 0xD8);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + j), out);
     }
+    // Sixteen more values in the order of the bytes (as the loop after this
+    // keeps them: these are the same row positions on every row), so that at
+    // most 15 go one by one.
+    if (j + 16 <= end) {
+        const std::uint8_t* p = src + j;
+        __m256i v = widened(p - C * R);
+        for (int t = 1 - R; t <= R; ++t) v = _mm256_add_epi16(v, widened(p + C * t));
+        __m256i* c = reinterpret_cast<__m256i*>(col + j);
+        __m256i* o = reinterpret_cast<__m256i*>(s + j);
+        const __m256i c0 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c), v), _mm256_loadu_si256(o));
+        _mm256_storeu_si256(c, c0), _mm256_storeu_si256(o, v);
+        if constexpr (Write) {
+            const __m256i q = _mm256_srl_epi16(_mm256_mulhi_epu16(_mm256_add_epi16(c0, halves), muls), shifts);
+            const __m256i bytes = _mm256_permute4x64_epi64(_mm256_packus_epi16(q, q), 0xD8);
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + j), _mm256_castsi256_si128(bytes));
+        }
+        j += 16;
+    }
     return j;
 }
 #endif
