@@ -17,6 +17,7 @@ STAGE_OF = [
     ("area_is_clear", "trace"),
     ("accumulate_light", "trace"),
     ("add_white_row", "trace"),
+    ("add_grey_row", "trace"),
     ("add_row", "trace"),
     ("trace_and_accumulate", "trace"),
     ("correct_lines", "opacity_correction"),
