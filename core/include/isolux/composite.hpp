@@ -14,7 +14,8 @@ namespace isolux {
 //   result    = clamp(texture + light)               (texture - light in shadow mode,
 //                                                     where L holds the shadow)
 // rounded to 8 bits; alpha is the colour's. `colour` covers `view`; the light
-// texture is read at the same world pixels (0 outside it).
+// texture is read at the same world pixels (0 outside it); a grey one's texel
+// is L in all three channels.
 Image composite(const Image& colour, Rect view, const LightTexture& light, const Params& p);
 
 // The same pixels written into `out` (resized to the view when it differs;
