@@ -429,10 +429,14 @@ std::int64_t prune_tree(const RayTree& t, const TreeValues& v, const std::uint8_
     if (reached)
         for (std::size_t i = 0; i < pixels; ++i) reached[i] = t.nodes_at[i] != 0;
     left.assign(t.nodes_at.begin(), t.nodes_at.end());
+    // (Plain pointers: through the vectors, each byte stored to `value`
+    // might have moved them, and every step reloaded a thread_local's data.)
+    std::uint8_t* const to_find = left.data();
+    const WalkNode* const node = v.node.data();
     for (const std::int32_t first : cut)
-        for (std::int32_t j = first, last = v.node[std::size_t(first)].end; j < last; ++j) {
-            const std::size_t p = v.node[std::size_t(j)].word >> 8;
-            if (--left[p] == 0) value[p] = 0;
+        for (std::int32_t j = first, last = node[first].end; j < last; ++j) {
+            const std::size_t p = node[j].word >> 8;
+            if (--to_find[p] == 0) value[p] = 0;
         }
     return n - skipped;
 }
