@@ -184,10 +184,10 @@ ISOLUX_AVX2 inline __m256i widened(const std::uint8_t* at) {
 //
 // Dark blocks cost a test: `dark` keeps, per 32-value step of the row
 // (bit k: the row k steps back), whether the step's horizontal sums were all
-// zero. After 2R+1 such rows its column sums and ring slots hold zeros, so
-// while its new sums are zero too (the bytes they read all zero: two loads
-// and a test) the step stores zeros and touches nothing else. A light
-// texture is dark wherever no light reaches.
+// zero (tested on the sums a step computes). After 2R+1 such rows its column
+// sums and ring slots hold zeros, so while its new sums are zero too (the
+// bytes they read all zero: two loads and a test) the step stores zeros and
+// touches nothing else. A light texture is dark wherever no light reaches.
 //
 // A grey texture's sums come from byte pairs instead (vpmaddubsw against
 // ones: each 16-bit lane the sum of two neighbours), the even and the odd
@@ -210,13 +210,12 @@ ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_
     const __m128i shifts = _mm_cvtsi32_si128(shift);
     for (std::size_t step = 0; j + 32 <= end; j += 32, ++step) {
         const std::uint8_t* p = src + j;
-        if constexpr (Write) {
-            // The bytes the step's sums read: [p - CR, p + 32 + CR).
+        const unsigned before = Write ? dark[step] : 0;
+        if (Write && before == window) {
+            // Dark so far: the step's new sums are zero when the bytes they
+            // read, [p - CR, p + 32 + CR), are.
             const __m256i in = _mm256_or_si256(bytes_at(p - C * R), bytes_at(p + C * R));
-            const bool zero = _mm256_testz_si256(in, in);
-            const unsigned before = dark[step];
-            dark[step] = std::uint8_t(((before << 1) | unsigned(zero)) & window);
-            if (zero && (before & window) == window) {
+            if (_mm256_testz_si256(in, in)) {
                 _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + j), _mm256_setzero_si256());
                 continue;
             }
@@ -241,6 +240,8 @@ ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_
         _mm256_storeu_si256(c, c0), _mm256_storeu_si256(c + 1, c1);
         _mm256_storeu_si256(o, v0), _mm256_storeu_si256(o + 1, v1);
         if constexpr (!Write) continue;
+        const __m256i any = _mm256_or_si256(v0, v1);
+        dark[step] = std::uint8_t(((before << 1) | unsigned(_mm256_testz_si256(any, any))) & window);
         const __m256i q0 = _mm256_srl_epi16(_mm256_mulhi_epu16(_mm256_add_epi16(c0, halves), muls), shifts);
         const __m256i q1 = _mm256_srl_epi16(_mm256_mulhi_epu16(_mm256_add_epi16(c1, halves), muls), shifts);
         const __m256i out = C == 1 ? _mm256_or_si256(q0, _mm256_slli_epi16(q1, 8))
