@@ -171,16 +171,20 @@ void blur_region(const LightTexture& tex, int radius, Rect z, LightTexture& out)
 }
 
 #if ISOLUX_X86_DISPATCH
+// Sixteen bytes as 16-bit lanes; 32 bytes as they are.
+ISOLUX_AVX2 inline __m256i widened(const std::uint8_t* at) {
+    return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(at)));
+}
+ISOLUX_AVX2 inline __m256i bytes_at(const std::uint8_t* at) {
+    return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at));
+}
+
 // The interior of an output row, [j, end), 32 values per step, as
 // blur_region_small's loop computes it (the same integer steps): written
 // out by hand because GCC loads each 32-byte window twice to widen its two
 // halves and masks the quotients before packing them (they are at most 255,
 // the reciprocal having been checked for every sum). Returns where it
 // stopped; the rest is the loop's.
-ISOLUX_AVX2 inline __m256i widened(const std::uint8_t* at) {
-    return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(at)));
-}
-
 //
 // Dark blocks cost a test: `dark` keeps, per 32-value step of the row
 // (bit k: the row k steps back), whether the step's horizontal sums were all
@@ -196,10 +200,6 @@ ISOLUX_AVX2 inline __m256i widened(const std::uint8_t* at) {
 // sums, not ten widened ones; the column sums and ring keep that order
 // (the warm-up rows come here too, without writing), and the even and odd
 // quotients interleave into bytes by a shift and an or.
-ISOLUX_AVX2 inline __m256i bytes_at(const std::uint8_t* at) {
-    return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at));
-}
-
 template <int R, int C, bool Write>
 ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_t* col, std::uint16_t* s,
                                            std::uint8_t* dst, std::uint8_t* dark, std::size_t j, std::size_t end,
