@@ -179,92 +179,149 @@ ISOLUX_AVX2 inline __m256i bytes_at(const std::uint8_t* at) {
     return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at));
 }
 
+// The divide of blur_region_small's loop in 16-bit lanes: the column sums
+// (which carry the half), times the reciprocal's multiplier, high half, shifted.
+struct Quotients {
+    __m256i muls;
+    __m128i shifts;
+};
+
+// One 32-value step at src + j of blur_interior_avx2 below (its comment
+// says the layout); with Write, `dark` is the step's history byte, `before`
+// what it held.
+template <int R, int C, bool Write>
+[[gnu::always_inline]] ISOLUX_AVX2 inline void blur_step_32(const std::uint8_t* p, std::uint16_t* col, std::uint16_t* s,
+                                                            std::uint8_t* dst, std::uint8_t* dark, unsigned before,
+                                                            const Quotients& k) {
+    constexpr unsigned window = (1u << (2 * R + 1)) - 1;
+    __m256i v0, v1;
+    if constexpr (C == 1) {
+        const __m256i ones = _mm256_set1_epi8(1), evens = _mm256_set1_epi16(1);
+        v0 = _mm256_maddubs_epi16(bytes_at(p + R), evens);
+        v1 = _mm256_maddubs_epi16(bytes_at(p + R + 1), evens);
+        for (int t = 0; t < R; ++t) {
+            v0 = _mm256_add_epi16(v0, _mm256_maddubs_epi16(bytes_at(p - R + 2 * t), ones));
+            v1 = _mm256_add_epi16(v1, _mm256_maddubs_epi16(bytes_at(p - R + 1 + 2 * t), ones));
+        }
+    } else {
+        v0 = widened(p - C * R), v1 = widened(p + 16 - C * R);
+        for (int t = 1 - R; t <= R; ++t)
+            v0 = _mm256_add_epi16(v0, widened(p + C * t)), v1 = _mm256_add_epi16(v1, widened(p + 16 + C * t));
+    }
+    __m256i* c = reinterpret_cast<__m256i*>(col);
+    __m256i* o = reinterpret_cast<__m256i*>(s);
+    const __m256i c0 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c), v0), _mm256_loadu_si256(o));
+    const __m256i c1 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c + 1), v1), _mm256_loadu_si256(o + 1));
+    _mm256_storeu_si256(c, c0), _mm256_storeu_si256(c + 1, c1);
+    _mm256_storeu_si256(o, v0), _mm256_storeu_si256(o + 1, v1);
+    if constexpr (!Write) return;
+    const __m256i any = _mm256_or_si256(v0, v1);
+    *dark = std::uint8_t(((before << 1) | unsigned(_mm256_testz_si256(any, any))) & window);
+    const __m256i q0 = _mm256_srl_epi16(_mm256_mulhi_epu16(c0, k.muls), k.shifts);
+    const __m256i q1 = _mm256_srl_epi16(_mm256_mulhi_epu16(c1, k.muls), k.shifts);
+    const __m256i out = C == 1 ? _mm256_or_si256(q0, _mm256_slli_epi16(q1, 8))
+                               : _mm256_permute4x64_epi64(_mm256_packus_epi16(q0, q1), 0xD8);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), out);
+}
+
+// Sixteen values at src + j in the order of the bytes.
+template <int R, int C, bool Write>
+[[gnu::always_inline]] ISOLUX_AVX2 inline void blur_step_16(const std::uint8_t* p, std::uint16_t* col, std::uint16_t* s,
+                                                            std::uint8_t* dst, const Quotients& k) {
+    __m256i v = widened(p - C * R);
+    for (int t = 1 - R; t <= R; ++t) v = _mm256_add_epi16(v, widened(p + C * t));
+    __m256i* c = reinterpret_cast<__m256i*>(col);
+    __m256i* o = reinterpret_cast<__m256i*>(s);
+    const __m256i c0 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c), v), _mm256_loadu_si256(o));
+    _mm256_storeu_si256(c, c0), _mm256_storeu_si256(o, v);
+    if constexpr (Write) {
+        const __m256i q = _mm256_srl_epi16(_mm256_mulhi_epu16(c0, k.muls), k.shifts);
+        const __m256i bytes = _mm256_permute4x64_epi64(_mm256_packus_epi16(q, q), 0xD8);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), _mm256_castsi256_si128(bytes));
+    }
+}
+
 // The interior of an output row, [j, end), 32 values per step, as
 // blur_region_small's loop computes it (the same integer steps): written
 // out by hand because GCC loads each 32-byte window twice to widen its two
 // halves and masks the quotients before packing them (they are at most 255,
 // the reciprocal having been checked for every sum). Returns where it
-// stopped; the rest is the loop's.
+// stopped (`end` when the interior is 16 values or more); the rest is the
+// loop's.
 //
-// Dark blocks cost a test: `dark` keeps, per 32-value step of the row
+// A grey texture's sums come from byte pairs (vpmaddubsw against ones:
+// each 16-bit lane the sum of two neighbours), the even and the odd texels
+// of a step apart: x even takes the pairs from x - R, x - R + 2, ... and
+// the byte at x + R; odd x the same one further. Six loads for 32 sums, not
+// ten widened ones; the column sums and ring keep that order (the warm-up
+// rows come here too, without writing), and the even and odd quotients
+// interleave into bytes by a shift and an or.
+//
+// Dark steps cost a load and a store: `dark` keeps, per step of the row
 // (bit k: the row k steps back), whether the step's horizontal sums were all
-// zero (tested on the sums a step computes). After 2R+1 such rows its column
-// sums and ring slots hold zeros, so while its new sums are zero too (the
-// bytes they read all zero: two loads and a test) the step stores zeros and
-// touches nothing else. A light texture is dark wherever no light reaches.
+// zero. After 2R+1 such rows its ring slots hold zeros and its column sums
+// their start, so while its new sums are zero too (the bytes they read all
+// zero) the step stores zeros and touches nothing else. A light texture is
+// dark wherever no light reaches, in runs as long as the gaps between
+// lights: a run of dark steps (found 32 at a time in `dark`) tests all its
+// bytes at once while it stores its zeros, and only if some are lit goes
+// again step by step.
 //
-// A grey texture's sums come from byte pairs instead (vpmaddubsw against
-// ones: each 16-bit lane the sum of two neighbours), the even and the odd
-// texels of a step apart: x even takes the pairs from x - R, x - R + 2, ...
-// and the byte at x + R; odd x the same one further. Six loads for 32
-// sums, not ten widened ones; the column sums and ring keep that order
-// (the warm-up rows come here too, without writing), and the even and odd
-// quotients interleave into bytes by a shift and an or.
+// The row's last values go 16 at a time in the order of the bytes, the last
+// 16 ending at `end` even if they overlap values done already: those ring
+// slots already hold their new sums, so their column sums and quotients come
+// out unchanged. (A grey texture's 32-value steps stop early enough that
+// this overlap stays in byte order.)
 template <int R, int C, bool Write>
 ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_t* col, std::uint16_t* s,
                                            std::uint8_t* dst, std::uint8_t* dark, std::size_t j, std::size_t end,
-                                           std::uint16_t half, std::uint16_t mul, int shift) {
+                                           std::uint16_t mul, int shift) {
     constexpr unsigned window = (1u << (2 * R + 1)) - 1;
-    const __m256i halves = _mm256_set1_epi16(std::int16_t(half)), muls = _mm256_set1_epi16(std::int16_t(mul));
-    const __m256i ones = _mm256_set1_epi8(1), evens = _mm256_set1_epi16(1);
-    const __m128i shifts = _mm_cvtsi32_si128(shift);
-    for (std::size_t step = 0; j + 32 <= end; j += 32, ++step) {
-        const std::uint8_t* p = src + j;
-        const unsigned before = Write ? dark[step] : 0;
-        if (Write && before == window) {
-            // Dark so far: the step's new sums are zero when the bytes they
-            // read, [p - CR, p + 32 + CR), are.
-            const __m256i in = _mm256_or_si256(bytes_at(p - C * R), bytes_at(p + C * R));
-            if (_mm256_testz_si256(in, in)) {
-                _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + j), _mm256_setzero_si256());
+    const Quotients k{_mm256_set1_epi16(std::int16_t(mul)), _mm_cvtsi32_si128(shift)};
+    const std::size_t begin = j;
+    std::size_t steps = (end - j) / 32;
+    if (C == 1 && steps > 0 && (end - j) % 32 != 0 && (end - j) % 32 < 16) --steps;
+    auto lit = [&](std::size_t step) ISOLUX_AVX2 __attribute__((always_inline)) {
+        blur_step_32<R, C, Write>(src + j, col + j, s + j, dst + j, dark + step, Write ? dark[step] : 0, k);
+    };
+    if constexpr (!Write) {
+        for (std::size_t step = 0; step < steps; ++step, j += 32) lit(step);
+    } else {
+        const __m256i windows = _mm256_set1_epi8(char(window));
+        for (std::size_t step = 0; step < steps;) {
+            const std::size_t left = steps - step;
+            std::uint32_t runs = std::uint32_t(_mm256_movemask_epi8(_mm256_cmpeq_epi8(bytes_at(dark + step), windows)));
+            if (left < 32) runs &= (1u << left) - 1;
+            if (!(runs & 1)) {
+                // Lit steps up to the next dark one.
+                const std::size_t count = std::min<std::size_t>(left, runs ? std::size_t(__builtin_ctz(runs)) : 32);
+                for (std::size_t e = step + count; step < e; ++step, j += 32) lit(step);
                 continue;
             }
-        }
-        __m256i v0, v1;
-        if constexpr (C == 1) {
-            v0 = _mm256_maddubs_epi16(bytes_at(p + R), evens);
-            v1 = _mm256_maddubs_epi16(bytes_at(p + R + 1), evens);
-            for (int t = 0; t < R; ++t) {
-                v0 = _mm256_add_epi16(v0, _mm256_maddubs_epi16(bytes_at(p - R + 2 * t), ones));
-                v1 = _mm256_add_epi16(v1, _mm256_maddubs_epi16(bytes_at(p - R + 1 + 2 * t), ones));
+            // A run of dark steps: zeros out, and its bytes [p - CR, p + 32 count + CR) tested.
+            const std::size_t count = std::min<std::size_t>(left, ~runs ? std::size_t(__builtin_ctz(~runs)) : 32);
+            const std::uint8_t* p = src + j;
+            __m256i in = bytes_at(p + 32 * (count - 1) + C * R);
+            for (std::size_t t = 0; t < count; ++t) {
+                in = _mm256_or_si256(in, bytes_at(p + 32 * t - C * R));
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + j + 32 * t), _mm256_setzero_si256());
             }
-        } else {
-            v0 = widened(p - C * R), v1 = widened(p + 16 - C * R);
-            for (int t = 1 - R; t <= R; ++t)
-                v0 = _mm256_add_epi16(v0, widened(p + C * t)), v1 = _mm256_add_epi16(v1, widened(p + 16 + C * t));
+            if (_mm256_testz_si256(in, in)) {
+                step += count, j += 32 * count;
+                continue;
+            }
+            // Some lit: step by step, each dark while its own bytes are zero.
+            for (std::size_t e = step + count; step < e; ++step, j += 32) {
+                const __m256i own = _mm256_or_si256(bytes_at(src + j - C * R), bytes_at(src + j + C * R));
+                if (!_mm256_testz_si256(own, own)) lit(step);
+            }
         }
-        __m256i* c = reinterpret_cast<__m256i*>(col + j);
-        __m256i* o = reinterpret_cast<__m256i*>(s + j);
-        const __m256i c0 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c), v0), _mm256_loadu_si256(o));
-        const __m256i c1 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c + 1), v1), _mm256_loadu_si256(o + 1));
-        _mm256_storeu_si256(c, c0), _mm256_storeu_si256(c + 1, c1);
-        _mm256_storeu_si256(o, v0), _mm256_storeu_si256(o + 1, v1);
-        if constexpr (!Write) continue;
-        const __m256i any = _mm256_or_si256(v0, v1);
-        dark[step] = std::uint8_t(((before << 1) | unsigned(_mm256_testz_si256(any, any))) & window);
-        const __m256i q0 = _mm256_srl_epi16(_mm256_mulhi_epu16(_mm256_add_epi16(c0, halves), muls), shifts);
-        const __m256i q1 = _mm256_srl_epi16(_mm256_mulhi_epu16(_mm256_add_epi16(c1, halves), muls), shifts);
-        const __m256i out = C == 1 ? _mm256_or_si256(q0, _mm256_slli_epi16(q1, 8))
-                                   : _mm256_permute4x64_epi64(_mm256_packus_epi16(q0, q1), 0xD8);
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + j), out);
     }
-    // Sixteen more values in the order of the bytes (as the loop after this
-    // keeps them: these are the same row positions on every row), so that at
-    // most 15 go one by one.
-    if (j + 16 <= end) {
-        const std::uint8_t* p = src + j;
-        __m256i v = widened(p - C * R);
-        for (int t = 1 - R; t <= R; ++t) v = _mm256_add_epi16(v, widened(p + C * t));
-        __m256i* c = reinterpret_cast<__m256i*>(col + j);
-        __m256i* o = reinterpret_cast<__m256i*>(s + j);
-        const __m256i c0 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c), v), _mm256_loadu_si256(o));
-        _mm256_storeu_si256(c, c0), _mm256_storeu_si256(o, v);
-        if constexpr (Write) {
-            const __m256i q = _mm256_srl_epi16(_mm256_mulhi_epu16(_mm256_add_epi16(c0, halves), muls), shifts);
-            const __m256i bytes = _mm256_permute4x64_epi64(_mm256_packus_epi16(q, q), 0xD8);
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + j), _mm256_castsi256_si128(bytes));
-        }
-        j += 16;
+    const std::size_t natural = C == 1 ? j : begin;  // values from here are kept in byte order
+    for (; j + 16 <= end; j += 16) blur_step_16<R, C, Write>(src + j, col + j, s + j, dst + j, k);
+    if (j < end && end >= natural + 16) {
+        blur_step_16<R, C, Write>(src + end - 16, col + end - 16, s + end - 16, dst + end - 16, k);
+        j = end;
     }
     return j;
 }
@@ -282,8 +339,10 @@ template <int R, int C, bool Avx2>
     const Reciprocal& k = reciprocal_for(R);
     const std::uint16_t half = std::uint16_t((span * span - 1) / 2), mul = k.m;
     const int shift = k.shift;
-    std::vector<std::uint16_t> ring(std::size_t(span) * m), column(m, 0);
-    std::vector<std::uint8_t> dark(Avx2 ? m / 32 + 1 : 0, 0);  // blur_interior_avx2's dark steps
+    // The column sums start at half the divisor, so that each carries the
+    // rounding's half (the divide is then a multiply-high and a shift).
+    std::vector<std::uint16_t> ring(std::size_t(span) * m), column(m, half);
+    std::vector<std::uint8_t> dark(Avx2 ? m / 32 + 32 : 0, 0);  // blur_interior_avx2's dark steps, read 32 at a time
     auto slot = [&](int i) { return &ring[std::size_t(((i % span) + span) % span) * m]; };
     auto texel_row = [&](int i) { return &tex.texels[std::size_t(std::clamp(i, 0, h - 1)) * w * C]; };
     // Columns [a, b) of the region read no clamped texel: x - R >= 0, x + R < w.
@@ -299,7 +358,7 @@ template <int R, int C, bool Avx2>
             const std::uint16_t c = std::uint16_t(col[j] + v - s[j]);
             col[j] = c;
             s[j] = v;
-            if constexpr (Write) dst[j] = std::uint8_t(std::uint16_t((std::uint32_t(std::uint16_t(c + half)) * mul) >> 16) >> shift);
+            if constexpr (Write) dst[j] = std::uint8_t(std::uint16_t((std::uint32_t(c) * mul) >> 16) >> shift);
         };
         // The few edge values whose window is clamped, one by one.
         auto clamped = [&](std::size_t j) {
@@ -314,7 +373,7 @@ template <int R, int C, bool Avx2>
         for (std::size_t j = 0; j < a; ++j) put(j, clamped(j));
         std::size_t from = a;
 #if ISOLUX_X86_DISPATCH
-        if constexpr (Avx2) from = blur_interior_avx2<R, C, Write>(src, col, s, dst, dark.data(), a, b, half, mul, shift);
+        if constexpr (Avx2) from = blur_interior_avx2<R, C, Write>(src, col, s, dst, dark.data(), a, b, mul, shift);
 #endif
         for (std::size_t j = from; j < b; ++j) {
             std::uint16_t v = 0;
@@ -322,7 +381,7 @@ template <int R, int C, bool Avx2>
             const std::uint16_t c = std::uint16_t(col[j] + v - s[j]);
             col[j] = c;
             s[j] = v;
-            if constexpr (Write) dst[j] = std::uint8_t(std::uint16_t((std::uint32_t(std::uint16_t(c + half)) * mul) >> 16) >> shift);
+            if constexpr (Write) dst[j] = std::uint8_t(std::uint16_t((std::uint32_t(c) * mul) >> 16) >> shift);
         }
         for (std::size_t j = b; j < m; ++j) put(j, clamped(j));
     };
