@@ -241,13 +241,21 @@ template <int R, int C, bool Write>
     }
 }
 
-// The interior of an output row, [j, end), 32 values per step, as
-// blur_region_small's loop computes it (the same integer steps): written
+// An output row, values [0, m) (m >= 48), as blur_region_small's loop
+// computes them (the same integer steps), mostly 32 values per step: written
 // out by hand because GCC loads each 32-byte window twice to widen its two
 // halves and masks the quotients before packing them (they are at most 255,
-// the reciprocal having been checked for every sum). Returns where it
-// stopped (`end` when the interior is 16 values or more); the rest is the
-// loop's.
+// the reciprocal having been checked for every sum).
+//
+// src[v] is the row's byte v for v in [-CR, b + CR): the window reads no
+// clamped texel for values [0, b) but those of [0, 16) when `lo` is given
+// (it holds bytes [-CR, 16 + CR) as the window sees them, clamped) nor those
+// of [b, m), whose bytes, [m - 32 - CR, m + CR), `hi` holds. The first 16
+// values go first, in the order of the bytes, then 32 at a time while the
+// bytes are src's, then 16 at a time, the last 16 ending at m even if they
+// overlap values done already: those ring slots already hold their new sums,
+// so their column sums and quotients come out unchanged. (A grey texture's
+// 32-value steps stop early enough that the overlap stays in byte order.)
 //
 // A grey texture's sums come from byte pairs (vpmaddubsw against ones:
 // each 16-bit lane the sum of two neighbours), the even and the odd texels
@@ -266,21 +274,17 @@ template <int R, int C, bool Write>
 // lights: a run of dark steps (found 32 at a time in `dark`) tests all its
 // bytes at once while it stores its zeros, and only if some are lit goes
 // again step by step.
-//
-// The row's last values go 16 at a time in the order of the bytes, the last
-// 16 ending at `end` even if they overlap values done already: those ring
-// slots already hold their new sums, so their column sums and quotients come
-// out unchanged. (A grey texture's 32-value steps stop early enough that
-// this overlap stays in byte order.)
 template <int R, int C, bool Write>
-ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_t* col, std::uint16_t* s,
-                                           std::uint8_t* dst, std::uint8_t* dark, std::size_t j, std::size_t end,
-                                           std::uint16_t mul, int shift) {
+ISOLUX_AVX2 void blur_row_avx2(const std::uint8_t* src, const std::uint8_t* lo, const std::uint8_t* hi,
+                               std::uint16_t* col, std::uint16_t* s, std::uint8_t* dst, std::uint8_t* dark,
+                               std::size_t m, std::size_t b, std::uint16_t mul, int shift) {
     constexpr unsigned window = (1u << (2 * R + 1)) - 1;
+    constexpr std::size_t CR = std::size_t(C) * R;
     const Quotients k{_mm256_set1_epi16(std::int16_t(mul)), _mm_cvtsi32_si128(shift)};
-    const std::size_t begin = j;
-    std::size_t steps = (end - j) / 32;
-    if (C == 1 && steps > 0 && (end - j) % 32 != 0 && (end - j) % 32 < 16) --steps;
+    blur_step_16<R, C, Write>(lo ? lo + CR : src, col, s, dst, k);
+    std::size_t j = 16;
+    std::size_t steps = b >= 48 ? (b - 16) / 32 : 0;
+    if (C == 1 && steps > 0 && m - 16 - 32 * steps < 16) --steps;
     auto lit = [&](std::size_t step) ISOLUX_AVX2 __attribute__((always_inline)) {
         blur_step_32<R, C, Write>(src + j, col + j, s + j, dst + j, dark + step, Write ? dark[step] : 0, k);
     };
@@ -301,9 +305,9 @@ ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_
             // A run of dark steps: zeros out, and its bytes [p - CR, p + 32 count + CR) tested.
             const std::size_t count = std::min<std::size_t>(left, ~runs ? std::size_t(__builtin_ctz(~runs)) : 32);
             const std::uint8_t* p = src + j;
-            __m256i in = bytes_at(p + 32 * (count - 1) + C * R);
+            __m256i in = bytes_at(p + 32 * (count - 1) + CR);
             for (std::size_t t = 0; t < count; ++t) {
-                in = _mm256_or_si256(in, bytes_at(p + 32 * t - C * R));
+                in = _mm256_or_si256(in, bytes_at(p + 32 * t - CR));
                 _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + j + 32 * t), _mm256_setzero_si256());
             }
             if (_mm256_testz_si256(in, in)) {
@@ -312,18 +316,15 @@ ISOLUX_AVX2 std::size_t blur_interior_avx2(const std::uint8_t* src, std::uint16_
             }
             // Some lit: step by step, each dark while its own bytes are zero.
             for (std::size_t e = step + count; step < e; ++step, j += 32) {
-                const __m256i own = _mm256_or_si256(bytes_at(src + j - C * R), bytes_at(src + j + C * R));
+                const __m256i own = _mm256_or_si256(bytes_at(src + j - CR), bytes_at(src + j + CR));
                 if (!_mm256_testz_si256(own, own)) lit(step);
             }
         }
     }
-    const std::size_t natural = C == 1 ? j : begin;  // values from here are kept in byte order
-    for (; j + 16 <= end; j += 16) blur_step_16<R, C, Write>(src + j, col + j, s + j, dst + j, k);
-    if (j < end && end >= natural + 16) {
-        blur_step_16<R, C, Write>(src + end - 16, col + end - 16, s + end - 16, dst + end - 16, k);
-        j = end;
-    }
-    return j;
+    // The rest 16 at a time, the bytes of values past b from `hi`.
+    auto bytes_for = [&](std::size_t v) { return v + 16 <= b ? src + v : hi + CR + (v + 32 - m); };
+    for (; j + 16 <= m; j += 16) blur_step_16<R, C, Write>(bytes_for(j), col + j, s + j, dst + j, k);
+    if (j < m) blur_step_16<R, C, Write>(bytes_for(m - 16), col + m - 16, s + m - 16, dst + m - 16, k);
 }
 #endif
 
@@ -342,12 +343,24 @@ template <int R, int C, bool Avx2>
     // The column sums start at half the divisor, so that each carries the
     // rounding's half (the divide is then a multiply-high and a shift).
     std::vector<std::uint16_t> ring(std::size_t(span) * m), column(m, half);
-    std::vector<std::uint8_t> dark(Avx2 ? m / 32 + 32 : 0, 0);  // blur_interior_avx2's dark steps, read 32 at a time
+    std::vector<std::uint8_t> dark(Avx2 ? m / 32 + 32 : 0, 0);  // blur_row_avx2's dark steps, read 32 at a time
     auto slot = [&](int i) { return &ring[std::size_t(((i % span) + span) % span) * m]; };
     auto texel_row = [&](int i) { return &tex.texels[std::size_t(std::clamp(i, 0, h - 1)) * w * C]; };
     // Columns [a, b) of the region read no clamped texel: x - R >= 0, x + R < w.
     const std::size_t a = std::size_t(std::clamp(R - x0, 0, z.w)) * C;
     const std::size_t b = std::max(a, std::size_t(std::clamp(w - R - x0, 0, z.w)) * C);
+    // Bytes [v0, v0 + count) of the region's row as its windows see them:
+    // byte v is channel v mod C of texel x0 + floor(v / C), clamped into the
+    // row (blur_row_avx2's `lo` and `hi`).
+    std::array<std::uint8_t, 64> lo{}, hi{};
+    auto window_bytes = [&](const std::uint8_t* row, std::ptrdiff_t v0, std::ptrdiff_t count, std::uint8_t* to) {
+        const std::ptrdiff_t first = -std::ptrdiff_t(x0) * C, last = std::ptrdiff_t(w - x0) * C, end = v0 + count;
+        auto channel = [](std::ptrdiff_t v) { return std::size_t((v % C + C) % C); };
+        for (std::ptrdiff_t v = v0; v < std::min(first, end); ++v) to[v - v0] = row[channel(v)];
+        const std::ptrdiff_t in0 = std::max(v0, first), in1 = std::min(end, last);
+        if (in1 > in0) std::memcpy(to + (in0 - v0), row + (in0 - first), std::size_t(in1 - in0));
+        for (std::ptrdiff_t v = std::max(v0, last); v < end; ++v) to[v - v0] = row[std::size_t(w - 1) * C + channel(v)];
+    };
     // Texel row i comes in: its horizontal sums replace those in slot `s`
     // (the row leaving the window, or zeros) and the column sums move by the
     // difference; with Write, the column then gives output row `dst`.
@@ -368,20 +381,24 @@ template <int R, int C, bool Avx2>
             for (int t = -R; t <= R; ++t) v = std::uint16_t(v + row[std::size_t(std::clamp(x + t, 0, w - 1)) * C + c]);
             return v;
         };
+#if ISOLUX_X86_DISPATCH
+        if constexpr (Avx2) {
+            if (m >= 48) {
+                const std::uint8_t* row = texel_row(i);
+                if (a > 0) window_bytes(row, -C * R, 16 + 2 * C * R, lo.data());
+                if (b < m) window_bytes(row, std::ptrdiff_t(m) - 32 - C * R, 32 + 2 * C * R, hi.data());
+                blur_row_avx2<R, C, Write>(src, a > 0 ? lo.data() : nullptr, hi.data(), col, s, dst, dark.data(), m, b, mul, shift);
+                return;
+            }
+        }
+#endif
         // Left to right, as the row's bytes arrive (its right end read
         // first would wait for memory on every row).
         for (std::size_t j = 0; j < a; ++j) put(j, clamped(j));
-        std::size_t from = a;
-#if ISOLUX_X86_DISPATCH
-        if constexpr (Avx2) from = blur_interior_avx2<R, C, Write>(src, col, s, dst, dark.data(), a, b, mul, shift);
-#endif
-        for (std::size_t j = from; j < b; ++j) {
+        for (std::size_t j = a; j < b; ++j) {
             std::uint16_t v = 0;
             for (int t = -R; t <= R; ++t) v = std::uint16_t(v + src[std::ptrdiff_t(j) + C * t]);
-            const std::uint16_t c = std::uint16_t(col[j] + v - s[j]);
-            col[j] = c;
-            s[j] = v;
-            if constexpr (Write) dst[j] = std::uint8_t(std::uint16_t((std::uint32_t(c) * mul) >> 16) >> shift);
+            put(j, v);
         }
         for (std::size_t j = b; j < m; ++j) put(j, clamped(j));
     };
@@ -392,7 +409,7 @@ template <int R, int C, bool Avx2>
 }
 
 // Radius 1 to 3 at two widths (isolux/cpu.hpp): the same code, vectorised
-// twice, the AVX2 build's row interior written by hand (blur_interior_avx2).
+// twice, the AVX2 build's rows written by hand (blur_row_avx2).
 template <bool Avx2, int C>
 [[gnu::always_inline]] inline void blur_small_channels(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
     if (radius == 1) blur_region_small<1, C, Avx2>(tex, z, out);
