@@ -158,7 +158,7 @@ public:
         {
             std::lock_guard<std::mutex> lock(mutex_);
             while (int(workers_.size()) < extra)
-                workers_.emplace_back([this, id = int(workers_.size()), seen = generation_](std::stop_token stop) {
+                workers_.emplace_back([this, id = int(workers_.size()), seen = generation_.load()](std::stop_token stop) {
                     serve(stop, id, seen);
                 });
             job_ = &job;
@@ -179,8 +179,14 @@ private:
     void serve(std::stop_token stop, int id, std::uint64_t seen) {
         std::unique_lock<std::mutex> lock(mutex_);
         for (;;) {
-            if (!wake_.wait(lock, stop, [&] { return generation_ != seen; })) return;  // stopping
-            seen = generation_;
+            // The next job often comes within the spin limit (frames back to
+            // back, or a frame's next stage): waiting for it awake saves the
+            // wake-up, which costs as much as the spin.
+            lock.unlock();
+            spin_until([&] { return generation_.load() != seen || stop.stop_requested(); }, spin_limit);
+            lock.lock();
+            if (!wake_.wait(lock, stop, [&] { return generation_.load() != seen; })) return;  // stopping
+            seen = generation_.load();
             if (id >= wanted_) continue;  // this job wants fewer threads
             const std::function<void()>* job = job_;
             lock.unlock();
@@ -195,17 +201,23 @@ private:
     const std::function<void()>* job_ = nullptr;
     int wanted_ = 0;
     std::atomic<int> done_{0};
-    std::uint64_t generation_ = 0;
+    std::atomic<std::uint64_t> generation_{0};  // written under mutex_, read spinning without it
     std::vector<std::jthread> workers_;  // last: stopped and joined first
 };
+
+// One pool for every stage (a pool per stage would leave one stage's
+// workers spinning while the next stage's run).
+WorkerPool& worker_pool() {
+    static WorkerPool pool;
+    return pool;
+}
 
 // Runs `work` on `count` threads, the caller's among them, and waits for all.
 template <class Work>
 void run_on_threads(int count, Work& work) {
     if (count <= 1) return work();
-    static WorkerPool pool;
     const std::function<void()> job = [&work] { work(); };
-    if (pool.run(count - 1, job)) return;
+    if (worker_pool().run(count - 1, job)) return;
     std::vector<std::jthread> own;
     for (int id = 1; id < count; ++id) own.emplace_back([&work] { work(); });
     work();
