@@ -459,8 +459,10 @@ LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edi
             ++rep.lights_reused;
             if (old.colour != t.colour || old.intensity != t.intensity)
                 plan.recoloured.push_back(i);
+            t.cost_ms = old.cost_ms;
         } else {
             t.mask.clip = clip;
+            if (i < c.lights.size()) t.cost_ms = c.lights[i].cost_ms;  // most likely this light, moved
             plan.todo.push_back(i);
         }
     }
@@ -475,10 +477,15 @@ LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edi
         plan.traced[i].mask.reached = std::move(c.lights[spare].mask.reached);
         taken[spare++] = 1;
     }
-    // The largest first: threads take lights as they finish one, and a small
-    // one last leaves the least time with one thread idle.
+    // The costliest first: threads take lights as they finish one, and a
+    // cheap one last leaves the least time with one thread idle. A light's
+    // cost is what it took last frame (lights move little between frames);
+    // lights not timed yet come first, the largest first.
     auto pixels = [&](std::size_t i) { return std::int64_t(plan.traced[i].mask.clip.w) * plan.traced[i].mask.clip.h; };
-    std::stable_sort(plan.todo.begin(), plan.todo.end(), [&](std::size_t a, std::size_t b) { return pixels(a) > pixels(b); });
+    auto cost = [&](std::size_t i) { return plan.traced[i].cost_ms > 0 ? plan.traced[i].cost_ms : HUGE_VAL; };
+    std::stable_sort(plan.todo.begin(), plan.todo.end(), [&](std::size_t a, std::size_t b) {
+        return cost(a) != cost(b) ? cost(a) > cost(b) : pixels(a) > pixels(b);
+    });
     return plan;
 }
 
@@ -567,6 +574,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             if (shaped(p)) shape_light(tl.mask, p);  // beyond the paper: round lights, a fade to the border
             trace_ms[k] = ms_between(t0, t1);
             correct_ms[k] = ms_between(t1, Clock::now());
+            tl.cost_ms = trace_ms[k] + correct_ms[k];
         }
     };
     const int bands = std::max(1, std::min(threads * 8, tex_rect.h / 32));
@@ -623,7 +631,9 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
         }
         rep.lights_traced = int(n);
         std::vector<Rect> traced;
-        for (std::size_t k : plan.todo) traced.push_back(plan.traced[k].mask.clip);
+        std::vector<std::size_t> in_scene_order = plan.todo;  // (todo's order follows timings)
+        std::sort(in_scene_order.begin(), in_scene_order.end());
+        for (std::size_t k : in_scene_order) traced.push_back(plan.traced[k].mask.clip);
         traced = disjoint_union(std::move(traced));
         if (correct) touch(rep, Stage::opacity_correction, traced);
         touch(rep, Stage::trace, std::move(traced));
@@ -641,7 +651,9 @@ std::vector<Rect> dirty_parts(const FrameCache& c, const LightPlan& plan, Rect t
     if (!had_lights && plan.lights.empty()) return {};
     if (fresh || must) return {tex_rect};
     std::vector<Rect> dirty;
-    for (std::size_t k : plan.todo) dirty.push_back(intersect(plan.traced[k].mask.clip, tex_rect));
+    std::vector<std::size_t> todo = plan.todo;  // in scene order: todo's follows timings
+    std::sort(todo.begin(), todo.end());
+    for (std::size_t k : todo) dirty.push_back(intersect(plan.traced[k].mask.clip, tex_rect));
     for (std::size_t k : plan.recoloured) dirty.push_back(intersect(plan.traced[k].mask.clip, tex_rect));
     for (const TracedLight& old : c.lights) {
         bool kept = false;

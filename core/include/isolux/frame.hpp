@@ -109,6 +109,9 @@ struct FrameCache {
         std::array<std::uint8_t, 3> colour{255, 255, 255};  // what the light added with: a change re-adds its area
         double intensity = 1;
         LightMask mask;
+        // What tracing and correcting it took, in ms (0: not timed yet):
+        // the next frame traces the costliest first, so that threads finish together.
+        double cost_ms = 0;
     };
     std::vector<TracedLight> lights;
     bool lights_corrected = true;  // whether the cached masks had the opacity correction
