@@ -125,31 +125,44 @@ namespace {
 // (Loads and stores by memcpy: unaligned, and no vector crosses a call.)
 using Bytes32 = std::uint8_t __attribute__((vector_size(32)));
 
+// 32 pixels of correct_byte_row: from the bytes at b8, f8 and v8 into `to`.
+// Two selects (one vpblendvb, one and): two ops fewer than masks combined by
+// hand.
+[[gnu::always_inline]] inline void correct_32(const std::uint8_t* b8, const std::uint8_t* f8, const std::uint8_t* v8,
+                                              const Bytes32& vys, const Bytes32& tops, std::uint8_t* to) {
+    Bytes32 b, f, v;
+    std::memcpy(&b, b8, 32), std::memcpy(&f, f8, 32), std::memcpy(&v, v8, 32);
+    const Bytes32 zero{};
+    const Bytes32 lit = b <= tops ? (f < vys ? f : vys) : zero;
+    v = b == zero ? v : lit;
+    std::memcpy(to, &v, 32);
+}
+
 // One row of the byte lines, `w` pixels: value = none ? value : (stands
 // above ? min(fx, vy) : 0), where "stands above" is below8 <= top.
-// (A last step overlapping the one before would be shorter, but its load of
-// bytes still in the store buffer stalls every row: the rest goes one pixel
-// at a time.)
 [[gnu::always_inline]] inline void correct_byte_row(std::uint8_t* value, std::uint8_t* reached, const std::uint8_t* below8,
                                                     const std::uint8_t* fx, std::uint8_t vy, std::uint8_t top, int w) {
-    const Bytes32 vys = Bytes32{} + vy, tops = Bytes32{} + top, zero{};
-    int x = 0;
-    for (; x + 32 <= w; x += 32) {
-        Bytes32 b, f, v;
-        std::memcpy(&b, below8 + x, 32), std::memcpy(&f, fx + x, 32), std::memcpy(&v, value + x, 32);
-        // Two selects (one vpblendvb, one and): two ops fewer than masks
-        // combined by hand.
-        const Bytes32 lit = b <= tops ? (f < vys ? f : vys) : zero;
-        v = b == zero ? v : lit;
-        std::memcpy(value + x, &v, 32);
-    }
-    for (; x < w; ++x) {  // branch-free: the pixels' kinds do not follow a pattern
-        const std::uint8_t b = below8[x], f = fx[x] < vy ? fx[x] : vy;
-        const std::uint8_t keep = std::uint8_t(-std::uint8_t(b == 0)), lit = std::uint8_t(-std::uint8_t(b <= top));
-        value[x] = std::uint8_t((value[x] & keep) | (f & lit & std::uint8_t(~keep)));
+    const Bytes32 vys = Bytes32{} + vy, tops = Bytes32{} + top;
+    if (w >= 32) {
+        // The last 32 pixels, ending at w, computed before any store and
+        // stored last, over pixels the loop may have done: with the same
+        // bytes, each pixel's depending on its own alone. (Loaded after the
+        // loop's stores they would wait for them: no store forwarding on a
+        // partial overlap.)
+        alignas(32) std::uint8_t last[32];
+        correct_32(below8 + w - 32, fx + w - 32, value + w - 32, vys, tops, last);
+        int x = 0;
+        for (; x + 32 <= w; x += 32) correct_32(below8 + x, fx + x, value + x, vys, tops, value + x);
+        if (x < w) std::memcpy(value + w - 32, last, 32);
+    } else {
+        for (int x = 0; x < w; ++x) {  // branch-free: the pixels' kinds do not follow a pattern
+            const std::uint8_t b = below8[x], f = fx[x] < vy ? fx[x] : vy;
+            const std::uint8_t keep = std::uint8_t(-std::uint8_t(b == 0)), lit = std::uint8_t(-std::uint8_t(b <= top));
+            value[x] = std::uint8_t((value[x] & keep) | (f & lit & std::uint8_t(~keep)));
+        }
     }
     if (reached)
-        for (x = 0; x < w; ++x) reached[x] = below8[x] == 0 ? reached[x] : std::uint8_t(1);
+        for (int x = 0; x < w; ++x) reached[x] = below8[x] == 0 ? reached[x] : std::uint8_t(1);
 }
 
 // The pass at two widths (isolux/cpu.hpp): the same code, vectorised twice.
