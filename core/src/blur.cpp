@@ -186,7 +186,7 @@ struct Quotients {
     __m128i shifts;
 };
 
-// One 32-value step at src + j of blur_interior_avx2 below (its comment
+// One 32-value step at src + j of blur_row_avx2 below (its comment
 // says the layout); with Write, `dark` is the step's history byte, `before`
 // what it held.
 template <int R, int C, bool Write>
