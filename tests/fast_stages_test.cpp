@@ -526,6 +526,39 @@ TEST(OnlyWhatChanged, OneMovedLightRedoesItsAreasAndEqualsAFreshFrame) {
     }
 }
 
+TEST(OnlyWhatChanged, TheLightsOrderByCostChangesNoByteNorRectangle) {
+    // Lights are traced costliest first by what each took the frame before
+    // (timings: they differ from run to run). Two states whose recorded
+    // costs order the lights opposite ways draw the same frames and report
+    // the same rectangles, and every traced light has its cost recorded.
+    Scene base;
+    base.width = base.height = 16;
+    const World w = make_world(test::default_tileset(), base);
+    Scene s = moving_scene(w, 10);
+    const Camera cam{double(w.placed.bounds.x + 100), double(w.placed.bounds.y + 50), 700, 400};
+    for (std::size_t i = 0; i < s.lights.size(); ++i) s.lights[i] = Light{cam.x + 40 + 65.0 * double(i), cam.y + 40 + 33.0 * double(i)};
+    FrameState a, b;
+    a.options.threads = b.options.threads = 2;
+    render_frame(a, w, s, cam, 0);
+    render_frame(b, w, s, cam, 0);
+    for (long f = 1; f <= 4; ++f) {
+        ASSERT_EQ(a.cache.lights.size(), b.cache.lights.size());
+        for (std::size_t i = 0; i < a.cache.lights.size(); ++i) {
+            EXPECT_GT(a.cache.lights[i].cost_ms, 0) << "light " << i << " traced without its cost";
+            a.cache.lights[i].cost_ms = 1.0 + double(i);
+            b.cache.lights[i].cost_ms = 100.0 - double(i);
+        }
+        for (std::size_t i = 0; i < s.lights.size(); i += 2) s.lights[i].x += 3;  // half the lights move
+        const FrameReport ra = render_frame(a, w, s, cam, f), rb = render_frame(b, w, s, cam, f);
+        ASSERT_EQ(ra.lights_traced, rb.lights_traced);
+        EXPECT_EQ(ra.lights_traced, 5);
+        ASSERT_EQ(a.final.rgba, b.final.rgba) << "frame " << f;
+        EXPECT_EQ(ra.dirty_parts, rb.dirty_parts) << "frame " << f;
+        for (Stage stage : {Stage::trace, Stage::opacity_correction, Stage::blur, Stage::composite})
+            EXPECT_EQ(ra.touched_parts[int(stage)], rb.touched_parts[int(stage)]) << "frame " << f << " stage " << int(stage);
+    }
+}
+
 TEST(OnlyWhatChanged, TheDisjointUnionCoversEachPixelOfThePartsOnce) {
     Pcg32 rng(5);
     for (int round = 0; round < 300; ++round) {
