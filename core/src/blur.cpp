@@ -186,6 +186,19 @@ struct Quotients {
     __m128i shifts;
 };
 
+// A step's column sums slid by its new row sums `v` (the leaving row's in
+// slot `s`, replaced by v), and their quotients.
+[[gnu::always_inline]] ISOLUX_AVX2 inline __m256i slid_column(std::uint16_t* col, std::uint16_t* s, __m256i v) {
+    __m256i* c = reinterpret_cast<__m256i*>(col);
+    __m256i* o = reinterpret_cast<__m256i*>(s);
+    const __m256i sums = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c), v), _mm256_loadu_si256(o));
+    _mm256_storeu_si256(c, sums), _mm256_storeu_si256(o, v);
+    return sums;
+}
+[[gnu::always_inline]] ISOLUX_AVX2 inline __m256i quotients(__m256i sums, const Quotients& k) {
+    return _mm256_srl_epi16(_mm256_mulhi_epu16(sums, k.muls), k.shifts);
+}
+
 // One 32-value step at src + j of blur_row_avx2 below (its comment
 // says the layout); with Write, `dark` is the step's history byte, `before`
 // what it held.
@@ -208,17 +221,11 @@ template <int R, int C, bool Write>
         for (int t = 1 - R; t <= R; ++t)
             v0 = _mm256_add_epi16(v0, widened(p + C * t)), v1 = _mm256_add_epi16(v1, widened(p + 16 + C * t));
     }
-    __m256i* c = reinterpret_cast<__m256i*>(col);
-    __m256i* o = reinterpret_cast<__m256i*>(s);
-    const __m256i c0 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c), v0), _mm256_loadu_si256(o));
-    const __m256i c1 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c + 1), v1), _mm256_loadu_si256(o + 1));
-    _mm256_storeu_si256(c, c0), _mm256_storeu_si256(c + 1, c1);
-    _mm256_storeu_si256(o, v0), _mm256_storeu_si256(o + 1, v1);
+    const __m256i c0 = slid_column(col, s, v0), c1 = slid_column(col + 16, s + 16, v1);
     if constexpr (!Write) return;
     const __m256i any = _mm256_or_si256(v0, v1);
     *dark = std::uint8_t(((before << 1) | unsigned(_mm256_testz_si256(any, any))) & window);
-    const __m256i q0 = _mm256_srl_epi16(_mm256_mulhi_epu16(c0, k.muls), k.shifts);
-    const __m256i q1 = _mm256_srl_epi16(_mm256_mulhi_epu16(c1, k.muls), k.shifts);
+    const __m256i q0 = quotients(c0, k), q1 = quotients(c1, k);
     const __m256i out = C == 1 ? _mm256_or_si256(q0, _mm256_slli_epi16(q1, 8))
                                : _mm256_permute4x64_epi64(_mm256_packus_epi16(q0, q1), 0xD8);
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), out);
@@ -230,12 +237,9 @@ template <int R, int C, bool Write>
                                                             std::uint8_t* dst, const Quotients& k) {
     __m256i v = widened(p - C * R);
     for (int t = 1 - R; t <= R; ++t) v = _mm256_add_epi16(v, widened(p + C * t));
-    __m256i* c = reinterpret_cast<__m256i*>(col);
-    __m256i* o = reinterpret_cast<__m256i*>(s);
-    const __m256i c0 = _mm256_sub_epi16(_mm256_add_epi16(_mm256_loadu_si256(c), v), _mm256_loadu_si256(o));
-    _mm256_storeu_si256(c, c0), _mm256_storeu_si256(o, v);
+    const __m256i c0 = slid_column(col, s, v);
     if constexpr (Write) {
-        const __m256i q = _mm256_srl_epi16(_mm256_mulhi_epu16(c0, k.muls), k.shifts);
+        const __m256i q = quotients(c0, k);
         const __m256i bytes = _mm256_permute4x64_epi64(_mm256_packus_epi16(q, q), 0xD8);
         _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), _mm256_castsi256_si128(bytes));
     }

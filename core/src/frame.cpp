@@ -417,7 +417,7 @@ TraceDecision decide_retrace(const FrameState& st, const Scene& scene, Rect view
 struct LightPlan {
     std::vector<const Light*> lights;
     std::vector<TracedLight> traced;  // by index in `lights`
-    std::vector<std::size_t> todo;
+    std::vector<std::size_t> todo;  // in the scene's order (trace_and_accumulate orders them by cost)
     std::vector<std::size_t> recoloured;  // reused masks whose colour or intensity changed
 };
 
@@ -477,15 +477,6 @@ LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edi
         plan.traced[i].mask.reached = std::move(c.lights[spare].mask.reached);
         taken[spare++] = 1;
     }
-    // The costliest first: threads take lights as they finish one, and a
-    // cheap one last leaves the least time with one thread idle. A light's
-    // cost is what it took last frame (lights move little between frames);
-    // lights not timed yet come first, the largest first.
-    auto pixels = [&](std::size_t i) { return std::int64_t(plan.traced[i].mask.clip.w) * plan.traced[i].mask.clip.h; };
-    auto cost = [&](std::size_t i) { return plan.traced[i].cost_ms > 0 ? plan.traced[i].cost_ms : HUGE_VAL; };
-    std::stable_sort(plan.todo.begin(), plan.todo.end(), [&](std::size_t a, std::size_t b) {
-        return cost(a) != cost(b) ? cost(a) > cost(b) : pixels(a) > pixels(b);
-    });
     return plan;
 }
 
@@ -526,6 +517,16 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     const bool over = p.rays_over_obstacles && p.mode != Mode::shadow;
     const std::size_t n = plan.todo.size();
     std::vector<double> trace_ms(n, 0), correct_ms(n, 0);
+    // The order threads take the lights in: the costliest first, so that a
+    // cheap one last leaves the least time with one thread idle. A light's
+    // cost is what it took last frame (lights move little between frames);
+    // lights not timed yet come first, the largest first.
+    std::vector<std::size_t> order = plan.todo;
+    auto pixels = [&](std::size_t i) { return std::int64_t(plan.traced[i].mask.clip.w) * plan.traced[i].mask.clip.h; };
+    auto cost = [&](std::size_t i) { return plan.traced[i].cost_ms > 0 ? plan.traced[i].cost_ms : HUGE_VAL; };
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return cost(a) != cost(b) ? cost(a) > cost(b) : pixels(a) > pixels(b);
+    });
 
     // Another tracer (the app's GPU) first, on this thread, when one is set.
     bool traced_elsewhere = false;
@@ -553,7 +554,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     auto trace_lights = [&] {
         for (std::size_t k; (k = next_light++) < n;) {
             if (control.cancelled()) break;
-            TracedLight& tl = plan.traced[plan.todo[k]];
+            TracedLight& tl = plan.traced[order[k]];
             const auto t0 = Clock::now();
             const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
             if (!over && !traced_elsewhere) {
@@ -631,9 +632,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
         }
         rep.lights_traced = int(n);
         std::vector<Rect> traced;
-        std::vector<std::size_t> in_scene_order = plan.todo;  // (todo's order follows timings)
-        std::sort(in_scene_order.begin(), in_scene_order.end());
-        for (std::size_t k : in_scene_order) traced.push_back(plan.traced[k].mask.clip);
+        for (std::size_t k : plan.todo) traced.push_back(plan.traced[k].mask.clip);
         traced = disjoint_union(std::move(traced));
         if (correct) touch(rep, Stage::opacity_correction, traced);
         touch(rep, Stage::trace, std::move(traced));
@@ -651,9 +650,7 @@ std::vector<Rect> dirty_parts(const FrameCache& c, const LightPlan& plan, Rect t
     if (!had_lights && plan.lights.empty()) return {};
     if (fresh || must) return {tex_rect};
     std::vector<Rect> dirty;
-    std::vector<std::size_t> todo = plan.todo;  // in scene order: todo's follows timings
-    std::sort(todo.begin(), todo.end());
-    for (std::size_t k : todo) dirty.push_back(intersect(plan.traced[k].mask.clip, tex_rect));
+    for (std::size_t k : plan.todo) dirty.push_back(intersect(plan.traced[k].mask.clip, tex_rect));
     for (std::size_t k : plan.recoloured) dirty.push_back(intersect(plan.traced[k].mask.clip, tex_rect));
     for (const TracedLight& old : c.lights) {
         bool kept = false;
