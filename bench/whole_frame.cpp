@@ -189,11 +189,19 @@ void register_whole_frames() {
                 })->Unit(benchmark::kMillisecond)->UseRealTime();
             }
     // Each stage alone on the frame's own buffers, one thread.
-    benchmark::RegisterBenchmark("stage/blur/radius:2", [](benchmark::State& st) {
-        ScreenScene& s = screen("default", 1);
-        LightTexture out(s.frame.traced.rect);
-        for (auto _ : st) box_blur_into(s.frame.traced, 2, s.frame.traced.rect, out);
-    })->Unit(benchmark::kMillisecond);
+    // The blur at each radius of its fused pass (1 to 7) and one past it, on
+    // the frame's grey texture (its 32 lights are white) and on the same
+    // texels as RGB (a coloured light's layout).
+    for (int radius : {1, 2, 3, 4, 5, 7, 8})
+        for (const bool rgb : {false, true})
+            benchmark::RegisterBenchmark(("stage/blur" + std::string(rgb ? "_rgb" : "") + "/radius:" + std::to_string(radius)).c_str(),
+                                         [radius, rgb](benchmark::State& st) {
+                                             ScreenScene& s = screen("default", 1);
+                                             const LightTexture tex = rgb ? rgb_texture(s.frame.traced) : s.frame.traced;
+                                             LightTexture out(tex.rect, tex.channels);
+                                             for (auto _ : st) box_blur_into(tex, radius, tex.rect, out);
+                                         })
+                ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("stage/composite", [](benchmark::State& st) {
         ScreenScene& s = screen("default", 1);
         Image out(s.frame.view.w, s.frame.view.h);

@@ -56,7 +56,7 @@ TEST(FastBlur, EqualsTheReferenceForEveryRadiusAndSize) {
     const Rect sizes[] = {{0, 0, 1, 1}, {-3, 5, 2, 7}, {10, -4, 17, 5}, {0, 0, 64, 40}, {-100, -50, 33, 29}};
     int checked = 0;
     for (const Rect& r : sizes)
-        for (int radius : {0, 1, 2, 3, 4, 5, 7, 8, 20, 62, 63, 100}) {
+        for (int radius : {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 20, 62, 63, 100}) {
             if (radius > 20 && r.w * r.h > 1200) continue;  // the reference is O(r^2) per texel
             const LightTexture t = random_texture(r, std::uint64_t(r.w * 131 + radius));
             const LightTexture want = box_blur_reference(t, radius);
@@ -80,7 +80,7 @@ TEST(FastBlur, WideRowsOfExtremeTexelsEqualTheReference) {
             for (int x = 0; x < r.w; ++x)
                 for (int c = 0; c < 3; ++c)
                     t.texels[(std::size_t(y) * r.w + x) * 3 + c] = (x / 16 + y / 8 + c) % 3 ? 255 : 0;
-        for (int radius : {1, 2, 3}) {
+        for (int radius = 1; radius <= 8; ++radius) {
             const LightTexture want = box_blur_reference(t, radius);
             for (bool wide : both_widths()) {
                 set_wide_kernels(wide);
@@ -121,24 +121,27 @@ TEST(FastBlur, ARegionWritesOnlyItsTexelsAndTheirFullValues) {
 }
 
 TEST(FastBlur, EveryRowWidthAndEdgeEqualsTheReference) {
-    // The AVX2 rows: the first 16 values, the 32-value steps, the 16-value
-    // tail whose last step overlaps values done (every width mod 32), the
-    // clamped bytes at either texture edge or neither, in both layouts,
-    // over dark stretches and lit patches, into output holding other values.
+    // The AVX2 rows at every radius of the fused pass: the first values
+    // (16, or 32 where an RGB window reaches past 16 bytes), the 32-value
+    // steps, the 16-value tail whose last step overlaps values done (every
+    // width mod 32), the clamped bytes at either texture edge or neither, in
+    // both layouts, over dark rows (2R + 4 of them, longer than the window)
+    // and lit patches, into output holding other values.
     int checked = 0;
     for (int channels : {1, 3})
-        for (int tex_w = 40; tex_w <= 120; tex_w += channels == 1 ? 1 : 7) {
-            const Rect r{-3, 2, tex_w, 14};
-            LightTexture t(r, channels);
-            Pcg32 rng(std::uint64_t(tex_w * 3 + channels));
-            for (std::size_t i = 0; i < t.texels.size(); ++i) {
-                const std::size_t x = (i / std::size_t(channels)) % std::size_t(tex_w);
-                t.texels[i] = (x / 11 + i / std::size_t(channels * tex_w) / 4) % 3 ? 0 : std::uint8_t(1 + rng.below(255));
-            }
-            for (int radius : {1, 2, 3}) {
+        for (int tex_w = 40; tex_w <= 120; tex_w += channels == 1 ? 1 : 7)
+            for (int radius = 1; radius <= 7; ++radius) {
+                const Rect r{-3, 2, tex_w, 40};
+                LightTexture t(r, channels);
+                Pcg32 rng(std::uint64_t(tex_w * 3 + channels));
+                for (std::size_t i = 0; i < t.texels.size(); ++i) {
+                    const std::size_t x = (i / std::size_t(channels)) % std::size_t(tex_w);
+                    const std::size_t y = i / std::size_t(channels * tex_w);
+                    t.texels[i] = (x / 11) % 3 || (y / std::size_t(radius + 2)) % 3 ? 0 : std::uint8_t(1 + rng.below(255));
+                }
                 const LightTexture want = box_blur_reference(t, radius);
-                for (const Rect z : {r, Rect{r.x + 4, r.y + 1, tex_w - 4, 11}, Rect{r.x, r.y, tex_w - 5, 14},
-                                     Rect{r.x + 5, r.y + 3, tex_w - 9, 9}})
+                for (const Rect z : {r, Rect{r.x + 4, r.y + 1, tex_w - 4, 37}, Rect{r.x, r.y, tex_w - 5, 40},
+                                     Rect{r.x + 5, r.y + 3, tex_w - 9, 29}})
                     for (bool wide : both_widths()) {
                         set_wide_kernels(wide);
                         LightTexture out(r, channels);
@@ -154,8 +157,30 @@ TEST(FastBlur, EveryRowWidthAndEdgeEqualsTheReference) {
                 set_wide_kernels(true);
                 ++checked;
             }
+    EXPECT_EQ(checked, 7 * (81 + 12));
+}
+
+TEST(FastBlur, DarkStretchesLongerThanItsCountEqualTheReference) {
+    // The AVX2 rows count dark rows per step in a byte, which starts again
+    // at 0 after 255: 300 dark rows between lit ones, at the smallest and
+    // largest radius of the fused pass, in both layouts.
+    for (int channels : {1, 3}) {
+        const Rect r{0, 0, 90, 340};
+        LightTexture t(r, channels);
+        Pcg32 rng{std::uint64_t(channels)};
+        for (int y = 0; y < r.h; ++y)
+            if (y < 8 || (y >= 308 && y < 316) || y >= 330)
+                for (int i = 0; i < r.w * channels; ++i)
+                    t.texels[std::size_t(y) * std::size_t(r.w * channels) + std::size_t(i)] = std::uint8_t(rng.below(256));
+        for (int radius : {1, 7}) {
+            const LightTexture want = box_blur_reference(t, radius);
+            for (bool wide : both_widths()) {
+                set_wide_kernels(wide);
+                EXPECT_EQ(box_blur(t, radius).texels, want.texels) << channels << " channels, r " << radius << " wide " << wide;
+            }
+            set_wide_kernels(true);
         }
-    EXPECT_EQ(checked, 3 * (81 + 12));
+    }
 }
 
 TEST(FastComposite, EqualsTheReferenceInEveryModeAndClarity) {

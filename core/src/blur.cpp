@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <array>
-#include <type_traits>
 #include <cassert>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "cpu_dispatch.hpp"
@@ -34,21 +34,23 @@ void divide_row(const Sum* sum, std::size_t count, std::uint32_t n, std::uint8_t
     for (std::size_t j = 0; j < count; ++j) out[j] = std::uint8_t(std::int32_t((Real(std::int32_t(sum[j])) + half) * inv));
 }
 
-// round(v / n) in 16-bit integers, for the 16-bit sums (radius <= 7): the
-// high half of (v + (n-1)/2) * M, shifted right by `shift` (a multiply-high
-// per lane). M and the shift are chosen per n and checked against the
-// division for every sum that can occur, once; a radius they fail for uses
-// divide_row.
+// round(v / n) in 16-bit integers, for the fused pass's 16-bit sums (radius
+// <= 7): the high half of (v + (n-1)/2) * M, shifted right by `shift` (a
+// multiply-high per lane). M and the shift are chosen per n and checked
+// against the division for every sum that can occur, once; a radius they
+// failed for would take blur_region (none of 1 to 7 does).
 struct Reciprocal {
     std::uint16_t m = 0;
     int shift = 0;
     bool exact = false;
 };
 
+constexpr int max_fused_radius = 7;  // (2r+1)^2 * 255 + its half fits 16 bits
+
 const Reciprocal& reciprocal_for(int radius) {
     static const auto table = [] {
-        std::array<Reciprocal, 8> t{};
-        for (int r = 1; r <= 7; ++r) {
+        std::array<Reciprocal, max_fused_radius + 1> t{};
+        for (int r = 1; r <= max_fused_radius; ++r) {
             const std::uint32_t n = std::uint32_t(2 * r + 1) * std::uint32_t(2 * r + 1);
             Reciprocal& c = t[std::size_t(r)];
             for (c.shift = 0; (1u << (c.shift + 1)) < n; ++c.shift) {
@@ -64,33 +66,21 @@ const Reciprocal& reciprocal_for(int radius) {
         }
         return t;
     }();
-    return table[std::size_t(std::clamp(radius, 0, 7))];
-}
-
-void divide_row_16(const std::uint16_t* sum, std::size_t count, std::uint16_t half, const Reciprocal& k,
-                   std::uint8_t* out) {
-    const std::uint16_t m = k.m;
-    const int shift = k.shift;
-    for (std::size_t j = 0; j < count; ++j) {
-        const std::uint16_t x = std::uint16_t(sum[j] + half);
-        const std::uint16_t high = std::uint16_t((std::uint32_t(x) * m) >> 16);
-        out[j] = std::uint8_t(high >> shift);
-    }
+    return table[std::size_t(std::clamp(radius, 0, max_fused_radius))];
 }
 
 // One row's horizontal window sums over local columns [x0, x0 + w) of a
 // texture `width` wide: each the sum of 2r+1 texels, clamped at the edges.
 // C: the texture's channels (a texel's bytes), here and below.
-template <class Sum, int C>
+template <int C>
 struct RowSums {
     int r, width, x0, w;
-    std::vector<Sum> pad, prefix;
+    std::vector<std::uint32_t> pad, prefix;  // prefix[0, C) stay 0
 
     RowSums(int radius, int tex_width, int col0, int cols)
-        : r(radius), width(tex_width), x0(col0), w(cols), pad(std::size_t(cols + 2 * radius) * C),
-          prefix(radius > 3 ? pad.size() + C : 0) {}
+        : r(radius), width(tex_width), x0(col0), w(cols), pad(std::size_t(cols + 2 * radius) * C), prefix(pad.size() + C, 0) {}
 
-    void operator()(const std::uint8_t* row, Sum* out) {
+    void operator()(const std::uint8_t* row, std::uint32_t* out) {
         // The row with its clamped border: pad[i] is texel x0 - r + i.
         const int n = w + 2 * r;
         const int inner0 = std::clamp(r - x0, 0, n), inner1 = std::clamp(width + r - x0, inner0, n);
@@ -100,75 +90,66 @@ struct RowSums {
         for (std::size_t j = 0, m = std::size_t(inner1 - inner0) * C; j < m; ++j) pad[std::size_t(inner0) * C + j] = src[j];
         for (int i = inner1; i < n; ++i)
             for (int c = 0; c < C; ++c) pad[std::size_t(i) * C + c] = row[std::size_t(width - 1) * C + c];
-        const std::size_t m = std::size_t(w) * C;
-        // Small windows: the 2r+1 shifted rows added in one vector loop.
-        const Sum* p = pad.data();
-        switch (r) {
-            case 1:
-                for (std::size_t j = 0; j < m; ++j) out[j] = Sum(p[j] + p[j + C] + p[j + 2 * C]);
-                return;
-            case 2:
-                for (std::size_t j = 0; j < m; ++j) out[j] = Sum(p[j] + p[j + C] + p[j + 2 * C] + p[j + 3 * C] + p[j + 4 * C]);
-                return;
-            case 3:
-                for (std::size_t j = 0; j < m; ++j)
-                    out[j] = Sum(p[j] + p[j + C] + p[j + 2 * C] + p[j + 3 * C] + p[j + 4 * C] + p[j + 5 * C] + p[j + 6 * C]);
-                return;
-            default: break;
-        }
-        // Wider windows: differences of running sums (prefix[k + C] = sum of
-        // pad[<= k] per channel), exact modulo 2^bits since a window's sum fits.
-        for (int c = 0; c < C; ++c) prefix[std::size_t(c)] = 0;
-        for (std::size_t k = 0; k < pad.size(); ++k) prefix[k + C] = Sum(prefix[k] + pad[k]);
-        const std::size_t span = std::size_t(2 * r + 1) * C;
-        for (std::size_t j = 0; j < m; ++j) out[j] = Sum(prefix[j + span] - prefix[j]);
+        // Differences of running sums: prefix[k + C] = sum of pad[<= k] of
+        // k's channel, kept in registers as it is stored (read back from the
+        // array C values apart, which GCC vectorised in pairs, each load
+        // waited on the store before it: 13 times slower in RGB); exact
+        // modulo 2^32 since a window's sum fits.
+        std::array<std::uint32_t, C> sum{};
+        for (std::size_t k = 0; k < pad.size(); k += C)
+            for (int c = 0; c < C; ++c) prefix[k + C + std::size_t(c)] = sum[std::size_t(c)] += pad[k + std::size_t(c)];
+        const std::size_t span = std::size_t(2 * r + 1) * C, m = std::size_t(w) * C;
+        for (std::size_t j = 0; j < m; ++j) out[j] = prefix[j + span] - prefix[j];
     }
 };
 
-// The window sums in 16 bits while (2r+1)^2 * 255 fits (r <= 7: twice the
-// texels per vector instruction), else 32.
-template <class Sum, int C>
+// Radius 8 and beyond (and any radius the fused pass cannot divide exactly):
+// 32-bit window sums, rows visited top to bottom.
+template <int C>
 void blur_region(const LightTexture& tex, int radius, Rect z, LightTexture& out) {
     const int w = tex.rect.w, h = tex.rect.h;
     const int x0 = z.x - tex.rect.x, y0 = z.y - tex.rect.y;
     const std::size_t m = std::size_t(z.w) * C;
-    // Rows are visited top to bottom; the 2r+1 rows of horizontal sums in the
-    // window live in a ring (slot of window row i: i mod 2r+1) and their
-    // column sums are updated as the window slides: new row in, old row out.
+    // The 2r+1 rows of horizontal sums in the window live in a ring (slot of
+    // window row i: i mod 2r+1) and their column sums are updated as the
+    // window slides: new row in, old row out.
     const int span = 2 * radius + 1;
     const std::uint32_t n = std::uint32_t(span) * std::uint32_t(span);
-    RowSums<Sum, C> row_sums(radius, w, x0, z.w);
-    const Reciprocal& reciprocal = reciprocal_for(radius);
-    std::vector<Sum> ring(std::size_t(span) * m), column(m, 0), incoming(m);
+    RowSums<C> row_sums(radius, w, x0, z.w);
+    std::vector<std::uint32_t> ring(std::size_t(span) * m), column(m, 0), incoming(m);
     auto slot = [&](int i) { return &ring[std::size_t(((i % span) + span) % span) * m]; };
     auto texel_row = [&](int i) { return &tex.texels[std::size_t(std::clamp(i, 0, h - 1)) * w * C]; };
     for (int i = y0 - radius; i <= y0 + radius; ++i) {
-        Sum* s = slot(i);
+        std::uint32_t* s = slot(i);
         row_sums(texel_row(i), s);
-        for (std::size_t j = 0; j < m; ++j) column[j] = Sum(column[j] + s[j]);
+        for (std::size_t j = 0; j < m; ++j) column[j] += s[j];
     }
     for (int y = y0; y < y0 + z.h; ++y) {
         std::uint8_t* dst = &out.texels[(std::size_t(y) * w + x0) * C];
-        if constexpr (std::is_same_v<Sum, std::uint16_t>) {
-            if (reciprocal.exact) {
-                divide_row_16(column.data(), m, std::uint16_t((n - 1) / 2), reciprocal, dst);
-            } else {
-                divide_row<float>(column.data(), m, n, dst);
-            }
-        } else if (n < 16000) {
-            divide_row<float>(column.data(), m, n, dst);
-        } else {
-            divide_row<double>(column.data(), m, n, dst);
-        }
+        if (n < 16000) divide_row<float>(column.data(), m, n, dst);
+        else divide_row<double>(column.data(), m, n, dst);
         if (y + 1 == y0 + z.h) break;
-        Sum* s = slot(y - radius);  // leaves the window; y + r + 1 takes its slot
+        std::uint32_t* s = slot(y - radius);  // leaves the window; y + r + 1 takes its slot
         row_sums(texel_row(y + radius + 1), incoming.data());
         for (std::size_t j = 0; j < m; ++j) {
-            column[j] = Sum(column[j] + incoming[j] - s[j]);
+            column[j] = column[j] + incoming[j] - s[j];
             s[j] = incoming[j];
         }
     }
 }
+
+// The fused row's layout (blur_row_avx2): its first `lo_values` values come
+// from `lo`'s bytes where the row starts at the texture's left edge (every
+// value whose window may be clamped there: C R of them), its last
+// `hi_values` from `hi`'s where it ends at the right edge.
+template <int R, int C>
+struct FusedEdges {
+    static constexpr std::size_t CR = std::size_t(C) * R;
+    static constexpr std::size_t lo_values = CR <= 16 ? 16 : 32;
+    static constexpr std::size_t hi_values = 32 + CR;
+    static constexpr std::size_t lo_bytes = lo_values + 2 * CR, hi_bytes = hi_values + 2 * CR;
+    static constexpr std::size_t min_width = lo_values + 32;  // m, for one 32-value step
+};
 
 #if ISOLUX_X86_DISPATCH
 // Sixteen bytes as 16-bit lanes; 32 bytes as they are.
@@ -206,7 +187,6 @@ template <int R, int C, bool Write>
 [[gnu::always_inline]] ISOLUX_AVX2 inline void blur_step_32(const std::uint8_t* p, std::uint16_t* col, std::uint16_t* s,
                                                             std::uint8_t* dst, std::uint8_t* dark, unsigned before,
                                                             const Quotients& k) {
-    constexpr unsigned window = (1u << (2 * R + 1)) - 1;
     __m256i v0, v1;
     if constexpr (C == 1) {
         const __m256i ones = _mm256_set1_epi8(1), evens = _mm256_set1_epi16(1);
@@ -224,7 +204,8 @@ template <int R, int C, bool Write>
     const __m256i c0 = slid_column(col, s, v0), c1 = slid_column(col + 16, s + 16, v1);
     if constexpr (!Write) return;
     const __m256i any = _mm256_or_si256(v0, v1);
-    *dark = std::uint8_t(((before << 1) | unsigned(_mm256_testz_si256(any, any))) & window);
+    const unsigned zero = unsigned(_mm256_testz_si256(any, any));
+    *dark = std::uint8_t((before + 1) & (0u - zero));
     const __m256i q0 = quotients(c0, k), q1 = quotients(c1, k);
     const __m256i out = C == 1 ? _mm256_or_si256(q0, _mm256_slli_epi16(q1, 8))
                                : _mm256_permute4x64_epi64(_mm256_packus_epi16(q0, q1), 0xD8);
@@ -245,18 +226,20 @@ template <int R, int C, bool Write>
     }
 }
 
-// An output row, values [0, m) (m >= 48), as blur_region_small's loop
-// computes them (the same integer steps), mostly 32 values per step: written
-// out by hand because GCC loads each 32-byte window twice to widen its two
-// halves and masks the quotients before packing them (they are at most 255,
-// the reciprocal having been checked for every sum).
+// An output row, values [0, m) (m >= FusedEdges' min_width), as
+// blur_region_small's loop computes them (the same integer steps), mostly 32
+// values per step: written out by hand because GCC loads each 32-byte
+// window twice to widen its two halves and masks the quotients before
+// packing them (they are at most 255, the reciprocal having been checked for
+// every sum).
 //
 // src[v] is the row's byte v for v in [-CR, b + CR): the window reads no
-// clamped texel for values [0, b) but those of [0, 16) when `lo` is given
-// (it holds bytes [-CR, 16 + CR) as the window sees them, clamped) nor those
-// of [b, m), whose bytes, [m - 32 - CR, m + CR), `hi` holds. The first 16
-// values go first, in the order of the bytes, then 32 at a time while the
-// bytes are src's, then 16 at a time, the last 16 ending at m even if they
+// clamped texel for values [0, b) but those of [0, L) when `lo` is given
+// (L = lo_values: `lo` holds bytes [-CR, L + CR) as the window sees them,
+// clamped) nor those of [b, m), whose bytes, [m - H - CR, m + CR) with H =
+// hi_values, `hi` holds. The first L values go first, 16 at a time in the
+// order of the bytes, then 32 at a time while the bytes are src's, then 16
+// at a time, the last 16 ending at m even if they
 // overlap values done already: those ring slots already hold their new sums,
 // so their column sums and quotients come out unchanged. (A grey texture's
 // 32-value steps stop early enough that the overlap stays in byte order.)
@@ -269,11 +252,12 @@ template <int R, int C, bool Write>
 // rows come here too, without writing), and the even and odd quotients
 // interleave into bytes by a shift and an or.
 //
-// Dark steps cost a load and a store: `dark` keeps, per step of the row
-// (bit k: the row k steps back), whether the step's horizontal sums were all
-// zero. After 2R+1 such rows its ring slots hold zeros and its column sums
-// their start, so while its new sums are zero too (the bytes they read all
-// zero) the step stores zeros and touches nothing else. A light texture is
+// Dark steps cost a load and a store: `dark` counts, per step of the row,
+// the rows in a row whose horizontal sums at the step were all zero (a byte:
+// after 255 it starts again at 0, which only costs 2R+1 steps done in full).
+// From 2R+1 on its ring slots hold zeros and its column sums their start,
+// so while its new sums are zero too (the bytes they read all zero) the
+// step stores zeros and touches nothing else. A light texture is
 // dark wherever no light reaches, in runs as long as the gaps between
 // lights: a run of dark steps (found 32 at a time in `dark`) tests all its
 // bytes at once while it stores its zeros, and only if some are lit goes
@@ -282,23 +266,24 @@ template <int R, int C, bool Write>
 ISOLUX_AVX2 void blur_row_avx2(const std::uint8_t* src, const std::uint8_t* lo, const std::uint8_t* hi,
                                std::uint16_t* col, std::uint16_t* s, std::uint8_t* dst, std::uint8_t* dark,
                                std::size_t m, std::size_t b, std::uint16_t mul, int shift) {
-    constexpr unsigned window = (1u << (2 * R + 1)) - 1;
-    constexpr std::size_t CR = std::size_t(C) * R;
+    using E = FusedEdges<R, C>;
+    constexpr std::size_t CR = E::CR, L = E::lo_values;
     const Quotients k{_mm256_set1_epi16(std::int16_t(mul)), _mm_cvtsi32_si128(shift)};
-    blur_step_16<R, C, Write>(lo ? lo + CR : src, col, s, dst, k);
-    std::size_t j = 16;
-    std::size_t steps = b >= 48 ? (b - 16) / 32 : 0;
-    if (C == 1 && steps > 0 && m - 16 - 32 * steps < 16) --steps;
+    for (std::size_t v = 0; v < L; v += 16) blur_step_16<R, C, Write>((lo ? lo + CR : src) + v, col + v, s + v, dst + v, k);
+    std::size_t j = L;
+    std::size_t steps = b >= L + 32 ? (b - L) / 32 : 0;
+    if (C == 1 && steps > 0 && m - L - 32 * steps < 16) --steps;
     auto lit = [&](std::size_t step) ISOLUX_AVX2 __attribute__((always_inline)) {
         blur_step_32<R, C, Write>(src + j, col + j, s + j, dst + j, dark + step, Write ? dark[step] : 0, k);
     };
     if constexpr (!Write) {
         for (std::size_t step = 0; step < steps; ++step, j += 32) lit(step);
     } else {
-        const __m256i windows = _mm256_set1_epi8(char(window));
+        const __m256i full = _mm256_set1_epi8(char(2 * R + 1));
         for (std::size_t step = 0; step < steps;) {
             const std::size_t left = steps - step;
-            std::uint32_t runs = std::uint32_t(_mm256_movemask_epi8(_mm256_cmpeq_epi8(bytes_at(dark + step), windows)));
+            const __m256i d = bytes_at(dark + step);
+            std::uint32_t runs = std::uint32_t(_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_max_epu8(d, full), d)));
             if (left < 32) runs &= (1u << left) - 1;
             if (!(runs & 1)) {
                 // Lit steps up to the next dark one.
@@ -326,13 +311,13 @@ ISOLUX_AVX2 void blur_row_avx2(const std::uint8_t* src, const std::uint8_t* lo, 
         }
     }
     // The rest 16 at a time, the bytes of values past b from `hi`.
-    auto bytes_for = [&](std::size_t v) { return v + 16 <= b ? src + v : hi + CR + (v + 32 - m); };
+    auto bytes_for = [&](std::size_t v) { return v + 16 <= b ? src + v : hi + CR + (v + E::hi_values - m); };
     for (; j + 16 <= m; j += 16) blur_step_16<R, C, Write>(bytes_for(j), col + j, s + j, dst + j, k);
     if (j < m) blur_step_16<R, C, Write>(bytes_for(m - 16), col + m - 16, s + m - 16, dst + m - 16, k);
 }
 #endif
 
-// Radius 1 to 3, the common case: each row one fused pass (the new row's
+// Radius 1 to 7, the common case: each row one fused pass (the new row's
 // horizontal sums from its bytes, the column sums slid, the divide, the
 // store), the few clamped edge texels one by one.
 template <int R, int C, bool Avx2>
@@ -356,7 +341,9 @@ template <int R, int C, bool Avx2>
     // Bytes [v0, v0 + count) of the region's row as its windows see them:
     // byte v is channel v mod C of texel x0 + floor(v / C), clamped into the
     // row (blur_row_avx2's `lo` and `hi`).
-    std::array<std::uint8_t, 64> lo{}, hi{};
+    using E = FusedEdges<R, C>;
+    std::array<std::uint8_t, E::lo_bytes> lo{};
+    std::array<std::uint8_t, E::hi_bytes> hi{};
     auto window_bytes = [&](const std::uint8_t* row, std::ptrdiff_t v0, std::ptrdiff_t count, std::uint8_t* to) {
         const std::ptrdiff_t first = -std::ptrdiff_t(x0) * C, last = std::ptrdiff_t(w - x0) * C, end = v0 + count;
         auto channel = [](std::ptrdiff_t v) { return std::size_t((v % C + C) % C); };
@@ -387,10 +374,10 @@ template <int R, int C, bool Avx2>
         };
 #if ISOLUX_X86_DISPATCH
         if constexpr (Avx2) {
-            if (m >= 48) {
+            if (m >= E::min_width) {
                 const std::uint8_t* row = texel_row(i);
-                if (a > 0) window_bytes(row, -C * R, 16 + 2 * C * R, lo.data());
-                if (b < m) window_bytes(row, std::ptrdiff_t(m) - 32 - C * R, 32 + 2 * C * R, hi.data());
+                if (a > 0) window_bytes(row, -C * R, E::lo_bytes, lo.data());
+                if (b < m) window_bytes(row, std::ptrdiff_t(m - E::hi_values) - C * R, E::hi_bytes, hi.data());
                 blur_row_avx2<R, C, Write>(src, a > 0 ? lo.data() : nullptr, hi.data(), col, s, dst, dark.data(), m, b, mul, shift);
                 return;
             }
@@ -412,18 +399,18 @@ template <int R, int C, bool Avx2>
         row_in.template operator()<true>(y + R, slot(y + R), &out.texels[(std::size_t(y) * w + x0) * C]);
 }
 
-// Radius 1 to 3 at two widths (isolux/cpu.hpp): the same code, vectorised
+// Radius 1 to 7 at two widths (isolux/cpu.hpp): the same code, vectorised
 // twice, the AVX2 build's rows written by hand (blur_row_avx2).
-template <bool Avx2, int C>
-[[gnu::always_inline]] inline void blur_small_channels(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
-    if (radius == 1) blur_region_small<1, C, Avx2>(tex, z, out);
-    if (radius == 2) blur_region_small<2, C, Avx2>(tex, z, out);
-    if (radius == 3) blur_region_small<3, C, Avx2>(tex, z, out);
+template <bool Avx2, int C, int... R>
+[[gnu::always_inline]] inline void blur_small_channels(int radius, const LightTexture& tex, Rect z, LightTexture& out,
+                                                       std::integer_sequence<int, R...>) {
+    ((radius == R + 1 ? blur_region_small<R + 1, C, Avx2>(tex, z, out) : void()), ...);
 }
 template <bool Avx2>
 [[gnu::always_inline]] inline void blur_small_any(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
-    if (tex.channels == 1) blur_small_channels<Avx2, 1>(radius, tex, z, out);
-    else blur_small_channels<Avx2, 3>(radius, tex, z, out);
+    constexpr auto radii = std::make_integer_sequence<int, max_fused_radius>{};
+    if (tex.channels == 1) blur_small_channels<Avx2, 1>(radius, tex, z, out, radii);
+    else blur_small_channels<Avx2, 3>(radius, tex, z, out, radii);
 }
 void blur_small(int radius, const LightTexture& tex, Rect z, LightTexture& out) { blur_small_any<false>(radius, tex, z, out); }
 ISOLUX_AVX2 void blur_small_avx2(int radius, const LightTexture& tex, Rect z, LightTexture& out) {
@@ -445,13 +432,11 @@ void box_blur_into(const LightTexture& tex, int radius, Rect region, LightTextur
             std::memcpy(&out.texels[(std::size_t(y) * w + x0) * c], &tex.texels[(std::size_t(y) * w + x0) * c], std::size_t(z.w) * c);
         return;
     }
-    if (radius <= 3 && reciprocal_for(radius).exact) {
+    if (radius <= max_fused_radius && reciprocal_for(radius).exact) {
         if (wide_kernels()) blur_small_avx2(radius, tex, z, out);
         else blur_small(radius, tex, z, out);
-    } else if (std::int64_t(2 * radius + 1) * (2 * radius + 1) * 255 < 65536)
-        c == 1 ? blur_region<std::uint16_t, 1>(tex, radius, z, out) : blur_region<std::uint16_t, 3>(tex, radius, z, out);
-    else
-        c == 1 ? blur_region<std::uint32_t, 1>(tex, radius, z, out) : blur_region<std::uint32_t, 3>(tex, radius, z, out);
+    } else
+        c == 1 ? blur_region<1>(tex, radius, z, out) : blur_region<3>(tex, radius, z, out);
 }
 
 LightTexture box_blur(const LightTexture& tex, int radius) {
