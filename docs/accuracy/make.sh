@@ -31,6 +31,8 @@ for scene in default forest; do
   sweep --scene "$s" --param area_a=64,128,254 --param rays=border,every_pixel --reference 3d,every_pixel --allow-huge \
     --frames 8 --repeats 3 --out $out/${scene}_area.csv --chart docs/images/accuracy_${scene}_area.svg
 done
+# The CPU the times come from, for the page.
+lscpu | sed -n 's/^Model name: *//p' | head -1 > $out/machine.txt
 # What the truth costs: the 3D reference of the default scene, and a 48-setting sweep against it.
 "$(dirname "$cli")/../bench/isolux-bench" --benchmark_filter='^truth/' --benchmark_format=csv 2>/dev/null > $out/bench_truth.csv
 python3 $out/report.py > docs/accuracy.md

@@ -65,6 +65,25 @@ def bench():
     return figures
 
 
+def machine():
+    """The CPU make.sh ran on, as it wrote it to machine.txt (lscpu's model name)."""
+    path = os.path.join(HERE, "machine.txt")
+    name = open(path).read().strip() if os.path.exists(path) else ""
+    return f"a 2-core {name}" if name else "a 2-core machine"
+
+
+STAGES = {"ms_trace": "trace", "ms_opacity_correction": "opacity correction", "ms_blur": "blur",
+          "ms_shift": "shift", "ms_composite": "composite"}
+
+
+def largest_stage():
+    """Which lighting stage takes the most, at blur 2 against the 3D reference in the default scene."""
+    r = one(rows("default_blur"), blur_radius="2", reference="3d")
+    col = max(STAGES, key=lambda c: float(r[c]))
+    return (f"the {STAGES[col]} is the largest part of them: {float(r[col]):.2f} of "
+            f"{float(r['ms_lighting']):.2f} ms at blur 2 in the default scene")
+
+
 out("# Accuracy against time",
     "",
     "How far the paper's 2.5D lighting is from the truth, and what each speed knob adds to that error and saves",
@@ -91,11 +110,11 @@ out("# Accuracy against time",
     "",
     "**The run**: 8 frames with the camera moving 24 px right and 12 down a frame and a light carried at the view's",
     "centre, as the app's character does; `light_height` is the preset's, so it applies to every light. Times are",
-    "medians of 3 runs per frame on one thread of this 2-core machine (Debian 12, GCC 12, Release), with their",
+    f"medians of 3 runs per frame on one thread of {machine()} (Debian 12, GCC 12, Release), with their",
     "min-max spread in the CSVs and charts; *app CPU* is what the editor runs on the CPU (obstacle map, trace,",
     "opacity correction), *CPU only* what the CPU renderer adds and the app's GPU does instead (blur, shift,",
     "composite). The machine is shared, so times measured one setting after another swing between runs: read",
-    "the app CPU column and the spread, not single lighting figures (the CPU blur dominates them).",
+    f"the app CPU column and the spread, not single lighting figures ({largest_stage()}).",
     "")
 
 figures = bench()
