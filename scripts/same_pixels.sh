@@ -6,18 +6,19 @@
 #   bash scripts/same_pixels.sh OLD_CLI NEW_CLI [output dir]
 #
 # OLD_CLI: an isolux-cli built at an earlier commit (e.g. 8e5d69d, the last
-# before issue 14's work); NEW_CLI: this build's. The cases cover every stage
-# the issue rewrote: the blur's every path (none, the fused pass, 16- and
-# 32-bit sums), white lights' grey texture and coloured lights' RGB, the
-# composite's clarities, mixes and dark-unlit, the opacity correction, light,
-# shadow and flat modes, ray skips, the l frames with a moving camera, three
-# layouts and the layers; on seeded maps, both scenes, the real art of
-# tests/realart (when tests/realart/fetch.sh has unpacked it) and Tiled's own
-# example map. NEW_CLI also renders each case with --threads 2, which must
-# give the same pixels. idiff (openimageio-tools) compares; exit 1 if any
-# pair differs. Each build takes the kernels its CPU allows (AVX2 where
-# there is one); the unit tests hold both builds of each kernel to the same
-# oracles.
+# before issue 14's work; it finds the default tileset in its own source
+# tree, so keep that checkout); NEW_CLI: this build's. The cases cover every
+# stage the issue rewrote: the blur's every path (none, the fused pass at
+# radii 1 to 7, the 32-bit sums beyond), white lights' grey texture and
+# coloured lights' RGB, the composite's clarities, mixes and dark-unlit, the
+# opacity correction, light, shadow and flat modes, ray skips, the l frames
+# with a moving camera, three layouts and the layers; on seeded maps, both
+# scenes, the real art of tests/realart (when tests/realart/fetch.sh has
+# unpacked it) and Tiled's own example map. NEW_CLI also renders each case
+# with --threads 2, which must give the same pixels. idiff
+# (openimageio-tools) compares; exit 1 if any pair differs. Each build takes
+# the kernels its CPU allows (AVX2 where there is one); the unit tests hold
+# both builds of each kernel to the same oracles.
 set -euo pipefail
 [ $# -ge 2 ] || { echo "usage: same_pixels.sh OLD_CLI NEW_CLI [output dir]" >&2; exit 2; }
 old=$1 new=$2
@@ -40,6 +41,9 @@ cases=(
   "blur1|$lights --blur 1"
   "blur3|$lights --blur 3"
   "blur5|$lights --blur 5"
+  "blur6|$lights --blur 6"
+  "blur7|$lights --blur 7"
+  "blur7-white|$white --blur 7"
   "blur9|$lights --blur 9"
   "ambient0|$lights --ambient 0"
   "ambient1|$lights --ambient 1"

@@ -183,6 +183,27 @@ TEST(FastBlur, DarkStretchesLongerThanItsCountEqualTheReference) {
     }
 }
 
+TEST(FastBlur, SparseLitBytesEqualTheReference) {
+    // Single lit bytes scattered over dark rows: a dark step (or a run of
+    // them) must see a lit byte anywhere in its window, including the middle
+    // of an RGB window wider than two 32-byte loads.
+    for (int channels : {1, 3})
+        for (int radius = 1; radius <= 8; ++radius) {
+            // Sparse enough that most steps go dark (a step's window holds
+            // up to 74 x 15 bytes), dense enough for lit bytes in every part.
+            const Rect r{-7, 4, 230, 200};
+            LightTexture t(r, channels);
+            Pcg32 rng{std::uint64_t(radius * 7 + channels)};
+            for (std::uint8_t& v : t.texels) v = rng.below(2000) == 0 ? std::uint8_t(1 + rng.below(255)) : 0;
+            const LightTexture want = box_blur_reference(t, radius);
+            for (bool wide : both_widths()) {
+                set_wide_kernels(wide);
+                EXPECT_EQ(box_blur(t, radius).texels, want.texels) << channels << " channels, r " << radius << " wide " << wide;
+            }
+            set_wide_kernels(true);
+        }
+}
+
 TEST(FastComposite, EqualsTheReferenceInEveryModeAndClarity) {
     const Rect view{-7, 3, 97, 61};
     Image colour(view.w, view.h);

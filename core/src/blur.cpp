@@ -268,6 +268,7 @@ ISOLUX_AVX2 void blur_row_avx2(const std::uint8_t* src, const std::uint8_t* lo, 
                                std::size_t m, std::size_t b, std::uint16_t mul, int shift) {
     using E = FusedEdges<R, C>;
     constexpr std::size_t CR = E::CR, L = E::lo_values;
+    static_assert(2 * CR <= 64, "a window's bytes past a step: at most two more loads");
     const Quotients k{_mm256_set1_epi16(std::int16_t(mul)), _mm_cvtsi32_si128(shift)};
     for (std::size_t v = 0; v < L; v += 16) blur_step_16<R, C, Write>((lo ? lo + CR : src) + v, col + v, s + v, dst + v, k);
     std::size_t j = L;
@@ -291,10 +292,12 @@ ISOLUX_AVX2 void blur_row_avx2(const std::uint8_t* src, const std::uint8_t* lo, 
                 for (std::size_t e = step + count; step < e; ++step, j += 32) lit(step);
                 continue;
             }
-            // A run of dark steps: zeros out, and its bytes [p - CR, p + 32 count + CR) tested.
+            // A run of dark steps: zeros out, and its bytes [p - CR, p + 32 count + CR) tested
+            // (the loop's loads reach p + 32 count - CR, the last 2 CR bytes come from one or two more).
             const std::size_t count = std::min<std::size_t>(left, ~runs ? std::size_t(__builtin_ctz(~runs)) : 32);
             const std::uint8_t* p = src + j;
             __m256i in = bytes_at(p + 32 * (count - 1) + CR);
+            if constexpr (2 * CR > 32) in = _mm256_or_si256(in, bytes_at(p + 32 * count - CR));
             for (std::size_t t = 0; t < count; ++t) {
                 in = _mm256_or_si256(in, bytes_at(p + 32 * t - CR));
                 _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + j + 32 * t), _mm256_setzero_si256());
@@ -303,9 +306,10 @@ ISOLUX_AVX2 void blur_row_avx2(const std::uint8_t* src, const std::uint8_t* lo, 
                 step += count, j += 32 * count;
                 continue;
             }
-            // Some lit: step by step, each dark while its own bytes are zero.
+            // Some lit: step by step, each dark while its own bytes, [j - CR, j + 32 + CR), are zero.
             for (std::size_t e = step + count; step < e; ++step, j += 32) {
-                const __m256i own = _mm256_or_si256(bytes_at(src + j - CR), bytes_at(src + j + CR));
+                __m256i own = _mm256_or_si256(bytes_at(src + j - CR), bytes_at(src + j + CR));
+                if constexpr (2 * CR > 32) own = _mm256_or_si256(own, bytes_at(src + j + 32 - CR));
                 if (!_mm256_testz_si256(own, own)) lit(step);
             }
         }
