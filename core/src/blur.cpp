@@ -247,8 +247,8 @@ template <int R, int C, bool Write>
 // A grey texture's sums come from byte pairs (vpmaddubsw against ones:
 // each 16-bit lane the sum of two neighbours), the even and the odd texels
 // of a step apart: x even takes the pairs from x - R, x - R + 2, ... and
-// the byte at x + R; odd x the same one further. Six loads for 32 sums, not
-// ten widened ones; the column sums and ring keep that order (the warm-up
+// the byte at x + R; odd x the same one further. 2R + 2 loads for 32 sums,
+// not 4R + 2 widened ones; the column sums and ring keep that order (the warm-up
 // rows come here too, without writing), and the even and odd quotients
 // interleave into bytes by a shift and an or.
 //
