@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cstdio>
 #include <chrono>
+#include <string>
 #include <thread>
 
 #include "isolux/accuracy.hpp"
@@ -50,6 +51,18 @@ std::vector<bool> both_widths() {
     return has_avx2 ? std::vector<bool>{false, true} : std::vector<bool>{false};
 }
 
+// box_blur of t in both kernels' builds must equal the oracle's bytes
+// (returned); `what` names the case in a failure.
+LightTexture expect_blur_is_reference(const LightTexture& t, int radius, const std::string& what) {
+    LightTexture want = box_blur_reference(t, radius);
+    for (bool wide : both_widths()) {
+        set_wide_kernels(wide);
+        EXPECT_EQ(box_blur(t, radius).texels, want.texels) << what << " r " << radius << " wide " << wide;
+    }
+    set_wide_kernels(true);
+    return want;
+}
+
 }  // namespace
 
 TEST(FastBlur, EqualsTheReferenceForEveryRadiusAndSize) {
@@ -59,12 +72,7 @@ TEST(FastBlur, EqualsTheReferenceForEveryRadiusAndSize) {
         for (int radius : {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 20, 62, 63, 100}) {
             if (radius > 20 && r.w * r.h > 1200) continue;  // the reference is O(r^2) per texel
             const LightTexture t = random_texture(r, std::uint64_t(r.w * 131 + radius));
-            const LightTexture want = box_blur_reference(t, radius);
-            for (bool wide : both_widths()) {
-                set_wide_kernels(wide);
-                EXPECT_EQ(box_blur(t, radius).texels, want.texels) << r.w << "x" << r.h << " r " << radius << " wide " << wide;
-            }
-            set_wide_kernels(true);
+            expect_blur_is_reference(t, radius, std::to_string(r.w) + "x" + std::to_string(r.h));
             ++checked;
         }
     EXPECT_GE(checked, 50);
@@ -81,12 +89,7 @@ TEST(FastBlur, WideRowsOfExtremeTexelsEqualTheReference) {
                 for (int c = 0; c < 3; ++c)
                     t.texels[(std::size_t(y) * r.w + x) * 3 + c] = (x / 16 + y / 8 + c) % 3 ? 255 : 0;
         for (int radius = 1; radius <= 8; ++radius) {
-            const LightTexture want = box_blur_reference(t, radius);
-            for (bool wide : both_widths()) {
-                set_wide_kernels(wide);
-                EXPECT_EQ(box_blur(t, radius).texels, want.texels) << r.w << " r " << radius << " wide " << wide;
-            }
-            set_wide_kernels(true);
+            const LightTexture want = expect_blur_is_reference(t, radius, "width " + std::to_string(r.w));
             int top = 0;
             for (std::uint8_t v : want.texels) top += v == 255;
             EXPECT_GT(top, 0) << "some windows must be all 255";
@@ -172,14 +175,7 @@ TEST(FastBlur, DarkStretchesLongerThanItsCountEqualTheReference) {
             if (y < 8 || (y >= 308 && y < 316) || y >= 330)
                 for (int i = 0; i < r.w * channels; ++i)
                     t.texels[std::size_t(y) * std::size_t(r.w * channels) + std::size_t(i)] = std::uint8_t(rng.below(256));
-        for (int radius : {1, 7}) {
-            const LightTexture want = box_blur_reference(t, radius);
-            for (bool wide : both_widths()) {
-                set_wide_kernels(wide);
-                EXPECT_EQ(box_blur(t, radius).texels, want.texels) << channels << " channels, r " << radius << " wide " << wide;
-            }
-            set_wide_kernels(true);
-        }
+        for (int radius : {1, 7}) expect_blur_is_reference(t, radius, std::to_string(channels) + " channels");
     }
 }
 
@@ -195,12 +191,7 @@ TEST(FastBlur, SparseLitBytesEqualTheReference) {
             LightTexture t(r, channels);
             Pcg32 rng{std::uint64_t(radius * 7 + channels)};
             for (std::uint8_t& v : t.texels) v = rng.below(2000) == 0 ? std::uint8_t(1 + rng.below(255)) : 0;
-            const LightTexture want = box_blur_reference(t, radius);
-            for (bool wide : both_widths()) {
-                set_wide_kernels(wide);
-                EXPECT_EQ(box_blur(t, radius).texels, want.texels) << channels << " channels, r " << radius << " wide " << wide;
-            }
-            set_wide_kernels(true);
+            expect_blur_is_reference(t, radius, std::to_string(channels) + " channels");
         }
 }
 
