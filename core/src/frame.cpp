@@ -5,11 +5,8 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
-#include <condition_variable>
 #include <cstring>
 #include <functional>
-#include <mutex>
-#include <stop_token>
 #include <thread>
 
 #include "isolux/blur.hpp"
@@ -20,6 +17,7 @@
 #include "isolux/footprint.hpp"
 #include "isolux/opacity_map.hpp"
 #include "isolux/truth.hpp"
+#include "worker_pool.hpp"
 
 namespace isolux {
 
@@ -103,165 +101,12 @@ bool params_changed_for(Stage stage, const Params& before, const Params& now) {
     return !(before == now) && stages_changed(before, now).has(stage);  // equal: the still frame's fast answer
 }
 
-// Waits for `ready` by spinning, for at most `limit`. A frame's threads wait
-// for each other at most about one light's work, while waking a sleeping
-// thread costs tens of microseconds (86 µs on average on the 2-core virtual
-// machine of docs/performance.md), a tenth of a frame of 16 lights.
-template <class Ready>
-bool spin_until(const Ready& ready, std::chrono::microseconds limit) {
-    const auto end = Clock::now() + limit;
-    for (unsigned i = 0;; ++i) {
-        if (ready()) return true;
-        if ((i & 63) == 63 && Clock::now() > end) return false;
-#if defined(__x86_64__) || defined(__i386__)
-        __builtin_ia32_pause();
-#endif
-    }
-}
-
-constexpr std::chrono::microseconds spin_limit{500};
-
-// The meeting point of a frame's two phases: std::barrier's, spinning a while
-// before it sleeps (spin_until). Used once.
-class PhaseBarrier {
-public:
-    PhaseBarrier(int count, const std::function<void()>& completion) : count_(count), completion_(completion) {}
-    void arrive_and_wait() {
-        if (arrived_.fetch_add(1) + 1 == count_) {
-            completion_();
-            passed_ = true;
-            passed_.notify_all();
-            return;
-        }
-        if (spin_until([&] { return passed_.load(); }, spin_limit)) return;
-        passed_.wait(false);
-    }
-
-private:
-    const int count_;
-    const std::function<void()>& completion_;
-    std::atomic<int> arrived_{0};
-    std::atomic<bool> passed_{false};
-};
-
-// Threads kept from frame to frame: starting one costs tens of microseconds,
-// a fair share of a frame that moved a few lights. One job at a time; a
-// caller that finds the pool busy (a frame on another thread) starts threads
-// of its own.
-class WorkerPool {
-public:
-    // Runs `job` on `extra` pool threads and the caller's, all at once (the
-    // frame's phases meet at a barrier); false, having run nothing, when busy.
-    bool run(int extra, const std::function<void()>& job) {
-        std::unique_lock<std::mutex> busy(busy_, std::try_to_lock);
-        if (!busy) return false;
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            while (int(workers_.size()) < extra)
-                workers_.emplace_back([this, id = int(workers_.size()), seen = generation_.load()](std::stop_token stop) {
-                    serve(stop, id, seen);
-                });
-            job_ = &job;
-            wanted_ = extra;
-            done_ = 0;
-            ++generation_;
-        }
-        wake_.notify_all();
-        job();
-        spin_until([&] { return done_.load() == wanted_; }, spin_limit);  // (wanted_ is this thread's write)
-        std::unique_lock<std::mutex> lock(mutex_);
-        finished_.wait(lock, [&] { return done_.load() == wanted_; });
-        job_ = nullptr;
-        return true;
-    }
-
-private:
-    void serve(std::stop_token stop, int id, std::uint64_t seen) {
-        std::unique_lock<std::mutex> lock(mutex_);
-        for (;;) {
-            // The next job often comes within the spin limit (frames back to
-            // back, or a frame's next stage): waiting for it awake saves the
-            // wake-up, which costs as much as the spin.
-            lock.unlock();
-            spin_until([&] { return generation_.load() != seen || stop.stop_requested(); }, spin_limit);
-            lock.lock();
-            if (!wake_.wait(lock, stop, [&] { return generation_.load() != seen; })) return;  // stopping
-            seen = generation_.load();
-            if (id >= wanted_) continue;  // this job wants fewer threads
-            const std::function<void()>* job = job_;
-            lock.unlock();
-            (*job)();
-            lock.lock();
-            if (++done_ == wanted_) finished_.notify_all();
-        }
-    }
-
-    std::mutex busy_, mutex_;
-    std::condition_variable_any wake_, finished_;
-    const std::function<void()>* job_ = nullptr;
-    int wanted_ = 0;
-    std::atomic<int> done_{0};
-    std::atomic<std::uint64_t> generation_{0};  // written under mutex_, read spinning without it
-    std::vector<std::jthread> workers_;  // last: stopped and joined first
-};
-
-// One pool for every stage (a pool per stage would leave one stage's
-// workers spinning while the next stage's run).
-WorkerPool& worker_pool() {
-    static WorkerPool pool;
-    return pool;
-}
-
-// Runs `work` on `count` threads, the caller's among them, and waits for all.
-template <class Work>
-void run_on_threads(int count, Work& work) {
-    if (count <= 1) return work();
-    const std::function<void()> job = [&work] { work(); };
-    if (worker_pool().run(count - 1, job)) return;
-    std::vector<std::jthread> own;
-    for (int id = 1; id < count; ++id) own.emplace_back([&work] { work(); });
-    work();
-}
-
 int threads_wanted(const FrameOptions& o) {
     return o.threads > 0 ? o.threads : std::max(1, int(std::thread::hardware_concurrency()));
 }
 
-// Runs band(rows) over every part (disjoint rectangles) split into bands of
-// rows, on up to `threads` threads (one for small regions: starting threads
-// would cost more). About four bands per thread, cut in proportion to each
-// part's pixels, so that threads finish together.
-template <class Band>
-void in_row_bands(const std::vector<Rect>& parts, int threads, const Band& band) {
-    std::int64_t pixels = 0;
-    for (const Rect& r : parts) pixels += r.empty() ? 0 : std::int64_t(r.w) * r.h;
-    if (pixels == 0) return;
-    const int count = pixels < 150000 ? 1 : std::max(1, threads);
-    if (count == 1) {
-        for (const Rect& r : parts)
-            if (!r.empty()) band(r);
-        return;
-    }
-    std::vector<Rect> bands;
-    const std::int64_t per_band = pixels / (count * 4) + 1;
-    for (const Rect& r : parts) {
-        if (r.empty()) continue;
-        const int k = int(std::clamp<std::int64_t>((std::int64_t(r.w) * r.h + per_band / 2) / per_band, 1, r.h));
-        for (int i = 0; i < k; ++i) {
-            const int y0 = r.y + int(std::int64_t(r.h) * i / k), y1 = r.y + int(std::int64_t(r.h) * (i + 1) / k);
-            bands.push_back({r.x, y0, r.w, y1 - y0});
-        }
-    }
-    std::atomic<std::size_t> next{0};
-    auto work = [&] {
-        for (std::size_t k; (k = next++) < bands.size();) band(bands[k]);
-    };
-    run_on_threads(std::min<int>(count, int(bands.size())), work);
-}
-
 // ---------------------------------------------------------------- the steps
 
-// The view's sprites (drawn by the GPU in the app).
 // What changed in the world since the caches were built: nothing, edited
 // tiles only (`region`), or everything.
 struct WorldDelta {
@@ -277,6 +122,7 @@ WorldDelta world_delta(const FrameCache& c, const World& world) {
     return d;
 }
 
+// The view's sprites (drawn by the GPU in the app).
 void draw_view_sprites(FrameState& st, const World& world, Rect view, const WorldDelta& delta, FrameReport& rep) {
     if (!st.options.cpu_sprites) return;
     const bool same_view = st.view == view && st.sprites.width == view.w && st.sprites.height == view.h;
@@ -535,12 +381,8 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
         std::vector<LightMask*> masks;
         for (std::size_t k : plan.todo) {
             TracedLight& tl = plan.traced[k];
-            LightMask& m = tl.mask;
-            m.cx = tl.cx, m.cy = tl.cy, m.a = tl.a, m.b = tl.b, m.falloff_scale = p.falloff_scale;
-            const std::size_t size = std::size_t(std::max(0, m.clip.w)) * std::max(0, m.clip.h);
-            m.value.assign(size, 0);
-            m.reached.assign(p.mode == Mode::shadow ? size : 0, 0);
-            masks.push_back(&m);
+            start_mask(tl.mask, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip, p.mode == Mode::shadow);
+            masks.push_back(&tl.mask);
         }
         rep.tracer = st.options.tracer(st.obstacles, st.obstacles_revision, masks, p);
         traced_elsewhere = !rep.tracer.empty();
@@ -695,47 +537,61 @@ void keep_trace(FrameState& st, const Scene& scene, LightPlan& plan, FrameReport
 // the same pixels in full rows and in 960- and 480-pixel strips).
 constexpr int join_gap = 256;
 
-// Paper 3.2 and Algorithm 3 on the CPU: the blur, and the composite reading
-// the world-anchored blurred texture at the view (the paper's inverse
-// translation between retraces). Each redoes only the part the light or the
-// view changed when the rest still holds, in bands of rows across threads.
-void update_view(FrameState& st, const Params& p, Rect view, const WorldDelta& delta, FrameReport& rep) {
+// The light texture the composite reads: the blurred one, or the traced one
+// when there is no blur.
+const LightTexture& shown_light(const FrameState& st, const Params& p) {
+    return p.blur_radius > 0 ? st.cache.blurred : st.traced;
+}
+
+// Paper 3.2: the blur of the light texture. Redoes only what was traced since
+// the last blur, grown by the radius (every texel it reaches), unless the
+// texture is new or the radius changed; in bands of rows across threads.
+// Returns the world pixels whose blurred light changed, disjoint.
+std::vector<Rect> blur_step(FrameState& st, const Params& p, FrameReport& rep) {
     FrameCache& c = st.cache;
-    const int threads = threads_wanted(st.options);
     const Rect tex = st.traced.rect;
-    const LightTexture& light = p.blur_radius > 0 ? c.blurred : st.traced;
-    std::vector<Rect> changed;  // world pixels whose blurred light changed, disjoint
+    std::vector<Rect> changed;
     const bool radius_changed = c.blur_params.blur_radius != p.blur_radius;
-    if (!c.has_blur || radius_changed) {
-        // The whole texture when it is new or the radius changed; else what
-        // was traced since, grown by the radius (every texel it reaches).
-        const bool whole = radius_changed || !(c.blurred.rect == tex) || (p.blur_radius > 0 && c.blurred.texels.empty()) ||
-                           (p.blur_radius > 0 && c.blurred.channels != st.traced.channels);
-        if (whole) {
-            changed = {tex};
-        } else {
-            for (const Rect& r : c.blur_pending) changed.push_back(intersect(grow(r, p.blur_radius), tex));
-            changed = disjoint_union(std::move(changed), join_gap);
-        }
-        if (p.blur_radius > 0 && !changed.empty()) {
-            Timer t{rep, Stage::blur};
-            if (!(c.blurred.rect == tex) || c.blurred.channels != st.traced.channels || c.blurred.texels.size() != st.traced.texels.size())
-                c.blurred = LightTexture(tex, st.traced.channels);
-            in_row_bands(changed, threads, [&](Rect band) { box_blur_into(st.traced, p.blur_radius, band, c.blurred); });
-            touch(rep, Stage::blur, changed);
-        } else if (p.blur_radius == 0) {
-            c.blurred = LightTexture{};
-            c.blurred.rect = tex;  // what the texture was "blurred" for: itself
-        }
-        c.has_blur = true;
-        c.blur_params = p;
-        c.blur_pending = {};
+    if (c.has_blur && !radius_changed) return changed;
+    const bool whole = radius_changed || !(c.blurred.rect == tex) || (p.blur_radius > 0 && c.blurred.texels.empty()) ||
+                       (p.blur_radius > 0 && c.blurred.channels != st.traced.channels);
+    if (whole) {
+        changed = {tex};
+    } else {
+        for (const Rect& r : c.blur_pending) changed.push_back(intersect(grow(r, p.blur_radius), tex));
+        changed = disjoint_union(std::move(changed), join_gap);
     }
-    if (st.options.view_light_texture && (!changed.empty() || !(st.light.rect == view))) {
-        Timer t{rep, Stage::shift};
-        st.light = shift_light_texture(light, view);
-        touch(rep, Stage::shift, {view});
+    if (p.blur_radius > 0 && !changed.empty()) {
+        Timer t{rep, Stage::blur};
+        if (!(c.blurred.rect == tex) || c.blurred.channels != st.traced.channels || c.blurred.texels.size() != st.traced.texels.size())
+            c.blurred = LightTexture(tex, st.traced.channels);
+        in_row_bands(changed, threads_wanted(st.options), [&](Rect band) { box_blur_into(st.traced, p.blur_radius, band, c.blurred); });
+        touch(rep, Stage::blur, changed);
+    } else if (p.blur_radius == 0) {
+        c.blurred = LightTexture{};
+        c.blurred.rect = tex;  // what the texture was "blurred" for: itself
     }
+    c.has_blur = true;
+    c.blur_params = p;
+    c.blur_pending = {};
+    return changed;
+}
+
+// The light texture cut to the view, for a caller that shows it (the paper's
+// inverse translation between retraces: the texture stays world-anchored).
+void shift_step(FrameState& st, const Params& p, Rect view, const std::vector<Rect>& changed, FrameReport& rep) {
+    if (!st.options.view_light_texture || (changed.empty() && st.light.rect == view)) return;
+    Timer t{rep, Stage::shift};
+    st.light = shift_light_texture(shown_light(st, p), view);
+    touch(rep, Stage::shift, {view});
+}
+
+// Algorithm 3 on the CPU: the view's sprites mixed with the light under the
+// ambient clarity. Redoes only where the light changed (`changed`) when the
+// rest of the final frame still holds; in bands of rows across threads.
+void composite_step(FrameState& st, const Params& p, Rect view, const WorldDelta& delta,
+                    const std::vector<Rect>& changed, FrameReport& rep) {
+    FrameCache& c = st.cache;
     const bool whole = !c.has_final || !(st.view == view) || delta.changed ||
                        params_changed_for(Stage::composite, c.composite_params, p) || st.final.width != view.w ||
                        st.final.height != view.h;
@@ -747,25 +603,68 @@ void update_view(FrameState& st, const Params& p, Rect view, const WorldDelta& d
     if (!region.empty()) {
         Timer t{rep, Stage::composite};
         if (st.final.width != view.w || st.final.height != view.h) st.final = Image(view.w, view.h);
-        in_row_bands(region, threads, [&](Rect band) { composite_into(st.sprites, view, light, p, band, st.final); });
+        const LightTexture& light = shown_light(st, p);
+        in_row_bands(region, threads_wanted(st.options),
+                     [&](Rect band) { composite_into(st.sprites, view, light, p, band, st.final); });
         touch(rep, Stage::composite, std::move(region));
     }
     c.composite_params = p;
     c.has_final = true;
 }
 
+// Whether a kept texture is redone only where lights changed (`dirty`): when
+// that is less work than clearing and adding every light again.
+bool redo_only_dirty(bool fresh, const TraceDecision& trace, const std::vector<Rect>& to_clear, const LightPlan& plan,
+                     Rect dirty) {
+    if (fresh || trace.must || to_clear.empty()) return false;
+    auto area = [](Rect r) { return double(r.w) * r.h; };
+    double whole = 0, part = area(dirty);
+    for (const Rect& c : to_clear) whole += area(c);
+    for (const TracedLight& t : plan.traced) whole += area(t.mask.clip), part += area(intersect(t.mask.clip, dirty));
+    return part < whole;
+}
+
+// Paper 3.2 and Algorithm 2: the lights that need it traced, corrected and
+// summed into the light texture, the rest reused. A frame that fails or is
+// cancelled keeps nothing half-traced: the next one starts afresh.
+void trace_step(FrameState& st, const World& world, const Scene& scene, Rect tex_rect, const TraceDecision& trace,
+                const ObstacleChange& obstacles, FrameReport& rep) {
+    bool fresh = false;
+    const std::vector<Rect> to_clear = prepare_texture(st, tex_rect, texture_channels(scene, st.options), fresh);
+    const bool had_lights = !st.cache.lights.empty();
+    if (trace.must) st.cache.lights.clear();  // nothing traced is reusable
+    LightPlan plan = plan_lights(st.cache, scene, tex_rect, obstacles.part, rep);
+    rep.dirty_parts = dirty_parts(st.cache, plan, tex_rect, fresh, trace.must, had_lights);
+    rep.dirty = bounding(rep.dirty_parts);
+    const bool partial = redo_only_dirty(fresh, trace, to_clear, plan, rep.dirty);
+    try {
+        trace_and_accumulate(st, world, scene.params, plan, to_clear, tex_rect, partial ? &rep.dirty : nullptr, rep);
+    } catch (...) {
+        st = FrameState{st.options};  // the cache gave its masks to the plan
+        throw;
+    }
+    if (st.options.control.cancelled()) {
+        st = FrameState{st.options};
+        throw Cancelled();
+    }
+    keep_trace(st, scene, plan, rep);
+}
+
+// The scene without its hidden lights (they stay in the scene but light
+// nothing); `storage` holds the copy when one is needed.
+const Scene& shown_scene(const Scene& scene, Scene& storage) {
+    if (std::none_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.hidden; })) return scene;
+    storage.params = scene.params;
+    for (const Light& l : scene.lights)
+        if (!l.hidden) storage.lights.push_back(l);
+    return storage;
+}
+
 }  // namespace
 
 FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_in, const Camera& camera, long frame) {
-    // Hidden lights stay in the scene but light nothing.
-    const bool any_hidden = std::any_of(scene_in.lights.begin(), scene_in.lights.end(), [](const Light& l) { return l.hidden; });
-    Scene shown;
-    if (any_hidden) {
-        shown.params = scene_in.params;
-        for (const Light& l : scene_in.lights)
-            if (!l.hidden) shown.lights.push_back(l);
-    }
-    const Scene& scene = any_hidden ? shown : scene_in;
+    Scene storage;
+    const Scene& scene = shown_scene(scene_in, storage);
     assert(frame >= 0 && st.options.margin >= 0 && st.options.threads >= 0);
     // An Error here, not a division by zero below. The last trace's
     // parameters were validated then.
@@ -779,37 +678,12 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_
     const Rect needed = region_lights_need(world, scene, tex_rect);
     const ObstacleChange obstacles = update_obstacle_map(st, world, scene.params, needed, delta, rep);
     const TraceDecision trace = decide_retrace(st, scene, view, frame, obstacles);
-    if (trace.retrace) {
-        bool fresh = false;
-        const std::vector<Rect> to_clear = prepare_texture(st, tex_rect, texture_channels(scene, st.options), fresh);
-        const bool had_lights = !st.cache.lights.empty();
-        if (trace.must) st.cache.lights.clear();  // nothing traced is reusable
-        LightPlan plan = plan_lights(st.cache, scene, tex_rect, obstacles.part, rep);
-        rep.dirty_parts = dirty_parts(st.cache, plan, tex_rect, fresh, trace.must, had_lights);
-        rep.dirty = bounding(rep.dirty_parts);
-        // A kept texture is redone only where lights changed, when that is
-        // less work than clearing and adding every light again.
-        bool partial = !fresh && !trace.must && !to_clear.empty();
-        if (partial) {
-            auto area = [](Rect r) { return double(r.w) * r.h; };
-            double whole = 0, part = area(rep.dirty);
-            for (const Rect& c : to_clear) whole += area(c);
-            for (const TracedLight& t : plan.traced) whole += area(t.mask.clip), part += area(intersect(t.mask.clip, rep.dirty));
-            partial = part < whole;
-        }
-        try {
-            trace_and_accumulate(st, world, scene.params, plan, to_clear, tex_rect, partial ? &rep.dirty : nullptr, rep);
-        } catch (...) {
-            st = FrameState{st.options};  // the cache gave its masks to the plan: start afresh
-            throw;
-        }
-        if (st.options.control.cancelled()) {
-            st = FrameState{st.options};  // nothing half-traced is kept: the next frame starts afresh
-            throw Cancelled();
-        }
-        keep_trace(st, scene, plan, rep);
+    if (trace.retrace) trace_step(st, world, scene, tex_rect, trace, obstacles, rep);
+    if (st.options.cpu_blur_and_composite) {
+        const std::vector<Rect> changed = blur_step(st, scene.params, rep);
+        shift_step(st, scene.params, view, changed, rep);
+        composite_step(st, scene.params, view, delta, changed, rep);
     }
-    if (st.options.cpu_blur_and_composite) update_view(st, scene.params, view, delta, rep);
     st.view = view;
     return rep;
 }

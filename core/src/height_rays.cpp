@@ -63,13 +63,7 @@ LightMask trace_light_over(const Mask& obstacles, const ObstacleHeights& heights
                            int a, int b, double height, const Params& p, Rect clip) {
     assert(a >= 0 && b >= 0 && p.ray_skip >= 1 && height >= 0);
     LightMask m;
-    m.clip = clip;
-    m.cx = cx;
-    m.cy = cy;
-    m.a = a;
-    m.b = b;
-    m.falloff_scale = p.falloff_scale;
-    m.value.assign(std::size_t(std::max(0, clip.w)) * std::max(0, clip.h), 0);
+    start_mask(m, cx, cy, a, b, p, clip);
     if (clip.empty()) return m;
     const int dmax = std::max(a, b);
     std::vector<std::uint8_t> table(std::size_t(dmax) + 1);

@@ -478,6 +478,19 @@ struct RayTally {
 
 }  // namespace
 
+void start_mask(LightMask& m, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p, Rect clip,
+                bool with_reached) {
+    m.clip = clip;
+    m.cx = cx;
+    m.cy = cy;
+    m.a = a;
+    m.b = b;
+    m.falloff_scale = p.falloff_scale;
+    const std::size_t n = std::size_t(std::max(0, clip.w)) * std::max(0, clip.h);
+    m.value.assign(n, 0);
+    m.reached.assign(with_reached ? n : 0, 0);
+}
+
 double light_trace_work(int a, int b, const Params& p) {
     const double m = std::max(a, b);
     const double rays = p.rays == Rays::every_pixel ? (2.0 * a + 1) * (2.0 * b + 1) : (8 * m + 4) / p.ray_skip;
@@ -487,15 +500,7 @@ double light_trace_work(int a, int b, const Params& p) {
 void trace_light_into(LightMask& m, const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b,
                       const Params& p, Rect clip, bool area_is_clear, const TraceControl* control) {
     assert(a >= 0 && b >= 0 && p.ray_skip >= 1 && p.falloff_scale > 0);
-    m.clip = clip;
-    m.cx = cx;
-    m.cy = cy;
-    m.a = a;
-    m.b = b;
-    m.falloff_scale = p.falloff_scale;
-    const std::size_t n = std::size_t(std::max(0, clip.w)) * std::max(0, clip.h);
-    m.value.assign(n, 0);
-    m.reached.assign(p.mode == Mode::shadow ? n : 0, 0);
+    start_mask(m, cx, cy, a, b, p, clip, p.mode == Mode::shadow);
     if (clip.empty()) return;
     RayTally tally{control, std::int64_t(std::max(a, b)) + 1};
     const double estimate = light_trace_work(a, b, p);
@@ -576,7 +581,7 @@ void trace_light_into(LightMask& m, const Mask& obstacles, std::int64_t cx, std:
             const std::uint8_t* ob_area =
                 &obstacles.bits[std::size_t(clip.y - obstacles.y0) * obstacles.width + std::size_t(clip.x - obstacles.x0)];
             thread_local std::vector<std::uint8_t> local;
-            local.resize(n);
+            local.resize(m.value.size());
             copy_area_rows(ob_area, obstacles.width, clip.w, clip.h, local.data());
             std::int64_t visited = prune_tree(*tree, *values, local.data(), clip.w, clip.h, m.value.data(), reached_all);
             ++(visited < 0 ? tree_traces().walked : tree_traces().pruned);

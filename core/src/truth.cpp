@@ -26,13 +26,7 @@ Rect area_of(std::int64_t cx, std::int64_t cy, int a, int b) {
 // A light's mask over the part of its area inside `clip`, nothing lit yet.
 LightMask unlit_mask(std::int64_t cx, std::int64_t cy, int a, int b, const Params& p, Rect clip) {
     LightMask m;
-    m.cx = cx;
-    m.cy = cy;
-    m.a = a;
-    m.b = b;
-    m.falloff_scale = p.falloff_scale;
-    m.clip = intersect(clip, area_of(cx, cy, a, b));
-    m.value.assign(std::size_t(std::max(0, m.clip.w)) * std::max(0, m.clip.h), 0);
+    start_mask(m, cx, cy, a, b, p, intersect(clip, area_of(cx, cy, a, b)));
     return m;
 }
 

@@ -63,6 +63,12 @@ struct LightMask {
     bool lit(std::size_t i) const { return value[i] != 0; }
 };
 
+// Readies `mask` for a light at (cx, cy) with half-extents a, b over `clip`:
+// its fields set, `value` all unlit (its capacity kept), `reached` emptied
+// unless `with_reached` (the shadow mode's tracers fill it).
+void start_mask(LightMask& mask, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p, Rect clip,
+                bool with_reached = false);
+
 // Rewrites every lit pixel of a traced (and corrected) mask with shaped_falloff.
 void shape_light(LightMask& mask, const Params& p);
 
