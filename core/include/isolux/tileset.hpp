@@ -35,6 +35,11 @@ struct FootprintSpec {
     friend bool operator==(const FootprintSpec&, const FootprintSpec&) = default;
 };
 
+// How far a sprite's anchor and its footprint's points may lie from the
+// sprite's top-left, pixels, in manifests and TMX alike: as far as the
+// largest image isolux reads is wide.
+inline constexpr int max_sprite_offset = 65536;
+
 struct Sprite {
     std::string name;
     SpriteKind kind = SpriteKind::overlay;

@@ -1,0 +1,29 @@
+// The one way in and out for every file isolux reads or writes: inputs are
+// checked to be regular files of a bounded size before they are opened, and
+// every write is atomic (a temporary file in the same folder, then rename),
+// so a crash never leaves a half-written file where the old one was.
+// Errors are Error, naming the file.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace isolux {
+
+// Largest text files we read (JSON presets, scenes and manifests; TMX and TSX).
+inline constexpr std::uintmax_t max_text_file_bytes = std::uintmax_t(64) << 20;
+
+// Throws Error naming the path unless it is a regular file (not a FIFO,
+// device, folder or socket, nor a symlink loop) of at most `max_bytes`.
+void check_input_file(const std::filesystem::path& path, std::uintmax_t max_bytes);
+
+// A text file's bytes, after check_input_file(path, max_text_file_bytes).
+std::string read_text_file(const std::filesystem::path& path);
+
+// Writes `contents` through a temporary file and rename (through a symlink,
+// to its target; a file with other hard links is written in place once the
+// new bytes are whole and synced beside it).
+void write_file_atomic(const std::filesystem::path& path, std::string_view contents);
+
+}  // namespace isolux
