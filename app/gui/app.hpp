@@ -144,26 +144,9 @@ struct App {
     std::string font_warning;    // the label font was not found
 };
 
-// Panels and the status bar: read the app's state, call the editor's actions.
+// Every window of a frame: the panels, dialogs, prompts and viewport marks
+// (gui/panels.cpp). Panels read the app's state and call the editor's actions.
 void draw_panels(App& app);
-// Approved long work's progress, time and Cancel (App::LongTrace), drawn
-// alone while its worker runs.
-void long_work_prompt(App& app);
 void inspector_panel(App& app);  // gui/inspector.cpp
-
-// Viewport input: pan, zoom, place, drag and delete lights, shortcuts, the
-// character. Skipped while ImGui wants the mouse or keyboard.
-void handle_viewport_input(App& app, double dt);
-
-// Runs `then` now, or after asking to save unsaved changes (Save, Don't
-// save, Cancel); `what` names what waits ("opening another scene").
-void guard_unsaved(App& app, const std::string& what, std::function<void()> then);
-
-// Applies the pending fit (Editor::fit_pending) to the free area.
-void fit_map(App& app);
-
-// Exports (PNG or EXR by extension): the final frame as shown (the window's
-// size at zoom 1, exactly), the light texture and the obstacle map of the view.
-bool export_image(App& app, const std::string& what, const std::string& path);
 
 }  // namespace isolux::app

@@ -1,11 +1,25 @@
+// Scripted input for tests and demos (script.hpp): the parser, and the
+// interpreter that runs a command a frame as a user's input would.
 #include "gui/script.hpp"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_internal.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
+#include "gui/app.hpp"
+#include "gui/dialogs.hpp"
+#include "gui/viewport.hpp"
+#include "isolux/edits.hpp"
 #include "isolux/error.hpp"
+#include "isolux/files.hpp"
+#include "isolux/tiled.hpp"
 
 namespace isolux::app {
 
@@ -65,6 +79,304 @@ Script load_script(const std::filesystem::path& path) {
         s.steps.push_back(step);
     }
     return s;
+}
+
+// ---------------------------------------------------------------- running a script
+
+namespace {
+
+// save-stats: each stage's mean time over the frames the Stats panel keeps
+// (the last Stats::frames), as the panel plots them: the core's CPU stages
+// by Stage name, the renderer's GPU stages apart.
+std::string stats_json(const Stats& s) {
+    const int n = int(std::min<long>(s.recorded, Stats::frames));
+    auto mean = [&](int series) {
+        double sum = 0;
+        for (int i = 0; i < n; ++i) sum += s.ms[std::size_t(series)][std::size_t((s.head - 1 - i + Stats::frames) % Stats::frames)];
+        return n > 0 ? sum / n : 0.0;
+    };
+    nlohmann::json cpu = nlohmann::json::object(), gpu = nlohmann::json::object();
+    for (int k = 0; k < stage_count; ++k) cpu[std::string(to_string(Stage(k)))] = mean(k);
+    const char* gpu_names[] = {"upload", "sprites", "blur", "composite"};
+    for (int k = 0; k < 4; ++k) gpu[gpu_names[k]] = mean(stage_count + k);
+    nlohmann::json j = {{"frames", n}, {"frame_ms", s.frame_ms}, {"tracer", s.tracer}, {"lights_traced", s.lights_traced},
+                        {"cpu_ms", cpu}, {"gpu_ms", gpu}};
+    return j.dump(2) + "\n";
+}
+
+}  // namespace
+
+void run_script_step(App& app) {
+    if (!app.script) return;
+    Script& s = *app.script;
+    ImGuiIO& io = ImGui::GetIO();
+    // The GLFW backend reads the real pointer every frame: put the scripted
+    // one back, so a press and its release land on the same widget.
+    if (s.has_mouse) io.MousePos = ImVec2(s.mouse_x, s.mouse_y);
+    auto move_to = [&](double x, double y) {
+        s.has_mouse = true;
+        s.mouse_x = float(x);
+        s.mouse_y = float(y);
+        io.MousePos = ImVec2(s.mouse_x, s.mouse_y);
+    };
+    if (s.release >= 0) {
+        io.MouseDown[s.release] = false;
+        s.release = -1;
+    }
+    if (s.key_up >= 0) {
+        io.KeysDown[s.key_up] = false;
+        io.KeyCtrl = false;
+        io.KeyShift = false;
+        s.key_up = -1;
+    }
+    if (!s.drag_path.empty()) {
+        // The GLFW backend resets the buttons from the real mouse each frame:
+        // hold the button for the whole drag.
+        io.MouseDown[0] = true;
+        move_to(s.drag_path.front().first, s.drag_path.front().second);
+        s.drag_path.erase(s.drag_path.begin());
+        if (s.drag_path.empty()) s.release = 0;
+        return;
+    }
+    if (s.move_lights > 0) {
+        // The document's lights themselves move (no undo step per frame: an animation, not an edit).
+        const double dx = s.move_lights % 2 ? 1 : -1;
+        for (Light& l : app.editor.scene.lights) l.x += dx;
+        --s.move_lights;
+        return;
+    }
+    if (s.wait > 0) {
+        --s.wait;
+        return;
+    }
+    if (s.waiting_sweep) {
+        if (app.accuracy.running) return;
+        s.waiting_sweep = false;
+    }
+    if (s.next >= s.steps.size()) return;
+    const ScriptStep& step = s.steps[s.next++];
+    auto num = [&](int i) { return std::stod(step.args[i]); };
+    Editor& e = app.editor;
+    if (step.op == "wait") s.wait = int(num(0));
+    else if (step.op == "click" || step.op == "rclick") {
+        const int button = step.op == "click" ? 0 : 1;
+        move_to(num(0), num(1));
+        io.MouseDown[button] = true;
+        s.release = button;
+    } else if (step.op == "drag") {
+        move_to(num(0), num(1));
+        io.MouseDown[0] = true;
+        for (int i = 1; i <= 4; ++i)
+            s.drag_path.push_back({num(0) + (num(2) - num(0)) * i / 4, num(1) + (num(3) - num(1)) * i / 4});
+    } else if (step.op == "key") {
+        std::string k = step.args[0];
+        if (k.rfind("ctrl+", 0) == 0) {
+            io.KeyCtrl = true;
+            k = k.substr(5);
+        }
+        int code = -1;
+        if (k.rfind("shift+", 0) == 0) {
+            io.KeyShift = true;
+            k = k.substr(6);
+        }
+        if (k.size() == 1 && std::isalpha(unsigned(k[0]))) code = GLFW_KEY_A + (std::toupper(unsigned(k[0])) - 'A');
+        else if (k.size() == 1 && std::isdigit(unsigned(k[0]))) code = GLFW_KEY_0 + (k[0] - '0');
+        else if (k == "f1") code = GLFW_KEY_F1;
+        else if (k == "escape") code = GLFW_KEY_ESCAPE;
+        else if (k == "delete") code = GLFW_KEY_DELETE;
+        else if (k == "home") code = GLFW_KEY_HOME;
+        else if (k == "enter") code = GLFW_KEY_ENTER;
+        else if (k == "tab") code = GLFW_KEY_TAB;
+        if (code >= 0) {
+            io.KeysDown[code] = true;
+            s.key_up = code;
+        }
+    } else if (step.op == "inspect" || step.op == "footprint") {
+        int found = -1;
+        for (int i = 0; i < int(e.world.tileset.sprites.size()); ++i)
+            if (e.world.tileset.sprites[std::size_t(i)].name == step.args[0]) found = i;
+        if (found < 0) {
+            set_status(e, "script: no sprite \"" + step.args[0] + "\"", true);
+        } else if (step.op == "inspect") {
+            app.ui.inspector_open = true;
+            app.ui.inspector_sprite = found;
+        } else {
+            try {
+                set_sprite_footprint(e, found, parse_footprint(step.args[1], "script footprint"));
+            } catch (const Error& err) {
+                set_status(e, err.what(), true);
+            }
+        }
+    } else if (step.op == "tool") {
+        bool found = false;
+        for (const ToolInfo& t : tool_table())
+            if (step.args[0] == t.name) e.brush.tool = t.tool, found = true;
+        if (!found) set_status(e, "script: no tool \"" + step.args[0] + "\"", true);
+    } else if (step.op == "brush") {
+        // brush floor NAME | brush overlay NAME | brush tag TAG
+        if (step.args[0] == "tag") {
+            e.brush.overlay_tag = step.args[1];
+        } else {
+            int found = -1;
+            for (int i = 0; i < int(e.world.tileset.sprites.size()); ++i)
+                if (e.world.tileset.sprites[std::size_t(i)].name == step.args[1] && found < 0) found = i;
+            if (found < 0) set_status(e, "script: no sprite \"" + step.args[1] + "\"", true);
+            else if (step.args[0] == "floor") e.brush.floor = found;
+            else e.brush.overlay = found, e.brush.overlay_tag.clear();
+        }
+    } else if (step.op == "view") {
+        e.view.x = num(0);
+        e.view.y = num(1);
+        e.view.zoom = std::clamp(num(2), min_zoom, max_zoom);
+        e.fit_pending = false;
+    } else if (step.op == "click-tile" || step.op == "drag-tiles") {
+        // Window pixels of a tile's centre in the current view.
+        auto tile_screen = [&](int col, int row) {
+            int cx = 0, cy = 0;
+            const Map& m = e.world.map;
+            tile_center(m.layout, m.tile_width, m.tile_height, col, row, cx, cy);
+            return std::pair<double, double>{(cx + e.world.placed.shift_x - e.view.x) * e.view.zoom,
+                                             (cy + e.world.placed.shift_y - e.view.y) * e.view.zoom};
+        };
+        const auto [x0, y0] = tile_screen(int(num(0)), int(num(1)));
+        move_to(x0, y0);
+        io.MouseDown[0] = true;
+        if (step.op == "click-tile") {
+            s.release = 0;
+        } else {
+            const auto [x1, y1] = tile_screen(int(num(2)), int(num(3)));
+            for (int i = 1; i <= 8; ++i) s.drag_path.push_back({x0 + (x1 - x0) * i / 8, y0 + (y1 - y0) * i / 8});
+        }
+    } else if (step.op == "show") {
+        const std::string& n = step.args[0];
+        if (n == "accuracy") app.accuracy.open = true;
+        else if (n == "inspector") app.ui.inspector_open = true;
+        else if (n == "help") app.ui.help_open = true;
+        else if (n == "stats") e.settings.show_stats = true;
+        else set_status(e, "script: no panel \"" + n + "\"", true);
+    } else if (step.op == "new") {
+        new_scene(e, app.now);
+    } else if (step.op == "fit") {
+        e.fit_pending = true;
+    } else if (step.op == "open-dropped") {
+        app.ui.dropped.push_back(step.args[0]);
+    } else if (step.op == "check-glyphs") {
+        // Every character of the argument must have a glyph in the label font.
+        const ImFont* font = ImGui::GetFont();
+        const std::string& t = step.args[0];
+        for (std::size_t i = 0; i < t.size();) {
+            unsigned int c = 0;
+            const int n = ImTextCharFromUtf8(&c, t.c_str() + i, t.c_str() + t.size());
+            i += std::size_t(std::max(1, n));
+            if (!font->FindGlyphNoFallback(ImWchar(c))) {
+                std::cerr << "isolux: the label font has no glyph for U+" << std::hex << c << std::dec << "\n";
+                app.exit_code = 3;
+            }
+        }
+    } else if (step.op == "dump-panels") {
+        // Every ImGui window's rectangle, as JSON lines: what the layout test reads.
+        std::string out;
+        ImGuiContext& g = *ImGui::GetCurrentContext();
+        for (ImGuiWindow* w : g.Windows) {
+            if (!w->Active || w->Hidden || (w->Flags & ImGuiWindowFlags_ChildWindow) || w->Name[0] == '#') continue;
+            out += "{\"name\": \"" + std::string(w->Name) + "\", \"x\": " + std::to_string(w->Pos.x) +
+                   ", \"y\": " + std::to_string(w->Pos.y) + ", \"w\": " + std::to_string(w->Size.x) +
+                   ", \"h\": " + std::to_string(w->Size.y) + "}\n";
+        }
+        out += "{\"window\": [" + std::to_string(app.window_w) + ", " + std::to_string(app.window_h) + "]}\n";
+        try {
+            write_file_atomic(step.args[0], out);
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
+    } else if (step.op == "move-lights") {
+        s.move_lights = int(num(0));
+    } else if (step.op == "save-stats") {
+        try {
+            write_file_atomic(step.args[0], stats_json(app.stats));
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
+    } else if (step.op == "export-final") {
+        export_image(app, "final", step.args[0]);
+    } else if (step.op == "export-tiled") {
+        try {
+            export_tiled(e.world, e.scene, step.args[0]);
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
+    } else if (step.op == "select") {
+        // select I[,J...] (1-based, as the panel numbers them)
+        select_light(e, -1);
+        std::string list = step.args[0];
+        for (std::size_t pos = 0; pos <= list.size();) {
+            const std::size_t end = std::min(list.find(',', pos), list.size());
+            const int i = std::atoi(list.substr(pos, end - pos).c_str()) - 1;
+            select_light(e, i, true);
+            pos = end + 1;
+        }
+    } else if (step.op == "character") {
+        e.character.enabled = step.args[0] == "on";
+        if (step.args.size() > 2) e.character.x = num(1), e.character.y = num(2);
+        e.character.follow = false;
+    } else if (step.op == "save-footprints") {
+        save_footprints(e);
+    } else if (step.op == "window-shot") {
+        s.window_shot = step.args[0];
+    } else if (step.op == "type") {
+        for (char c : step.args[0]) io.AddInputCharacter(unsigned(c));
+    } else if (step.op == "param") {
+        // A widget moved and released: the same edit the panel makes. Any
+        // row of the parameter table, by its field name and value text.
+        Params p = e.scene.params;
+        try {
+            set_param(p, step.args[0], step.args[1], "script param");
+            set_params(e, p, app.now);
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
+    } else if (step.op == "save-preset") export_preset(e, step.args[0]);
+    else if (step.op == "save-scene") save_scene_to(e, step.args[0]);
+    else if (step.op == "load-scene") load_scene_from(e, step.args[0], app.now);
+    else if (step.op == "load-preset") import_preset(e, step.args[0], app.now);
+    else if (step.op == "quit") s.quit = true;
+    else if (step.op == "overlay") {
+        const bool on = step.args[1] == "on";
+        Overlays& o = e.overlays;
+        const std::string& n = step.args[0];
+        if (n == "obstacles") o.obstacles = on;
+        else if (n == "opacity_maps") o.opacity_maps = on;
+        else if (n == "delta_y_bands") o.delta_y_bands = on;
+        else if (n == "light_areas") o.light_areas = on;
+        else if (n == "raw_light") o.raw_light = on;
+        else if (n == "split_view") o.split_view = on;
+        else if (n == "split_with_3d") o.split_with_3d = on;
+        else if (n == "truth_light") o.truth_light = on;
+        else if (n == "truth_difference") o.truth_difference = on;
+        else if (n == "heatmap") app.accuracy.heatmap = on, app.accuracy.heatmap_stale = true;
+    } else if (step.op == "sweep") {
+        AccuracyPanel& a = app.accuracy;
+        for (std::size_t i = 0; i < 4; ++i) a.axes[i] = i < step.args.size() ? step.args[i] : "";
+        a.frames = 2;
+        a.repeats = 1;
+        a.open = true;
+        if (!start_sweep(app, a)) {
+            set_status(e, a.error, true);
+            std::cerr << "isolux: " << a.error << "\n";  // a script has no one to read the status bar
+        }
+    } else if (step.op == "wait-sweep") s.waiting_sweep = true;
+    else if (step.op == "long-work") {
+        if (step.args[0] == "undo" || step.args[0] == "trace" || step.args[0] == "cancel") app.huge.script_answer = step.args[0];
+        else set_status(e, "script line " + std::to_string(step.line) + ": long-work undo|trace|cancel", true);
+    }
+    else if (step.op == "apply-point") apply_sweep_point(app, app.accuracy, std::size_t(num(0)));
+    else if (step.op == "save-sweep") {
+        try {
+            write_file_atomic(step.args[0], sweep_csv(app.accuracy.result_axes, app.accuracy.results));
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
+    }
 }
 
 }  // namespace isolux::app

@@ -56,4 +56,9 @@ struct Script {
 // Parses a script file; throws Error naming the file and line.
 Script load_script(const std::filesystem::path& path);
 
+struct App;
+// Runs the script's command for this frame (or waits), feeding ImGui's IO or
+// calling the editor's actions as a user would.
+void run_script_step(App& app);
+
 }  // namespace isolux::app

@@ -1,0 +1,40 @@
+// Dialogs and prompts: the file browser and its actions (open, save, export),
+// "Save changes?", recovering an autosave, "keep or clear the edits?", and
+// the prompts for work beyond the budget and for long work under way.
+#pragma once
+#include <functional>
+#include <string>
+
+#include "gui/app.hpp"
+
+namespace isolux::app {
+
+// Opens the file browser for `action` (an id of file_actions in dialogs.cpp,
+// e.g. "open-scene", "save-scene-as") with `suggestion` in its path field.
+void open_file_popup(App& app, const std::string& action, const std::string& suggestion);
+// Runs a file action on `path` (the dialog's OK, after any confirmation).
+void run_file_action(App& app, const std::string& action, const std::string& path);
+void save_or_save_as(App& app);
+void new_scene_action(App& app);
+void quit_action(App& app);
+
+// Runs `then` now, or after asking to save unsaved changes (Save, Don't
+// save, Cancel); `what` names what waits ("opening another scene").
+void guard_unsaved(App& app, const std::string& what, std::function<void()> then);
+
+// The dialogs, each drawn when open.
+void file_popup(App& app);
+void unsaved_popup(App& app);
+void recovery_popup(App& app);
+void edits_popup(App& app);
+// Work beyond the budget (app_frame.cpp: work_allowed): trace it anyway, or undo.
+void huge_work_prompt(App& app);
+// Approved long work's progress, time and Cancel (App::LongTrace), drawn
+// alone while its worker runs.
+void long_work_prompt(App& app);
+
+// Exports (PNG or EXR by extension): the final frame as shown (the window's
+// size at zoom 1, exactly), the light texture and the obstacle map of the view.
+bool export_image(App& app, const std::string& what, const std::string& path);
+
+}  // namespace isolux::app
