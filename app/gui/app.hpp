@@ -11,11 +11,14 @@
 #include <vector>
 
 #include "gui/accuracy_panel.hpp"
+#include "gui/dialogs.hpp"
 #include "gui/editor.hpp"
 #include "gui/gpu_tracer.hpp"
+#include "gui/inspector.hpp"
 #include "gui/layout.hpp"
 #include "gui/renderer.hpp"
 #include "gui/script.hpp"
+#include "gui/viewport.hpp"
 
 namespace isolux::app {
 
@@ -35,42 +38,22 @@ struct Stats {
     Rect last_rebuilt;  // the last frame report's rebuilt rectangle that was not empty (an edit's, or a full rebuild's)
 };
 
+// The UI's transient state, each part owned by the file that reads and
+// edits it; the document itself is the editor's.
 struct Ui {
-    bool editing = false;  // a slider or field is being dragged: one undo step at its end
+    bool editing = false;  // a slider or field is being dragged: one undo step at its end (widgets.cpp)
     Scene edit_before;
-    int dragging_light = -1;  // the light the drag started on (the whole selection moves)
-    Scene drag_before;
-    std::string file_action;  // the file browser's action (file_actions in panels.cpp), "" when closed
-    std::string path;         // its path field (typing a path works as in any dialog)
-    std::string browse_folder;  // the folder it lists
-    int filter = -1;            // its kind filter; -1: the action's own
-    std::string overwrite;      // a path waiting for "replace?" confirmation
-    std::string confirm_what;   // the unsaved-changes prompt: what waits ("" when none)
-    std::function<void()> confirmed;   // runs after Save or Don't save
-    std::function<void()> after_save;  // runs once a Save-as dialog has saved
-    bool edits_prompt = false;         // "keep or clear the edits?" before a regenerate
-    MapFields edits_target;
+    DialogState dialogs;      // dialogs.cpp
+    ViewportState viewport;   // viewport.cpp
+    InspectorState inspector; // inspector.cpp
     PanelLayout layout;                // where the panels go (gui/layout.hpp)
     int layout_w = 0, layout_h = 0;    // the window size it was made for
     bool reset_layout = true;          // apply it this frame
-    bool help_open = false;
-    bool box_selecting = false;        // a box select in progress, from (box_x0, box_y0) world
-    double box_x0 = 0, box_y0 = 0;
-    bool pressed_empty = false;        // the left button went down on empty ground (lights tool)
-    double press_x = 0, press_y = 0;   // where, window pixels
-    int stroke_col = -1, stroke_row = -1;
+    bool help_open = false;            // the Help window (menu_bar.cpp)
     std::vector<std::string> dropped;  // files dropped on the window, opened next frame
-    bool quit_confirmed = false;       // the window may close
     std::string title;                 // the window title last set
-    bool recovery_offered = false;
     MapFields map_edit;       // the Map panel's fields while one is being edited
     bool map_editing = false;
-    double cursor_x = 0, cursor_y = 0;  // world pixel under the mouse
-    bool cursor_in_view = false;
-    bool inspector_open = false;  // the tileset inspector
-    int inspector_sprite = -1;
-    float inspector_zoom = 2;
-    bool inspector_lines = true;
 };
 
 struct App {
@@ -147,6 +130,5 @@ struct App {
 // Every window of a frame: the panels, dialogs, prompts and viewport marks
 // (gui/panels.cpp). Panels read the app's state and call the editor's actions.
 void draw_panels(App& app);
-void inspector_panel(App& app);  // gui/inspector.cpp
 
 }  // namespace isolux::app

@@ -55,14 +55,14 @@ const FileAction* find_action(const std::string& id) {
 
 void open_file_popup(App& app, const std::string& action, const std::string& suggestion) {
     Ui& ui = app.ui;
-    ui.file_action = action;
-    ui.path = suggestion;
-    ui.filter = -1;
-    ui.overwrite.clear();
+    ui.dialogs.file_action = action;
+    ui.dialogs.path = suggestion;
+    ui.dialogs.filter = -1;
+    ui.dialogs.overwrite.clear();
     std::error_code ec;
     fs::path folder = suggestion.empty() ? fs::current_path(ec) : fs::absolute(suggestion, ec).parent_path();
     if (!fs::is_directory(folder, ec)) folder = fs::current_path(ec);
-    ui.browse_folder = folder.string();
+    ui.dialogs.browse_folder = folder.string();
 }
 
 // Runs a file action on `path` (the dialog's OK, after any confirmation).
@@ -71,9 +71,9 @@ void run_file_action(App& app, const std::string& action, const std::string& pat
     if (action == "open-scene") {
         guard_unsaved(app, "opening another scene", [&app, path] { load_scene_from(app.editor, path, app.now); });
     } else if (action == "save-scene") {
-        if (save_scene_to(e, path) && app.ui.after_save) {
-            auto then = std::move(app.ui.after_save);
-            app.ui.after_save = nullptr;
+        if (save_scene_to(e, path) && app.ui.dialogs.after_save) {
+            auto then = std::move(app.ui.dialogs.after_save);
+            app.ui.dialogs.after_save = nullptr;
             then();
         }
     } else if (action == "load-preset") import_preset(e, path, app.now);
@@ -104,7 +104,7 @@ void new_scene_action(App& app) {
 
 void quit_action(App& app) {
     guard_unsaved(app, "quitting", [&app] {
-        app.ui.quit_confirmed = true;
+        app.ui.dialogs.quit_confirmed = true;
         app.quit = true;
     });
 }
@@ -114,10 +114,10 @@ void quit_action(App& app) {
 // a file.
 void file_popup(App& app) {
     Ui& ui = app.ui;
-    if (ui.file_action.empty()) return;
-    const FileAction* action = find_action(ui.file_action);
+    if (ui.dialogs.file_action.empty()) return;
+    const FileAction* action = find_action(ui.dialogs.file_action);
     if (!action) {
-        ui.file_action.clear();
+        ui.dialogs.file_action.clear();
         return;
     }
     ImGui::OpenPopup("File");
@@ -127,11 +127,11 @@ void file_popup(App& app) {
     if (!ImGui::BeginPopupModal("File", nullptr, ImGuiWindowFlags_NoSavedSettings)) return;
     ImGui::TextUnformatted(action->title);
     ImGui::Separator();
-    const int filter = ui.filter < 0 ? action->filter : ui.filter;
+    const int filter = ui.dialogs.filter < 0 ? action->filter : ui.dialogs.filter;
     // The folder, its parent and recent folders.
-    if (ImGui::Button("Up")) ui.browse_folder = fs::path(ui.browse_folder).parent_path().string();
+    if (ImGui::Button("Up")) ui.dialogs.browse_folder = fs::path(ui.dialogs.browse_folder).parent_path().string();
     ImGui::SameLine();
-    ImGui::TextWrapped("%s", ui.browse_folder.c_str());
+    ImGui::TextWrapped("%s", ui.dialogs.browse_folder.c_str());
     const std::vector<std::string> recents = [&] {
         std::vector<std::string> files;
         for (const RecentFile& r : app.editor.settings.recent) files.push_back(r.path);
@@ -140,14 +140,14 @@ void file_popup(App& app) {
     ImGui::SetNextItemWidth(260);
     if (ImGui::BeginCombo("##recent", "Recent folders")) {
         for (const std::string& f : recents)
-            if (ImGui::Selectable(f.c_str())) ui.browse_folder = f;
+            if (ImGui::Selectable(f.c_str())) ui.dialogs.browse_folder = f;
         ImGui::EndCombo();
     }
     ImGui::SameLine();
     ImGui::SetNextItemWidth(200);
     if (ImGui::BeginCombo("##filter", file_filters[filter].label)) {
         for (int i = 0; i < filter_count; ++i)
-            if (ImGui::Selectable(file_filters[i].label, i == filter)) ui.filter = i;
+            if (ImGui::Selectable(file_filters[i].label, i == filter)) ui.dialogs.filter = i;
         ImGui::EndCombo();
     }
     // The listing.
@@ -155,15 +155,15 @@ void file_popup(App& app) {
     const float list_h = std::max(80.0f, ImGui::GetContentRegionAvail().y - 2 * ImGui::GetFrameHeightWithSpacing() - 8);
     ImGui::BeginChild("##entries", ImVec2(0, list_h), true);
     try {
-        for (const FolderEntry& entry : list_folder(ui.browse_folder, file_filters[filter])) {
+        for (const FolderEntry& entry : list_folder(ui.dialogs.browse_folder, file_filters[filter])) {
             const std::string label = (entry.folder ? "[dir] " : "      ") + entry.name;
-            const std::string full = (fs::path(ui.browse_folder) / entry.name).string();
-            if (ImGui::Selectable(label.c_str(), !entry.folder && ui.path == full,
+            const std::string full = (fs::path(ui.dialogs.browse_folder) / entry.name).string();
+            if (ImGui::Selectable(label.c_str(), !entry.folder && ui.dialogs.path == full,
                                   ImGuiSelectableFlags_AllowDoubleClick)) {
                 if (entry.folder) {
-                    if (ImGui::IsMouseDoubleClicked(0)) ui.browse_folder = full;
+                    if (ImGui::IsMouseDoubleClicked(0)) ui.dialogs.browse_folder = full;
                 } else {
-                    ui.path = full;
+                    ui.dialogs.path = full;
                     confirm = ImGui::IsMouseDoubleClicked(0);
                 }
             }
@@ -173,70 +173,70 @@ void file_popup(App& app) {
     }
     ImGui::EndChild();
     ImGui::SetNextItemWidth(-1);
-    const bool enter = ImGui::InputText("##path", &ui.path, ImGuiInputTextFlags_EnterReturnsTrue);
+    const bool enter = ImGui::InputText("##path", &ui.dialogs.path, ImGuiInputTextFlags_EnterReturnsTrue);
     if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere(-1);
     confirm = confirm || enter;
     if (ImGui::Button(action->writes ? "Save" : "Open") || confirm) {
         std::error_code ec;
-        if (fs::is_directory(ui.path, ec)) {
-            ui.browse_folder = ui.path;  // a folder typed or picked: go there
-        } else if (action->writes && fs::exists(ui.path, ec) &&
-                   !(ui.file_action == "save-scene" && fs::path(ui.path) == app.editor.scene_path)) {
-            ui.overwrite = ui.path;
+        if (fs::is_directory(ui.dialogs.path, ec)) {
+            ui.dialogs.browse_folder = ui.dialogs.path;  // a folder typed or picked: go there
+        } else if (action->writes && fs::exists(ui.dialogs.path, ec) &&
+                   !(ui.dialogs.file_action == "save-scene" && fs::path(ui.dialogs.path) == app.editor.scene_path)) {
+            ui.dialogs.overwrite = ui.dialogs.path;
         } else {
-            const std::string id = ui.file_action, path = ui.path;
-            ui.file_action.clear();
+            const std::string id = ui.dialogs.file_action, path = ui.dialogs.path;
+            ui.dialogs.file_action.clear();
             ImGui::CloseCurrentPopup();
             run_file_action(app, id, path);
         }
     }
     ImGui::SameLine();
     if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) {
-        ui.file_action.clear();
-        ui.after_save = nullptr;
+        ui.dialogs.file_action.clear();
+        ui.dialogs.after_save = nullptr;
         ImGui::CloseCurrentPopup();
     }
     // Replace an existing file?
-    if (!ui.overwrite.empty()) ImGui::OpenPopup("Replace file?");
+    if (!ui.dialogs.overwrite.empty()) ImGui::OpenPopup("Replace file?");
     if (ImGui::BeginPopupModal("Replace file?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::Text("%s already exists. Replace it?", ui.overwrite.c_str());
+        ImGui::Text("%s already exists. Replace it?", ui.dialogs.overwrite.c_str());
         if (ImGui::Button("Replace")) {
-            const std::string id = ui.file_action, path = ui.overwrite;
-            ui.overwrite.clear();
-            ui.file_action.clear();
+            const std::string id = ui.dialogs.file_action, path = ui.dialogs.overwrite;
+            ui.dialogs.overwrite.clear();
+            ui.dialogs.file_action.clear();
             ImGui::CloseCurrentPopup();
             run_file_action(app, id, path);
         }
         ImGui::SameLine();
         if (ImGui::Button("Cancel##replace")) {
-            ui.overwrite.clear();
+            ui.dialogs.overwrite.clear();
             ImGui::CloseCurrentPopup();
         }
         ImGui::EndPopup();
     }
-    if (ui.file_action.empty()) ImGui::CloseCurrentPopup();
+    if (ui.dialogs.file_action.empty()) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
 }
 
 // "Save changes?" before New, Open, Recover and Quit.
 void unsaved_popup(App& app) {
     Ui& ui = app.ui;
-    if (ui.confirm_what.empty()) return;
+    if (ui.dialogs.confirm_what.empty()) return;
     ImGui::OpenPopup("Unsaved changes");
     if (!ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
     const Editor& e = app.editor;
     ImGui::Text("%s has unsaved changes.", e.scene_path.empty() ? "The scene" : e.scene_path.filename().string().c_str());
-    ImGui::Text("Save them before %s?", ui.confirm_what.c_str());
+    ImGui::Text("Save them before %s?", ui.dialogs.confirm_what.c_str());
     auto close = [&] {
-        ui.confirm_what.clear();
+        ui.dialogs.confirm_what.clear();
         ImGui::CloseCurrentPopup();
     };
     if (ImGui::Button("Save")) {
-        auto then = std::move(ui.confirmed);
-        ui.confirmed = nullptr;
+        auto then = std::move(ui.dialogs.confirmed);
+        ui.dialogs.confirmed = nullptr;
         close();
         if (app.editor.scene_path.empty()) {
-            ui.after_save = then;  // once the Save dialog has saved
+            ui.dialogs.after_save = then;  // once the Save dialog has saved
             open_file_popup(app, "save-scene", "scene.json");
         } else if (save_scene_to(app.editor, app.editor.scene_path) && then) {
             then();
@@ -244,14 +244,14 @@ void unsaved_popup(App& app) {
     }
     ImGui::SameLine();
     if (ImGui::Button("Don't save")) {
-        auto then = std::move(ui.confirmed);
-        ui.confirmed = nullptr;
+        auto then = std::move(ui.dialogs.confirmed);
+        ui.dialogs.confirmed = nullptr;
         close();
         if (then) then();
     }
     ImGui::SameLine();
     if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) {
-        ui.confirmed = nullptr;
+        ui.dialogs.confirmed = nullptr;
         close();
     }
     ImGui::EndPopup();
@@ -259,20 +259,20 @@ void unsaved_popup(App& app) {
 
 void recovery_popup(App& app) {
     Editor& e = app.editor;
-    if (!app.ui.recovery_offered) return;
+    if (!app.ui.dialogs.recovery_offered) return;
     ImGui::OpenPopup("Recover unsaved work?");
     if (ImGui::BeginPopupModal("Recover unsaved work?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::TextUnformatted("isolux did not close cleanly last time.");
         ImGui::Text("An autosaved scene is waiting in %s", autosave_path(e).string().c_str());
         if (ImGui::Button("Recover")) {
-            app.ui.recovery_offered = false;
+            app.ui.dialogs.recovery_offered = false;
             ImGui::CloseCurrentPopup();
             guard_unsaved(app, "recovering the autosaved scene", [&app] { recover_autosave(app.editor, app.now); });
         }
         ImGui::SameLine();
         if (ImGui::Button("Discard")) {
             discard_autosave(e);
-            app.ui.recovery_offered = false;
+            app.ui.dialogs.recovery_offered = false;
             ImGui::CloseCurrentPopup();
         }
         ImGui::EndPopup();
@@ -283,13 +283,13 @@ void recovery_popup(App& app) {
 // scene with edits.
 void edits_popup(App& app) {
     Ui& ui = app.ui;
-    if (!ui.edits_prompt) return;
+    if (!ui.dialogs.edits_prompt) return;
     ImGui::OpenPopup("Hand edits");
     if (!ImGui::BeginPopupModal("Hand edits", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
     Editor& e = app.editor;
     ImGui::Text("This scene has %zu hand edits over its seeded map.", e.scene.edits.size());
     ImGui::TextUnformatted("Keep them on the new map (edits outside it stay in the file), or clear them?");
-    const MapFields& m = ui.edits_target;
+    const MapFields& m = ui.dialogs.edits_target;
     bool done = false;
     if (ImGui::Button("Keep edits")) {
         regenerate(e, m.seed, m.width, m.height, m.layout, app.now, true);
@@ -303,7 +303,7 @@ void edits_popup(App& app) {
     ImGui::SameLine();
     if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) done = true;
     if (done) {
-        ui.edits_prompt = false;
+        ui.dialogs.edits_prompt = false;
         ImGui::CloseCurrentPopup();
     }
     ImGui::EndPopup();
@@ -371,8 +371,8 @@ void guard_unsaved(App& app, const std::string& what, std::function<void()> then
         then();
         return;
     }
-    app.ui.confirm_what = what;
-    app.ui.confirmed = std::move(then);
+    app.ui.dialogs.confirm_what = what;
+    app.ui.dialogs.confirmed = std::move(then);
 }
 
 bool export_image(App& app, const std::string& what, const std::string& path) {

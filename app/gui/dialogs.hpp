@@ -5,9 +5,27 @@
 #include <functional>
 #include <string>
 
-#include "gui/app.hpp"
+#include "gui/editor.hpp"
 
 namespace isolux::app {
+
+struct App;
+
+// The dialogs' state.
+struct DialogState {
+    std::string file_action;    // the file browser's action (file_actions in dialogs.cpp), "" when closed
+    std::string path;           // its path field (typing a path works as in any dialog)
+    std::string browse_folder;  // the folder it lists
+    int filter = -1;            // its kind filter; -1: the action's own
+    std::string overwrite;      // a path waiting for "replace?" confirmation
+    std::string confirm_what;   // the unsaved-changes prompt: what waits ("" when none)
+    std::function<void()> confirmed;   // runs after Save or Don't save
+    std::function<void()> after_save;  // runs once a Save-as dialog has saved
+    bool edits_prompt = false;         // "keep or clear the edits?" before a regenerate
+    MapFields edits_target;
+    bool recovery_offered = false;     // the autosave was offered once
+    bool quit_confirmed = false;       // the window may close
+};
 
 // Opens the file browser for `action` (an id of file_actions in dialogs.cpp,
 // e.g. "open-scene", "save-scene-as") with `suggestion` in its path field.

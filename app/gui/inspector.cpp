@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "gui/app.hpp"
+#include "gui/inspector.hpp"
 #include "isolux/footprint.hpp"
 
 namespace isolux::app {
@@ -21,7 +22,7 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
     const Params& p = app.editor.scene.params;
     FootprintReport r;
     const Mask obstacle = tileset_footprint(app.editor.world.tileset, s, p, &r);
-    const float z = ui.inspector_zoom;
+    const float z = ui.inspector.zoom;
     const ImVec2 o = ImGui::GetCursorScreenPos();
     const float w = s.image.width * z, h = s.image.height * z;
     ImGui::InvisibleButton("sprite", ImVec2(w, h));
@@ -40,7 +41,7 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
             const int k = read ? 255 : 90;
             px(x, y, IM_COL32(c[0] * k / 255, c[1] * k / 255, c[2] * k / 255, c[3]));
         }
-    if (ui.inspector_lines && r.trace.last_line >= r.trace.first_line)
+    if (ui.inspector.lines && r.trace.last_line >= r.trace.first_line)
         dl->AddRectFilled(ImVec2(o.x, o.y + r.trace.first_line * z), ImVec2(o.x + w, o.y + (r.trace.last_line + 1) * z),
                           IM_COL32(60, 120, 255, 60));
     for (int y = 0; y < obstacle.height; ++y)
@@ -77,28 +78,28 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
 void inspector_panel(App& app) {
     Ui& ui = app.ui;
     Editor& e = app.editor;
-    if (!ui.inspector_open) return;
+    if (!ui.inspector.open) return;
     {
         // Opens over the map, inside the window whatever its size.
         const Rect fl = app.ui.layout.floating;
         ImGui::SetNextWindowPos(ImVec2(float(fl.x), float(fl.y)), ImGuiCond_Appearing);
         ImGui::SetNextWindowSize(ImVec2(float(fl.w), float(fl.h)), ImGuiCond_Appearing);
     }
-    if (!ImGui::Begin("Tileset inspector", &ui.inspector_open)) return ImGui::End();
+    if (!ImGui::Begin("Tileset inspector", &ui.inspector.open)) return ImGui::End();
     const auto& sprites = e.world.tileset.sprites;
     ImGui::BeginChild("list", ImVec2(150, 0), true);
     for (int i = 0; i < int(sprites.size()); ++i)
         if (sprites[std::size_t(i)].kind == SpriteKind::overlay &&
-            ImGui::Selectable(sprites[std::size_t(i)].name.c_str(), ui.inspector_sprite == i))
-            ui.inspector_sprite = i;
+            ImGui::Selectable(sprites[std::size_t(i)].name.c_str(), ui.inspector.sprite == i))
+            ui.inspector.sprite = i;
     ImGui::EndChild();
     ImGui::SameLine();
     ImGui::BeginChild("sprite", ImVec2(0, 0));
-    if (ui.inspector_sprite < 0 || ui.inspector_sprite >= int(sprites.size())) {
+    if (ui.inspector.sprite < 0 || ui.inspector.sprite >= int(sprites.size())) {
         ImGui::TextWrapped("Pick a sprite: its obstacle (red), the run Algorithm 1 chose (cyan box), the lines it "
                            "read (blue band) and the anchor (cyan cross); what the estimate left out is dimmed.");
     } else {
-        const Sprite& s = sprites[std::size_t(ui.inspector_sprite)];
+        const Sprite& s = sprites[std::size_t(ui.inspector.sprite)];
         FootprintSpec spec = s.footprint;
         bool changed = false;
         static const char* modes[] = {"preset's", "auto", "paper", "none", "run", "polygon"};
@@ -128,12 +129,12 @@ void inspector_panel(App& app) {
             changed |= ImGui::SliderFloat("ground tolerance", &v[2], 0, 1, "%.2f");
             spec.shadow_alpha = v[0], spec.shadow_luminance = v[1], spec.ground_tolerance = v[2];
         }
-        ImGui::Checkbox("Δy lines", &ui.inspector_lines);
+        ImGui::Checkbox("Δy lines", &ui.inspector.lines);
         ImGui::SameLine();
         ImGui::SetNextItemWidth(100);
-        ImGui::SliderFloat("zoom", &ui.inspector_zoom, 1, 6, "%.0f");
-        draw_sprite(app, ui.inspector_sprite, s, spec, changed);
-        if (changed) set_sprite_footprint(e, ui.inspector_sprite, spec);
+        ImGui::SliderFloat("zoom", &ui.inspector.zoom, 1, 6, "%.0f");
+        draw_sprite(app, ui.inspector.sprite, s, spec, changed);
+        if (changed) set_sprite_footprint(e, ui.inspector.sprite, spec);
     }
     ImGui::EndChild();
     ImGui::End();

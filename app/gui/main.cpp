@@ -175,7 +175,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     const bool had_recovery = has_recovery(app.editor);  // an earlier session's unsaved work
-    if (!screenshot_mode && !app.script && had_recovery) app.ui.recovery_offered = true;
+    if (!screenshot_mode && !app.script && had_recovery) app.ui.dialogs.recovery_offered = true;
 
     std::string error;
     if (!renderer_init(app.renderer, error)) {
@@ -217,10 +217,10 @@ int main(int argc, char** argv) {
             stop_long_trace(app);  // its work is thrown away; the last frame stays
             // Closing the window asks about unsaved work first (scripted
             // and screenshot runs close at once).
-            if (screenshot_mode || app.script || app.ui.quit_confirmed) break;
+            if (screenshot_mode || app.script || app.ui.dialogs.quit_confirmed) break;
             glfwSetWindowShouldClose(window, GLFW_FALSE);
             guard_unsaved(app, "quitting", [&app] {
-                app.ui.quit_confirmed = true;
+                app.ui.dialogs.quit_confirmed = true;
                 app.quit = true;
             });
             if (app.quit) break;
@@ -326,7 +326,7 @@ int main(int argc, char** argv) {
     // An autosave from an earlier crash is deleted only once its recovery was
     // offered and answered: never by a screenshot or script run, nor when the
     // window closes with the prompt still showing.
-    const bool recovery_unanswered = app.ui.recovery_offered || ((screenshot_mode || app.script) && had_recovery);
+    const bool recovery_unanswered = app.ui.dialogs.recovery_offered || ((screenshot_mode || app.script) && had_recovery);
     if (recovery_unanswered) {
         // Leave the earlier session's work where the next start offers it.
     } else if (app.editor.dirty) {

@@ -100,7 +100,7 @@ void menu_bar(App& app) {
             ImGui::EndMenu();
         }
         ImGui::MenuItem("Accuracy", nullptr, &app.accuracy.open);
-        ImGui::MenuItem("Tileset inspector", nullptr, &app.ui.inspector_open);
+        ImGui::MenuItem("Tileset inspector", nullptr, &app.ui.inspector.open);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Window")) {

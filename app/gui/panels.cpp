@@ -67,8 +67,8 @@ void map_panel(App& app) {
         if (m.width < 1 || m.height < 1 || m.width > max_map_side || m.height > max_map_side)
             set_status(e, "size: each side must be in [1, " + std::to_string(max_map_side) + "] tiles", true);
         else if (!(m == shown) && !e.scene.edits.empty()) {
-            ui.edits_target = m;  // ask: keep or clear the hand edits?
-            ui.edits_prompt = true;
+            ui.dialogs.edits_target = m;  // ask: keep or clear the hand edits?
+            ui.dialogs.edits_prompt = true;
         } else if (!(m == shown))
             regenerate(e, m.seed, m.width, m.height, m.layout, app.now);
         ui.map_editing = false;
@@ -84,7 +84,7 @@ void map_panel(App& app) {
     ImGui::Text("tileset: %s", shown.tileset.empty() ? "default" : shown.tileset.c_str());
     if (ImGui::Button("Load tileset...")) open_file_popup(app, "load-tileset", shown.tileset);
     ImGui::SameLine();
-    if (ImGui::Button("Inspect")) app.ui.inspector_open = true;
+    if (ImGui::Button("Inspect")) app.ui.inspector.open = true;
     if (e.footprints_unsaved) {
         ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "footprints changed");
         ImGui::SameLine();
@@ -408,7 +408,7 @@ void tools_panel(App& app) {
     else if (!floors && !overlays) ImGui::TextWrapped("%s", tool_info(b.tool).help);
     // What the brush will do under the cursor.
     int col = -1, row = -1;
-    if (app.ui.cursor_in_view && tile_at(e.world.map, e.world.placed, app.ui.cursor_x, app.ui.cursor_y, col, row)) {
+    if (app.ui.viewport.cursor_in_view && tile_at(e.world.map, e.world.placed, app.ui.viewport.cursor_x, app.ui.viewport.cursor_y, col, row)) {
         ImGui::Separator();
         ImGui::TextWrapped("%s", brush_preview(e, col, row).c_str());
     }

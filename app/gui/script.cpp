@@ -198,8 +198,8 @@ void run_script_step(App& app) {
         if (found < 0) {
             set_status(e, "script: no sprite \"" + step.args[0] + "\"", true);
         } else if (step.op == "inspect") {
-            app.ui.inspector_open = true;
-            app.ui.inspector_sprite = found;
+            app.ui.inspector.open = true;
+            app.ui.inspector.sprite = found;
         } else {
             try {
                 set_sprite_footprint(e, found, parse_footprint(step.args[1], "script footprint"));
@@ -250,7 +250,7 @@ void run_script_step(App& app) {
     } else if (step.op == "show") {
         const std::string& n = step.args[0];
         if (n == "accuracy") app.accuracy.open = true;
-        else if (n == "inspector") app.ui.inspector_open = true;
+        else if (n == "inspector") app.ui.inspector.open = true;
         else if (n == "help") app.ui.help_open = true;
         else if (n == "stats") e.settings.show_stats = true;
         else set_status(e, "script: no panel \"" + n + "\"", true);

@@ -82,14 +82,14 @@ void viewport_marks(App& app) {
             for (int r = r0; r <= r1; ++r)
                 for (int c = c0; c <= c1; ++c)
                     if (all || ((r == r0 || r == r1) && (c == c0 || c == c1))) outline(c, r, IM_COL32(255, 200, 80, 220));
-        } else if (app.ui.cursor_in_view &&
-                   tile_at(m, e.world.placed, app.ui.cursor_x, app.ui.cursor_y, col, row)) {
+        } else if (app.ui.viewport.cursor_in_view &&
+                   tile_at(m, e.world.placed, app.ui.viewport.cursor_x, app.ui.viewport.cursor_y, col, row)) {
             outline(col, row, IM_COL32(255, 230, 120, 230));
             ImGui::SetTooltip("%s", brush_preview(e, col, row).c_str());
         }
     }
-    if (app.ui.box_selecting) {
-        dl->AddRect(to_screen(app.ui.box_x0, app.ui.box_y0), to_screen(app.ui.cursor_x, app.ui.cursor_y),
+    if (app.ui.viewport.box_selecting) {
+        dl->AddRect(to_screen(app.ui.viewport.box_x0, app.ui.viewport.box_y0), to_screen(app.ui.viewport.cursor_x, app.ui.viewport.cursor_y),
                     IM_COL32(120, 200, 255, 230), 0, 0, 1.5f);
     }
     const Character& c = e.character;
@@ -135,9 +135,9 @@ void handle_viewport_input(App& app, double dt) {
     Editor& e = app.editor;
     Ui& ui = app.ui;
     const double mx = io.MousePos.x, my = io.MousePos.y;
-    ui.cursor_x = app.view.x + (mx - app.view_x) / e.view.zoom;
-    ui.cursor_y = app.view.y + (my - app.view_y) / e.view.zoom;
-    ui.cursor_in_view = !io.WantCaptureMouse && mx >= 0 && my >= 0;
+    ui.viewport.cursor_x = app.view.x + (mx - app.view_x) / e.view.zoom;
+    ui.viewport.cursor_y = app.view.y + (my - app.view_y) / e.view.zoom;
+    ui.viewport.cursor_in_view = !io.WantCaptureMouse && mx >= 0 && my >= 0;
 
     if (!io.WantCaptureKeyboard) {
         const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
@@ -155,7 +155,7 @@ void handle_viewport_input(App& app, double dt) {
         if (ctrl && pressed(GLFW_KEY_O)) open_file_popup(app, "open-scene", e.scene_path.string());
         if (ctrl && pressed(GLFW_KEY_Q)) quit_action(app);
         if (ctrl && pressed(GLFW_KEY_C)) copy_selection(e);
-        if (ctrl && pressed(GLFW_KEY_V)) paste_lights(e, ui.cursor_x, ui.cursor_y, app.now);
+        if (ctrl && pressed(GLFW_KEY_V)) paste_lights(e, ui.viewport.cursor_x, ui.viewport.cursor_y, app.now);
         if (ctrl && pressed(GLFW_KEY_D)) duplicate_selection(e, app.now);
         if (ctrl && pressed(GLFW_KEY_A)) select_lights_in(e, {-2000000000, -2000000000, 2147483647, 2147483647}, false);
         if (ctrl && pressed(GLFW_KEY_0)) zoom_at(app, 1.0, app.window_w / 2.0, app.window_h / 2.0);
@@ -204,7 +204,7 @@ void handle_viewport_input(App& app, double dt) {
         return;
     }
     int col = -1, row = -1;
-    const bool on_tile = tile_at(e.world.map, e.world.placed, ui.cursor_x, ui.cursor_y, col, row);
+    const bool on_tile = tile_at(e.world.map, e.world.placed, ui.viewport.cursor_x, ui.viewport.cursor_y, col, row);
 
     // Terrain tools: a stroke from press to release, one undo step.
     if (e.brush.tool != Tool::lights) {
@@ -219,52 +219,52 @@ void handle_viewport_input(App& app, double dt) {
     // the lights in its box.
     const double pick = 8.0 / e.view.zoom;
     if (ImGui::IsMouseClicked(0)) {
-        const int hit = light_at(e, ui.cursor_x, ui.cursor_y, pick);
+        const int hit = light_at(e, ui.viewport.cursor_x, ui.viewport.cursor_y, pick);
         if (hit >= 0) {
             if (io.KeyShift) select_light(e, hit, true);
             else if (!is_selected(e, hit)) select_light(e, hit);
             if (is_selected(e, hit)) {
-                ui.dragging_light = hit;
-                ui.drag_before = e.scene;
+                ui.viewport.dragging_light = hit;
+                ui.viewport.drag_before = e.scene;
             }
         } else {
-            ui.pressed_empty = true;
-            ui.press_x = mx;
-            ui.press_y = my;
-            ui.box_x0 = ui.cursor_x;
-            ui.box_y0 = ui.cursor_y;
+            ui.viewport.pressed_empty = true;
+            ui.viewport.press_x = mx;
+            ui.viewport.press_y = my;
+            ui.viewport.box_x0 = ui.viewport.cursor_x;
+            ui.viewport.box_y0 = ui.viewport.cursor_y;
         }
     }
-    if (ui.pressed_empty) {
-        const bool moved = std::hypot(mx - ui.press_x, my - ui.press_y) > 4;
+    if (ui.viewport.pressed_empty) {
+        const bool moved = std::hypot(mx - ui.viewport.press_x, my - ui.viewport.press_y) > 4;
         if (ImGui::IsMouseDown(0)) {
-            ui.box_selecting = ui.box_selecting || moved;
+            ui.viewport.box_selecting = ui.viewport.box_selecting || moved;
         } else {
-            if (ui.box_selecting) {
-                const double x0 = std::min(ui.box_x0, ui.cursor_x), y0 = std::min(ui.box_y0, ui.cursor_y);
-                const double x1 = std::max(ui.box_x0, ui.cursor_x), y1 = std::max(ui.box_y0, ui.cursor_y);
+            if (ui.viewport.box_selecting) {
+                const double x0 = std::min(ui.viewport.box_x0, ui.viewport.cursor_x), y0 = std::min(ui.viewport.box_y0, ui.viewport.cursor_y);
+                const double x1 = std::max(ui.viewport.box_x0, ui.viewport.cursor_x), y1 = std::max(ui.viewport.box_y0, ui.viewport.cursor_y);
                 select_lights_in(e, {int(std::floor(x0)), int(std::floor(y0)), int(std::ceil(x1 - x0)) + 1,
                                      int(std::ceil(y1 - y0)) + 1},
                                  io.KeyShift);
             } else if (!io.KeyShift) {
-                place_light(e, ui.box_x0, ui.box_y0, app.now);
+                place_light(e, ui.viewport.box_x0, ui.viewport.box_y0, app.now);
             }
-            ui.pressed_empty = ui.box_selecting = false;
+            ui.viewport.pressed_empty = ui.viewport.box_selecting = false;
         }
     }
-    if (ui.dragging_light >= 0) {
+    if (ui.viewport.dragging_light >= 0) {
         if (ImGui::IsMouseDown(0)) {
             // The selection moves with the light under the cursor, by whole pixels.
-            const Light& anchor = e.scene.lights[std::size_t(ui.dragging_light)];
-            const double dx = std::floor(ui.cursor_x) + 0.5 - anchor.x, dy = std::floor(ui.cursor_y) + 0.5 - anchor.y;
+            const Light& anchor = e.scene.lights[std::size_t(ui.viewport.dragging_light)];
+            const double dx = std::floor(ui.viewport.cursor_x) + 0.5 - anchor.x, dy = std::floor(ui.viewport.cursor_y) + 0.5 - anchor.y;
             if ((dx != 0 || dy != 0) && !anchor.locked) move_selection(e, dx, dy);
         } else {
-            commit_edit(e, ui.drag_before, app.now);  // one undo step per drag
-            ui.dragging_light = -1;
+            commit_edit(e, ui.viewport.drag_before, app.now);  // one undo step per drag
+            ui.viewport.dragging_light = -1;
         }
     }
     if (ImGui::IsMouseClicked(1)) {
-        const int hit = light_at(e, ui.cursor_x, ui.cursor_y, pick);
+        const int hit = light_at(e, ui.viewport.cursor_x, ui.viewport.cursor_y, pick);
         if (hit >= 0) remove_light(e, hit, app.now);
     }
 }

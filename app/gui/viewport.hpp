@@ -4,9 +4,24 @@
 #include <functional>
 #include <string>
 
-#include "gui/app.hpp"
+#include "gui/editor.hpp"
 
 namespace isolux::app {
+
+struct App;
+
+// The viewport's input in progress.
+struct ViewportState {
+    int dragging_light = -1;  // the light the drag started on (the whole selection moves)
+    Scene drag_before;
+    bool box_selecting = false;        // a box select in progress, from (box_x0, box_y0) world
+    double box_x0 = 0, box_y0 = 0;
+    bool pressed_empty = false;        // the left button went down on empty ground (lights tool)
+    double press_x = 0, press_y = 0;   // where, window pixels
+    int stroke_col = -1, stroke_row = -1;
+    double cursor_x = 0, cursor_y = 0;  // world pixel under the mouse
+    bool cursor_in_view = false;
+};
 
 // Viewport input: pan, zoom, place, drag and delete lights, shortcuts, the
 // character. Skipped while ImGui wants the mouse or keyboard.
