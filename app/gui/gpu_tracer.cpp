@@ -10,35 +10,6 @@ namespace isolux::app {
 
 namespace {
 
-GLuint compile_compute(const std::string& src, std::string& error) {
-    GLuint s = glCreateShader(GL_COMPUTE_SHADER);
-    const char* text = src.c_str();
-    glShaderSource(s, 1, &text, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {0};
-        glGetShaderInfoLog(s, sizeof log, nullptr, log);
-        error = std::string("trace.comp: ") + log;
-        glDeleteShader(s);
-        return 0;
-    }
-    GLuint p = glCreateProgram();
-    glAttachShader(p, s);
-    glLinkProgram(p);
-    glDeleteShader(s);
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {0};
-        glGetProgramInfoLog(p, sizeof log, nullptr, log);
-        error = std::string("trace.comp: ") + log;
-        glDeleteProgram(p);
-        return 0;
-    }
-    return p;
-}
-
 bool has_compute() {
     GLint major = 0, minor = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
@@ -69,12 +40,7 @@ bool gpu_tracer_init(GpuTracer& t, std::string& error) {
         error = "no compute shaders (OpenGL 4.3) in this context";
         return false;
     }
-    const std::string src = shader_source(shader_folder(), "trace.comp");
-    if (src.empty()) {
-        error = "missing shader trace.comp";
-        return false;
-    }
-    t.program = compile_compute(src, error);
+    t.program = build_program(shader_folder(), {{GL_COMPUTE_SHADER, "trace.comp"}}, error);
     if (!t.program) return false;
     glGenBuffers(1, &t.targets);
     glGenBuffers(1, &t.falloff);

@@ -13,54 +13,6 @@ namespace isolux::app {
 
 namespace {
 
-GLuint compile(GLenum type, const std::string& name, const std::string& src, std::string& error) {
-    GLuint s = glCreateShader(type);
-    const char* text = src.c_str();
-    glShaderSource(s, 1, &text, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {0};
-        glGetShaderInfoLog(s, sizeof log, nullptr, log);
-        error = name + ": " + log;
-        glDeleteShader(s);
-        return 0;
-    }
-    return s;
-}
-
-GLuint link(const std::string& vs_name, const std::string& fs_name, const fs::path& dir, std::string& error) {
-    const std::string vs_src = shader_source(dir, vs_name), fs_src = shader_source(dir, fs_name);
-    if (vs_src.empty() || fs_src.empty()) {
-        error = "missing shader " + (vs_src.empty() ? vs_name : fs_name);
-        return 0;
-    }
-    GLuint vs = compile(GL_VERTEX_SHADER, vs_name, vs_src, error);
-    if (!vs) return 0;
-    GLuint fs = compile(GL_FRAGMENT_SHADER, fs_name, fs_src, error);
-    if (!fs) {
-        glDeleteShader(vs);
-        return 0;
-    }
-    GLuint p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {0};
-        glGetProgramInfoLog(p, sizeof log, nullptr, log);
-        error = vs_name + " + " + fs_name + ": " + log;
-        glDeleteProgram(p);
-        return 0;
-    }
-    return p;
-}
-
 fs::file_time_type newest_stamp(const fs::path& dir) {
     fs::file_time_type newest{};
     std::error_code ec;
@@ -237,7 +189,7 @@ bool renderer_reload_shaders(Renderer& r, bool force) {
                                {"fullscreen.vert", "composite.frag"},
                                {"present.vert", "present.frag"}};
     for (int i = 0; i < 4; ++i) {
-        GLuint id = link(names[i][0], names[i][1], r.shader_dir, error);
+        const GLuint id = build_program(r.shader_dir, {{GL_VERTEX_SHADER, names[i][0]}, {GL_FRAGMENT_SHADER, names[i][1]}}, error);
         if (!id) continue;  // keep the last good program
         if (programs[i]->id) glDeleteProgram(programs[i]->id);
         programs[i]->id = id;

@@ -66,11 +66,11 @@ struct Params {
     bool dark_unlit = false;       // Algorithm 3 variant: texFactor *= light (paper 4)
     Rays rays = Rays::border;
     double light_height = 32;      // a light's height above the ground, pixels, when it gives none (not in the paper)
-    bool rays_over_obstacles = false;
+    bool rays_over_obstacles = false;  // rays pass over obstacles lower than the ray (height_rays.hpp; not in the paper)
     Footprint footprint = Footprint::automatic;  // sprites without their own footprint (not in the paper)
     FalloffShape falloff_shape = FalloffShape::chebyshev;
     bool edge_fade = false;         // intensity falls to 0 at the area's border (not in the paper)
-    LightMix light_mix = LightMix::luminance;  // rays pass over obstacles lower than the ray (height_rays.hpp; not in the paper)
+    LightMix light_mix = LightMix::luminance;  // how Algorithm 3 mixes a sprite's colour with the light (LightMix)
 
     friend bool operator==(const Params&, const Params&) = default;
 };
