@@ -10,25 +10,16 @@
 #include "gui/editor.hpp"
 #include "gui/file_browser.hpp"
 #include "gui/layout.hpp"
+#include "test_util.hpp"
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
 
 using namespace isolux;
 using namespace isolux::app;
+using isolux::test::TempDir;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct TempDir {
-    fs::path dir = fs::temp_directory_path() /
-                   ("isolux_comfort_" + std::to_string(::getpid()) + "_" +
-                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    TempDir() {
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    ~TempDir() { fs::remove_all(dir); }
-};
 
 Editor editor(const fs::path& config) {
     Scene s;
@@ -60,7 +51,7 @@ TEST(Layout, everyDockedPanelLiesInsideTheWindowWithoutOverlap) {
 
 TEST(Lights, shiftClickAndBoxSelectMoveDuplicateCopyPasteAndDelete) {
     TempDir d;
-    Editor e = editor(d.dir);
+    Editor e = editor(d.path);
     select_light(e, 0);
     select_light(e, 2, true);  // shift-click adds
     EXPECT_EQ(e.selection, (std::vector<int>{0, 2}));
@@ -105,12 +96,12 @@ TEST(Lights, shiftClickAndBoxSelectMoveDuplicateCopyPasteAndDelete) {
 
 TEST(Lights, namedHiddenAndLockedLightsSurviveTheFileAndHiddenOnesLightNothing) {
     TempDir d;
-    Editor e = editor(d.dir);
+    Editor e = editor(d.path);
     e.scene.lights[0].name = "campfire";
     e.scene.lights[1].hidden = true;
     e.scene.lights[2].locked = true;
-    ASSERT_TRUE(save_scene_to(e, d.dir / "s.json"));
-    const Scene back = load_scene(d.dir / "s.json");
+    ASSERT_TRUE(save_scene_to(e, d.path / "s.json"));
+    const Scene back = load_scene(d.path / "s.json");
     EXPECT_EQ(back.lights, e.scene.lights);
     EXPECT_EQ(light_label(back, 0), "campfire");
     EXPECT_EQ(light_label(back, 1), "light 2");
@@ -131,57 +122,57 @@ TEST(Lights, namedHiddenAndLockedLightsSurviveTheFileAndHiddenOnesLightNothing) 
 
 TEST(Window, theTitleNamesTheFileAndMarksUnsavedWork) {
     TempDir d;
-    Editor e = editor(d.dir);
+    Editor e = editor(d.path);
     EXPECT_EQ(window_title(e), "untitled - isolux");
     place_light(e, 10, 10, 1);
     EXPECT_EQ(window_title(e), "untitled * - isolux");
-    ASSERT_TRUE(save_scene_to(e, d.dir / "forest.json"));
+    ASSERT_TRUE(save_scene_to(e, d.path / "forest.json"));
     EXPECT_EQ(window_title(e), "forest.json - isolux");
 }
 
 TEST(Files, droppedFilesOpenAsWhatTheyAre) {
     TempDir d;
-    Editor e = editor(d.dir);
+    Editor e = editor(d.path);
     Scene s;
     s.seed = "dropped";
-    save_scene(d.dir / "level.json", s);
+    save_scene(d.path / "level.json", s);
     Params p;
     p.delta_y = 17;
-    save_preset(d.dir / "tuned.json", p);
-    EXPECT_EQ(detect_file_kind(d.dir / "level.json"), FileKind::scene);
-    EXPECT_EQ(detect_file_kind(d.dir / "tuned.json"), FileKind::preset);
+    save_preset(d.path / "tuned.json", p);
+    EXPECT_EQ(detect_file_kind(d.path / "level.json"), FileKind::scene);
+    EXPECT_EQ(detect_file_kind(d.path / "tuned.json"), FileKind::preset);
     EXPECT_EQ(detect_file_kind(std::string(ISOLUX_ASSETS_DIR) + "/default/tileset.json"), FileKind::tileset);
     // As the app opens a dropped file: as the kind it detects.
     auto drop = [&](const fs::path& path, double now) {
         return open_recent(e, RecentFile{path.string(), detect_file_kind(path)}, now);
     };
-    ASSERT_TRUE(drop(d.dir / "tuned.json", 1)) << e.status;
+    ASSERT_TRUE(drop(d.path / "tuned.json", 1)) << e.status;
     EXPECT_EQ(e.scene.params.delta_y, 17);
-    ASSERT_TRUE(drop(d.dir / "level.json", 2)) << e.status;
+    ASSERT_TRUE(drop(d.path / "level.json", 2)) << e.status;
     EXPECT_EQ(e.scene.seed, "dropped");
     // A folder or a missing file is a message naming it, not a crash.
     std::string message;
     try {
-        drop(d.dir, 3);
+        drop(d.path, 3);
     } catch (const Error& err) {
         message = err.what();
     }
-    EXPECT_NE(message.find(d.dir.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(d.path.string()), std::string::npos) << message;
     EXPECT_EQ(e.scene.seed, "dropped");
 }
 
 TEST(Files, theBrowserListsFoldersFirstThenFilesOfTheKind) {
     TempDir d;
-    fs::create_directories(d.dir / "b_folder");
-    fs::create_directories(d.dir / "a_folder");
-    for (const char* f : {"z.json", "a.JSON", "m.png", ".hidden.json", "notes.txt"}) std::ofstream(d.dir / f) << "{}";
+    fs::create_directories(d.path / "b_folder");
+    fs::create_directories(d.path / "a_folder");
+    for (const char* f : {"z.json", "a.JSON", "m.png", ".hidden.json", "notes.txt"}) std::ofstream(d.path / f) << "{}";
     const FileFilter json{"JSON", {".json"}};
     std::vector<std::string> names;
-    for (const FolderEntry& en : list_folder(d.dir, json)) names.push_back(en.name);
+    for (const FolderEntry& en : list_folder(d.path, json)) names.push_back(en.name);
     EXPECT_EQ(names, (std::vector<std::string>{"a_folder", "b_folder", "a.JSON", "z.json"}));
     const FileFilter all{"All", {}};
-    EXPECT_EQ(list_folder(d.dir, all).size(), 6u);
-    EXPECT_THROW(list_folder(d.dir / "missing", all), Error);
+    EXPECT_EQ(list_folder(d.path, all).size(), 6u);
+    EXPECT_THROW(list_folder(d.path / "missing", all), Error);
     EXPECT_EQ(recent_folders({"/a/x.json", "/b/y.json", "/a/z.json"}), (std::vector<std::string>{"/a", "/b"}));
 }
 
@@ -189,7 +180,7 @@ TEST(View, fitShowsTheWholeMapAndZoomStaysInRange) {
     TempDir d;
     Scene s;
     s.width = s.height = 64;
-    Editor e = make_editor(s, d.dir);
+    Editor e = make_editor(s, d.path);
     const Rect area{350, 30, 900, 800};
     fit_view(e.view, e.world.placed.bounds, area);
     const Rect b = e.world.placed.bounds;
@@ -205,7 +196,7 @@ TEST(View, fitShowsTheWholeMapAndZoomStaysInRange) {
     // A 128x128 map (16384 pixels wide) at the floor of 1/16: centred, its
     // middle shown rather than an empty screen.
     s.width = s.height = 128;
-    Editor big = make_editor(s, d.dir);
+    Editor big = make_editor(s, d.path);
     fit_view(big.view, big.world.placed.bounds, area);
     EXPECT_EQ(big.view.zoom, min_zoom);
     const Rect bb = big.world.placed.bounds;
@@ -220,7 +211,7 @@ TEST(Character, walksOnTheMapAroundObstaclesAndNeverIntoTheVoid) {
     Scene s;
     s.width = s.height = 12;
     s.seed = "forest walk";
-    Editor e = make_editor(s, d.dir);
+    Editor e = make_editor(s, d.path);
     e.character.enabled = true;
     // A frame builds the obstacle map around the character's light.
     const Rect b = e.world.placed.bounds;

@@ -6,22 +6,16 @@
 #include <unistd.h>
 
 #include "gui/editor.hpp"
+#include "test_util.hpp"
 #include "isolux/edits.hpp"
 #include "isolux/files.hpp"
 
 using namespace isolux;
 using namespace isolux::app;
+using isolux::test::TempDir;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct TempDir {
-    fs::path dir = fs::temp_directory_path() /
-                   ("isolux_terrain_" + std::to_string(::getpid()) + "_" +
-                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    TempDir() { fs::remove_all(dir); }
-    ~TempDir() { fs::remove_all(dir); }
-};
 
 Editor editor(const fs::path& config, int side = 10) {
     Scene s;
@@ -69,8 +63,8 @@ void expect_world_matches_scene(const Editor& e) {
 }  // namespace
 
 TEST(Terrain, theFloorBrushPaintsEveryTileAStrokeCrossesAsOneUndoStep) {
-    TempDir d;
-    Editor e = editor(d.dir);
+    TempDir d{false};
+    Editor e = editor(d.path);
     e.brush.tool = Tool::floor;
     e.brush.floor = other_floor(e, {{1, 1}, {2, 1}, {3, 1}, {3, 2}});
     const Map seeded = e.world.map;
@@ -88,8 +82,8 @@ TEST(Terrain, theFloorBrushPaintsEveryTileAStrokeCrossesAsOneUndoStep) {
 }
 
 TEST(Terrain, theRectangleFillsItsCornersRectangleAtTheEnd) {
-    TempDir d;
-    Editor e = editor(d.dir);
+    TempDir d{false};
+    Editor e = editor(d.path);
     e.brush.tool = Tool::floor_rect;
     e.brush.floor = sprite(e, "sand");
     begin_stroke(e, 6, 2);
@@ -112,8 +106,8 @@ TEST(Terrain, theRectangleFillsItsCornersRectangleAtTheEnd) {
 }
 
 TEST(Terrain, theBucketFillsTheConnectedTilesOfOneFloor) {
-    TempDir d;
-    Editor e = editor(d.dir);
+    TempDir d{false};
+    Editor e = editor(d.path);
     // A known region: a 3x3 block of stone in a field of grass.
     e.brush.tool = Tool::floor_rect;
     e.brush.floor = sprite(e, "grass");
@@ -133,8 +127,8 @@ TEST(Terrain, theBucketFillsTheConnectedTilesOfOneFloor) {
 }
 
 TEST(Terrain, overlaysArePlacedUpToThreeRemovedErasedAndPicked) {
-    TempDir d;
-    Editor e = editor(d.dir);
+    TempDir d{false};
+    Editor e = editor(d.path);
     e.brush.tool = Tool::eraser;
     stroke(e, {{5, 5}}, 1);
     EXPECT_EQ(e.world.map.at(5, 5).overlay_count, 0);
@@ -172,8 +166,8 @@ TEST(Terrain, overlaysArePlacedUpToThreeRemovedErasedAndPicked) {
 }
 
 TEST(Terrain, aLevelSurvivesSaveAndReopenAndRendersTheSame) {
-    TempDir d;
-    Editor e = editor(d.dir);
+    TempDir d{false};
+    Editor e = editor(d.path);
     e.brush.tool = Tool::floor_rect;
     e.brush.floor = sprite(e, "water");
     stroke(e, {{1, 1}, {4, 3}}, 1);  // a lake
@@ -183,10 +177,10 @@ TEST(Terrain, aLevelSurvivesSaveAndReopenAndRendersTheSame) {
     e.brush.overlay = sprite(e, "pine");
     stroke(e, {{0, 8}, {1, 8}, {2, 8}, {3, 8}}, 3);  // a wall of trees
     place_light(e, 500.5, 400.5, 4);
-    const fs::path file = d.dir / "level.json";
-    fs::create_directories(d.dir);
+    const fs::path file = d.path / "level.json";
+    fs::create_directories(d.path);
     ASSERT_TRUE(save_scene_to(e, file)) << e.status;
-    Editor f = editor(d.dir / "other");
+    Editor f = editor(d.path / "other");
     ASSERT_TRUE(load_scene_from(f, file, 5)) << f.status;
     EXPECT_EQ(f.scene.edits, e.scene.edits);
     ASSERT_EQ(f.world.map.tiles.size(), e.world.map.tiles.size());
@@ -203,8 +197,8 @@ TEST(Terrain, aLevelSurvivesSaveAndReopenAndRendersTheSame) {
 }
 
 TEST(Terrain, editsBeyondAShrunkMapAreKeptReportedAndComeBack) {
-    TempDir d;
-    Editor e = editor(d.dir);
+    TempDir d{false};
+    Editor e = editor(d.path);
     e.brush.tool = Tool::floor;
     const int floor = e.brush.floor = other_floor(e, {{8, 8}, {1, 1}});
     stroke(e, {{8, 8}}, 1);

@@ -4,20 +4,15 @@
 #include <fstream>
 
 #include "gui/editor.hpp"
+#include "test_util.hpp"
 #include "isolux/files.hpp"
 
 using namespace isolux;
 using namespace isolux::app;
+using isolux::test::TempDir;
 namespace fs = std::filesystem;
 
 namespace {
-struct TempConfig {
-    fs::path dir = fs::temp_directory_path() /
-                   ("isolux_editor_" + std::to_string(::getpid()) + "_" +
-                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    TempConfig() { fs::remove_all(dir); }
-    ~TempConfig() { fs::remove_all(dir); }
-};
 Scene small_scene() {
     Scene s;
     s.width = s.height = 6;
@@ -26,8 +21,8 @@ Scene small_scene() {
 }  // namespace
 
 TEST(Editor, placingALightIsOneUndoStepAndRedoRestoresIt) {
-    TempConfig c;
-    Editor e = make_editor(small_scene(), c.dir);
+    TempDir c{false};
+    Editor e = make_editor(small_scene(), c.path);
     place_light(e, 100.2, 50.7, 0);
     ASSERT_EQ(e.scene.lights.size(), 1u);
     EXPECT_EQ(e.scene.lights[0].x, 100.5);  // the pixel's centre
@@ -40,8 +35,8 @@ TEST(Editor, placingALightIsOneUndoStepAndRedoRestoresIt) {
 }
 
 TEST(Editor, aSliderDragIsOneUndoStep) {
-    TempConfig c;
-    Editor e = make_editor(small_scene(), c.dir);
+    TempDir c{false};
+    Editor e = make_editor(small_scene(), c.path);
     const Scene before = e.scene;
     for (double v : {0.41, 0.5, 0.62, 0.7}) e.scene.params.ambient_clarity = v;  // live while dragging
     commit_edit(e, before, 0);                                                   // released
@@ -51,8 +46,8 @@ TEST(Editor, aSliderDragIsOneUndoStep) {
 }
 
 TEST(Editor, outOfRangeParametersAreRefusedWithAMessage) {
-    TempConfig c;
-    Editor e = make_editor(small_scene(), c.dir);
+    TempDir c{false};
+    Editor e = make_editor(small_scene(), c.path);
     Params p = e.scene.params;
     p.noise_window = 0;
     set_params(e, p, 0);
@@ -63,26 +58,26 @@ TEST(Editor, outOfRangeParametersAreRefusedWithAMessage) {
 }
 
 TEST(Editor, aCorruptSceneOrTilesetNeverReplacesTheDocument) {
-    TempConfig c;
-    fs::create_directories(c.dir);
-    Editor e = make_editor(small_scene(), c.dir);
+    TempDir c{false};
+    fs::create_directories(c.path);
+    Editor e = make_editor(small_scene(), c.path);
     place_light(e, 10, 10, 0);
-    std::ofstream(c.dir / "bad.json") << "{\"lights\": [";
-    EXPECT_FALSE(load_scene_from(e, c.dir / "bad.json", 1));
+    std::ofstream(c.path / "bad.json") << "{\"lights\": [";
+    EXPECT_FALSE(load_scene_from(e, c.path / "bad.json", 1));
     EXPECT_TRUE(e.status_error);
     EXPECT_NE(e.status.find("bad.json"), std::string::npos);
     EXPECT_EQ(e.scene.lights.size(), 1u);
     const auto revision = e.world.revision;
-    EXPECT_FALSE(load_tileset_from(e, c.dir / "missing.json", 2));
+    EXPECT_FALSE(load_tileset_from(e, c.path / "missing.json", 2));
     EXPECT_TRUE(e.scene.tileset.empty());
     EXPECT_EQ(e.world.revision, revision);
-    EXPECT_FALSE(import_preset(e, c.dir / "bad.json", 3));
+    EXPECT_FALSE(import_preset(e, c.path / "bad.json", 3));
     EXPECT_EQ(e.scene.lights.size(), 1u);
 }
 
 TEST(Editor, regenerateBuildsTheSeedsMapAndUndoRestoresTheOldOne) {
-    TempConfig c;
-    Editor e = make_editor(small_scene(), c.dir);
+    TempDir c{false};
+    Editor e = make_editor(small_scene(), c.path);
     const auto tiles = e.world.map.tiles.size();
     regenerate(e, "other", 9, 4, Layout::staggered, 0);
     EXPECT_EQ(e.world.map.width, 9);
@@ -93,46 +88,46 @@ TEST(Editor, regenerateBuildsTheSeedsMapAndUndoRestoresTheOldOne) {
 }
 
 TEST(Editor, unsavedWorkIsAutosavedAndRecovered) {
-    TempConfig c;
+    TempDir c{false};
     {
-        Editor e = make_editor(small_scene(), c.dir);
+        Editor e = make_editor(small_scene(), c.path);
         place_light(e, 30, 40, 10.0);
         EXPECT_FALSE(autosave_tick(e, 10.5));  // not yet due
         EXPECT_TRUE(autosave_tick(e, 10.0 + autosave_delay));
         EXPECT_TRUE(fs::exists(autosave_path(e)));
         // ... and the app crashes here.
     }
-    Editor e = make_editor(small_scene(), c.dir);
+    Editor e = make_editor(small_scene(), c.path);
     ASSERT_TRUE(has_recovery(e));
     EXPECT_TRUE(recover_autosave(e, 0));
     ASSERT_EQ(e.scene.lights.size(), 1u);
     EXPECT_EQ(e.scene.lights[0].y, 40.5);
     EXPECT_TRUE(e.dirty);  // recovered work is unsaved until saved
-    EXPECT_TRUE(save_scene_to(e, c.dir / "saved.json"));
+    EXPECT_TRUE(save_scene_to(e, c.path / "saved.json"));
     EXPECT_FALSE(e.dirty);
     EXPECT_FALSE(has_recovery(e));  // saving clears the autosave
     EXPECT_EQ(e.settings.recent.size(), 1u);
 }
 
 TEST(Editor, settingsSurviveACorruptFile) {
-    TempConfig c;
-    fs::create_directories(c.dir);
-    std::ofstream(c.dir / "settings.json") << "not json";
+    TempDir c{false};
+    fs::create_directories(c.path);
+    std::ofstream(c.path / "settings.json") << "not json";
     std::string warning;
-    Settings s = load_settings(c.dir, &warning);
+    Settings s = load_settings(c.path, &warning);
     EXPECT_TRUE(s.recent.empty());
     EXPECT_NE(warning.find("settings.json"), std::string::npos);
     for (int i = 0; i < 12; ++i) add_recent(s, "f" + std::to_string(i));
     add_recent(s, "f5");
     EXPECT_EQ(s.recent.size(), 8u);
     EXPECT_EQ(s.recent.front().path, "f5");
-    save_settings(c.dir, s);
-    EXPECT_EQ(load_settings(c.dir).recent, s.recent);
+    save_settings(c.path, s);
+    EXPECT_EQ(load_settings(c.path).recent, s.recent);
 }
 
 TEST(Editor, theCharactersLightIsRenderedButNeverSaved) {
-    TempConfig c;
-    Editor e = make_editor(small_scene(), c.dir);
+    TempDir c{false};
+    Editor e = make_editor(small_scene(), c.path);
     e.character.enabled = true;
     e.character.x = 300;
     e.character.y = 200;
@@ -158,11 +153,11 @@ void expect_map_panel_matches(const Editor& e, const char* when) {
 TEST(Editor, theMapPanelShowsTheDocumentAfterUndoRedoOpenAndRecover) {
     // The bug a new user met: random seed, 32x32, regenerate, Ctrl+Z: the map
     // went back to 12x12 but the panel said 32x32, and Regenerate rebuilt 32x32.
-    TempConfig c;
-    fs::create_directories(c.dir);
+    TempDir c{false};
+    fs::create_directories(c.path);
     Scene start = small_scene();
     start.width = start.height = 12;
-    Editor e = make_editor(start, c.dir);
+    Editor e = make_editor(start, c.path);
     regenerate(e, "moss-42", 12, 12, Layout::diamond, 0);
     regenerate(e, "moss-42", 32, 32, Layout::diamond, 1);
     expect_map_panel_matches(e, "after regenerate");
@@ -182,14 +177,14 @@ TEST(Editor, theMapPanelShowsTheDocumentAfterUndoRedoOpenAndRecover) {
     other.width = 7;
     other.height = 5;
     other.layout = Layout::staggered;
-    save_scene(c.dir / "other.json", other);
-    ASSERT_TRUE(load_scene_from(e, c.dir / "other.json", 6));
+    save_scene(c.path / "other.json", other);
+    ASSERT_TRUE(load_scene_from(e, c.path / "other.json", 6));
     expect_map_panel_matches(e, "after open scene");
     EXPECT_EQ(map_fields(e).seed, "opened");
 
     regenerate(e, "unsaved", 9, 9, Layout::paper, 7);
     EXPECT_TRUE(autosave_tick(e, 7 + autosave_delay));
-    Editor fresh = make_editor(small_scene(), c.dir);
+    Editor fresh = make_editor(small_scene(), c.path);
     ASSERT_TRUE(recover_autosave(fresh, 0));
     expect_map_panel_matches(fresh, "after recover");
     EXPECT_EQ(map_fields(fresh).seed, "unsaved");
@@ -197,21 +192,21 @@ TEST(Editor, theMapPanelShowsTheDocumentAfterUndoRedoOpenAndRecover) {
 }
 
 TEST(Editor, aSceneSavedInAFolderNamedPresetsReopensAsAScene) {
-    TempConfig c;
-    fs::create_directories(c.dir / "presets");
-    Editor e = make_editor(small_scene(), c.dir);
+    TempDir c{false};
+    fs::create_directories(c.path / "presets");
+    Editor e = make_editor(small_scene(), c.path);
     place_light(e, 50, 60, 0);
     Params p = e.scene.params;
     p.blur_radius = 5;
     set_params(e, p, 0);
-    ASSERT_TRUE(save_scene_to(e, c.dir / "presets" / "level.json"));
+    ASSERT_TRUE(save_scene_to(e, c.path / "presets" / "level.json"));
     ASSERT_EQ(e.settings.recent.front().kind, FileKind::scene);
-    ASSERT_TRUE(export_preset(e, c.dir / "tuned.json"));
+    ASSERT_TRUE(export_preset(e, c.path / "tuned.json"));
     ASSERT_EQ(e.settings.recent.front().kind, FileKind::preset);
 
     // The kinds survive a restart.
-    save_settings(c.dir, e.settings);
-    Editor again = make_editor(small_scene(), c.dir);
+    save_settings(c.path, e.settings);
+    Editor again = make_editor(small_scene(), c.path);
     ASSERT_EQ(again.settings.recent.size(), 2u);
     const RecentFile scene_entry = again.settings.recent[1];
     EXPECT_EQ(scene_entry.kind, FileKind::scene);
@@ -221,31 +216,31 @@ TEST(Editor, aSceneSavedInAFolderNamedPresetsReopensAsAScene) {
 }
 
 TEST(Editor, theViewIsNotPartOfTheDocumentButIsSavedWithIt) {
-    TempConfig c;
-    fs::create_directories(c.dir);
+    TempDir c{false};
+    fs::create_directories(c.path);
     Scene s = small_scene();
     s.camera = {40, 30, 0, 0};
-    Editor e = make_editor(s, c.dir);
+    Editor e = make_editor(s, c.path);
     EXPECT_EQ(e.view.x, 40);
     EXPECT_EQ(e.scene.camera, Camera{});  // one camera: the view
     e.view.x = 100;  // panning is not an edit
     EXPECT_FALSE(e.dirty);
     EXPECT_TRUE(e.undo_stack.empty());
-    ASSERT_TRUE(save_scene_to(e, c.dir / "v.json"));
-    EXPECT_EQ(load_scene(c.dir / "v.json").camera.x, 100);
+    ASSERT_TRUE(save_scene_to(e, c.path / "v.json"));
+    EXPECT_EQ(load_scene(c.path / "v.json").camera.x, 100);
     reset_view(e);
     EXPECT_EQ(e.view.x, 0);
     EXPECT_EQ(e.view.zoom, 1);
 }
 
 TEST(Editor, anInspectedFootprintMovesTheObstacleAndIsSavedIntoTheManifest) {
-    TempConfig c;
-    fs::create_directories(c.dir / "ts");
+    TempDir c{false};
+    fs::create_directories(c.path / "ts");
     for (const auto& f : fs::directory_iterator(fs::path(ISOLUX_ASSETS_DIR) / "default"))
-        fs::copy_file(f.path(), c.dir / "ts" / f.path().filename());
+        fs::copy_file(f.path(), c.path / "ts" / f.path().filename());
     Scene s = small_scene();
-    s.tileset = (c.dir / "ts" / "tileset.json").string();
-    Editor e = make_editor(s, c.dir);
+    s.tileset = (c.path / "ts" / "tileset.json").string();
+    Editor e = make_editor(s, c.path);
     int oak = -1;
     for (int i = 0; i < int(e.world.tileset.sprites.size()); ++i)
         if (e.world.tileset.sprites[std::size_t(i)].name == "oak") oak = i;
@@ -258,7 +253,7 @@ TEST(Editor, anInspectedFootprintMovesTheObstacleAndIsSavedIntoTheManifest) {
     EXPECT_TRUE(e.footprints_unsaved);
     EXPECT_TRUE(e.undo_stack.empty());      // not a scene edit
     ASSERT_TRUE(save_footprints(e));
-    const Tileset back = load_tileset(c.dir / "ts" / "tileset.json");
+    const Tileset back = load_tileset(c.path / "ts" / "tileset.json");
     EXPECT_EQ(back.sprites[std::size_t(oak)].footprint.mode, FootprintMode::none);
     EXPECT_EQ(back.sprites[std::size_t(oak)].shape, e.world.tileset.sprites[std::size_t(oak)].shape);  // the rest kept
 }

@@ -1,13 +1,47 @@
 // Helpers shared by the tests: tiny hand-made sprites and the default tileset.
 #pragma once
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
+#include "isolux/cpu.hpp"
 #include "isolux/files.hpp"
+#include "isolux/hash.hpp"
+#include "isolux/light_texture.hpp"
 #include "isolux/image.hpp"
 #include "isolux/light_trace.hpp"
 
 namespace isolux::test {
+
+// A folder of this test's own under the temp directory, named after the test
+// and the process, removed when it ends. `made`: created empty now; else left
+// for the code under test to create (an editor's config folder).
+struct TempDir {
+    std::filesystem::path path;
+    explicit TempDir(bool made = true)
+        : path(std::filesystem::temp_directory_path() /
+               ("isolux_test_" + std::to_string(::getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name() + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
+        std::filesystem::remove_all(path);
+        if (made) std::filesystem::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    // Writes `text` as the file `name` in the folder; returns its path.
+    std::filesystem::path write(const std::string& name, const std::string& text) const {
+        std::ofstream(path / name, std::ios::binary) << text;
+        return path / name;
+    }
+};
 
 // A sprite from rows of characters: '#' opaque (alpha 255), '+' half (alpha
 // 128), anything else transparent.
@@ -50,6 +84,31 @@ inline std::vector<std::uint8_t> lit_of(const LightMask& m) {
 inline Tileset default_tileset() { return load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/default/tileset.json"); }
 inline Tileset foreign_tileset() {
     return load_tileset(std::string(ISOLUX_TEST_DATA) + "/foreign_tileset/tileset.json");
+}
+
+// Texels mostly dark with bright patches and full-white runs: the sums reach
+// their maximum and every rounding case appears.
+inline LightTexture random_texture(Rect r, std::uint64_t seed) {
+    LightTexture t(r);
+    Pcg32 rng(seed);
+    for (std::size_t i = 0; i < t.texels.size(); ++i) {
+        const std::uint32_t k = rng.below(10);
+        t.texels[i] = k < 4 ? 0 : k < 6 ? 255 : std::uint8_t(rng.below(256));
+    }
+    return t;
+}
+
+// The kernels' builds to hold to the same bytes (isolux/cpu.hpp): the
+// baseline, and AVX2 when this CPU has it (said once, so a run without it
+// is seen).
+inline std::vector<bool> both_widths() {
+    static const bool has_avx2 = [] {
+        set_wide_kernels(true);
+        const bool on = wide_kernels();
+        if (!on) std::printf("note: this CPU has no AVX2: only the baseline kernels are tested\n");
+        return on;
+    }();
+    return has_avx2 ? std::vector<bool>{false, true} : std::vector<bool>{false};
 }
 
 }  // namespace isolux::test

@@ -1,0 +1,170 @@
+// The blur (paper 3.2): box_blur held to box_blur_reference byte for byte,
+// in both kernels' builds, at every radius, row width and edge.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <thread>
+
+#include "isolux/accuracy.hpp"
+#include "isolux/blur.hpp"
+#include "isolux/composite.hpp"
+#include "isolux/cpu.hpp"
+#include "isolux/frame.hpp"
+#include "isolux/hash.hpp"
+#include "isolux/light_trace.hpp"
+#include "isolux/opacity_correction.hpp"
+#include "test_util.hpp"
+
+using namespace isolux;
+using isolux::test::both_widths;
+using isolux::test::random_texture;
+
+namespace {
+
+// box_blur of t in both kernels' builds must equal the oracle's bytes
+// (returned); `what` names the case in a failure.
+LightTexture expect_blur_is_reference(const LightTexture& t, int radius, const std::string& what) {
+    LightTexture want = box_blur_reference(t, radius);
+    for (bool wide : both_widths()) {
+        set_wide_kernels(wide);
+        EXPECT_EQ(box_blur(t, radius).texels, want.texels) << what << " r " << radius << " wide " << wide;
+    }
+    set_wide_kernels(true);
+    return want;
+}
+
+}  // namespace
+
+TEST(FastBlur, EqualsTheReferenceForEveryRadiusAndSize) {
+    const Rect sizes[] = {{0, 0, 1, 1}, {-3, 5, 2, 7}, {10, -4, 17, 5}, {0, 0, 64, 40}, {-100, -50, 33, 29}};
+    int checked = 0;
+    for (const Rect& r : sizes)
+        for (int radius : {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 20, 62, 63, 100}) {
+            if (radius > 20 && r.w * r.h > 1200) continue;  // the reference is O(r^2) per texel
+            const LightTexture t = random_texture(r, std::uint64_t(r.w * 131 + radius));
+            expect_blur_is_reference(t, radius, std::to_string(r.w) + "x" + std::to_string(r.h));
+            ++checked;
+        }
+    EXPECT_GE(checked, 50);
+}
+
+TEST(FastBlur, WideRowsOfExtremeTexelsEqualTheReference) {
+    // Rows wide enough for the AVX2 interior's 32-value steps and a tail,
+    // of 0s and 255s in runs (the largest window sums, and every quotient
+    // from 0 to 255 at the runs' edges).
+    for (const Rect r : {Rect{3, -2, 300, 24}, Rect{0, 0, 97, 20}}) {
+        LightTexture t(r);
+        for (int y = 0; y < r.h; ++y)
+            for (int x = 0; x < r.w; ++x)
+                for (int c = 0; c < 3; ++c)
+                    t.texels[(std::size_t(y) * r.w + x) * 3 + c] = (x / 16 + y / 8 + c) % 3 ? 255 : 0;
+        for (int radius = 1; radius <= 8; ++radius) {
+            const LightTexture want = expect_blur_is_reference(t, radius, "width " + std::to_string(r.w));
+            int top = 0;
+            for (std::uint8_t v : want.texels) top += v == 255;
+            EXPECT_GT(top, 0) << "some windows must be all 255";
+        }
+    }
+}
+
+TEST(FastBlur, ARegionWritesOnlyItsTexelsAndTheirFullValues) {
+    const Rect r{-20, 7, 61, 45};
+    const LightTexture t = random_texture(r, 9);
+    for (int radius : {1, 2, 5, 9}) {
+        const LightTexture whole = box_blur_reference(t, radius);
+        Pcg32 rng{std::uint64_t(radius)};
+        for (int k = 0; k < 12; ++k) {
+            const Rect region{r.x - 5 + int(rng.below(50)), r.y - 5 + int(rng.below(40)), 1 + int(rng.below(40)),
+                              1 + int(rng.below(30))};
+            for (bool wide : both_widths()) {
+                set_wide_kernels(wide);
+                LightTexture out(r);
+                std::fill(out.texels.begin(), out.texels.end(), std::uint8_t(77));
+                box_blur_into(t, radius, region, out);
+                for (int y = r.y; y < r.y + r.h; ++y)
+                    for (int x = r.x; x < r.x + r.w; ++x)
+                        for (int c = 0; c < 3; ++c) {
+                            const std::uint8_t want = region.contains(x, y) ? whole.at(x, y)[c] : 77;
+                            ASSERT_EQ(out.at(x, y)[c], want) << x << "," << y << " r " << radius << " wide " << wide;
+                        }
+            }
+            set_wide_kernels(true);
+        }
+    }
+}
+
+TEST(FastBlur, EveryRowWidthAndEdgeEqualsTheReference) {
+    // The AVX2 rows at every radius of the fused pass: the first values
+    // (16, or 32 where an RGB window reaches past 16 bytes), the 32-value
+    // steps, the 16-value tail whose last step overlaps values done (every
+    // width mod 32), the clamped bytes at either texture edge or neither, in
+    // both layouts, over dark rows (2R + 4 of them, longer than the window)
+    // and lit patches, into output holding other values.
+    int checked = 0;
+    for (int channels : {1, 3})
+        for (int tex_w = 40; tex_w <= 120; tex_w += channels == 1 ? 1 : 7)
+            for (int radius = 1; radius <= 7; ++radius) {
+                const Rect r{-3, 2, tex_w, 40};
+                LightTexture t(r, channels);
+                Pcg32 rng(std::uint64_t(tex_w * 3 + channels));
+                for (std::size_t i = 0; i < t.texels.size(); ++i) {
+                    const std::size_t x = (i / std::size_t(channels)) % std::size_t(tex_w);
+                    const std::size_t y = i / std::size_t(channels * tex_w);
+                    t.texels[i] = (x / 11) % 3 || (y / std::size_t(radius + 2)) % 3 ? 0 : std::uint8_t(1 + rng.below(255));
+                }
+                const LightTexture want = box_blur_reference(t, radius);
+                for (const Rect z : {r, Rect{r.x + 4, r.y + 1, tex_w - 4, 37}, Rect{r.x, r.y, tex_w - 5, 40},
+                                     Rect{r.x + 5, r.y + 3, tex_w - 9, 29}})
+                    for (bool wide : both_widths()) {
+                        set_wide_kernels(wide);
+                        LightTexture out(r, channels);
+                        std::fill(out.texels.begin(), out.texels.end(), std::uint8_t(77));
+                        box_blur_into(t, radius, z, out);
+                        for (int y = r.y; y < r.y + r.h; ++y)
+                            for (int x = r.x; x < r.x + r.w; ++x)
+                                for (int c = 0; c < channels; ++c)
+                                    ASSERT_EQ(out.value(x, y, c), z.contains(x, y) ? want.value(x, y, c) : 77)
+                                        << x << "," << y << " c " << c << " of " << channels << ", width " << tex_w
+                                        << " region " << z.x << "," << z.w << " r " << radius << " wide " << wide;
+                    }
+                set_wide_kernels(true);
+                ++checked;
+            }
+    EXPECT_EQ(checked, 7 * (81 + 12));
+}
+
+TEST(FastBlur, DarkStretchesLongerThanItsCountEqualTheReference) {
+    // The AVX2 rows count dark rows per step in a byte, which starts again
+    // at 0 after 255: 300 dark rows between lit ones, at the smallest and
+    // largest radius of the fused pass, in both layouts.
+    for (int channels : {1, 3}) {
+        const Rect r{0, 0, 90, 340};
+        LightTexture t(r, channels);
+        Pcg32 rng{std::uint64_t(channels)};
+        for (int y = 0; y < r.h; ++y)
+            if (y < 8 || (y >= 308 && y < 316) || y >= 330)
+                for (int i = 0; i < r.w * channels; ++i)
+                    t.texels[std::size_t(y) * std::size_t(r.w * channels) + std::size_t(i)] = std::uint8_t(rng.below(256));
+        for (int radius : {1, 7}) expect_blur_is_reference(t, radius, std::to_string(channels) + " channels");
+    }
+}
+
+TEST(FastBlur, SparseLitBytesEqualTheReference) {
+    // Single lit bytes scattered over dark rows: a dark step (or a run of
+    // them) must see a lit byte anywhere in its window, including the middle
+    // of an RGB window wider than two 32-byte loads.
+    for (int channels : {1, 3})
+        for (int radius = 1; radius <= 8; ++radius) {
+            // Sparse enough that most steps go dark (a step's window holds
+            // up to 74 x 15 bytes), dense enough for lit bytes in every part.
+            const Rect r{-7, 4, 230, 200};
+            LightTexture t(r, channels);
+            Pcg32 rng{std::uint64_t(radius * 7 + channels)};
+            for (std::uint8_t& v : t.texels) v = rng.below(2000) == 0 ? std::uint8_t(1 + rng.below(255)) : 0;
+            expect_blur_is_reference(t, radius, std::to_string(channels) + " channels");
+        }
+}
