@@ -1,14 +1,14 @@
 #!/bin/bash
 # Two builds of isolux-cli render the same cases, and every pair of images
-# must hold the same pixels: docs/performance.md's check that issue 14's fast
-# stages draw what the code before them drew.
+# must hold the same pixels: docs/performance.md's check that a change to the
+# fast stages (or any change meant to keep the output) draws what the code
+# before it drew.
 #
 #   bash scripts/same_pixels.sh OLD_CLI NEW_CLI [output dir]
 #
-# OLD_CLI: an isolux-cli built at an earlier commit (e.g. 8e5d69d, the last
-# before issue 14's work; it finds the default tileset in its own source
-# tree, so keep that checkout); NEW_CLI: this build's. The cases cover every
-# stage the issue rewrote: the blur's every path (none, the fused pass at
+# OLD_CLI: an isolux-cli built at an earlier commit (it finds the default
+# tileset in its own source tree, so keep that checkout); NEW_CLI: this
+# build's. The cases cover every fast stage: the blur's every path (none, the fused pass at
 # radii 1 to 7, the 32-bit sums beyond), white lights' grey texture and
 # coloured lights' RGB, the composite's clarities, mixes and dark-unlit, the
 # opacity correction, light, shadow and flat modes, ray skips, the l frames

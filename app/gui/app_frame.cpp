@@ -58,7 +58,7 @@ const LightTexture* update_truth(App& app, const Scene& scene) {
 
 // The CLI's budget in the app: a frame whose tracing is estimated beyond
 // huge_trace_steps is not traced until the user says so (the prompt in
-// panels.cpp: trace it, or undo the change). A script undoes the change and
+// dialogs.cpp: trace it, or undo the change). A script undoes the change and
 // says why; a screenshot run stops with the CLI's message and exit code 2.
 bool work_allowed(App& app, const Scene& scene, bool screenshot_mode) {
     App::HugeWork& h = app.huge;

@@ -309,7 +309,7 @@ void edits_popup(App& app) {
     ImGui::EndPopup();
 }
 
-// Work beyond the budget (main.cpp: work_allowed): trace it anyway, or undo
+// Work beyond the budget (app_frame.cpp: work_allowed): trace it anyway, or undo
 // the change that asked for it. Until then the last frame stays on screen.
 void huge_work_prompt(App& app) {
     App::HugeWork& h = app.huge;

@@ -1,6 +1,6 @@
 // The file browser behind every open, save and export: a folder's entries
 // (folders first, then the files of the chosen kind), listed without ImGui so
-// tests can read them; panels.cpp draws them.
+// tests can read them; dialogs.cpp draws them.
 #pragma once
 #include <cstdint>
 #include <filesystem>

@@ -91,10 +91,9 @@ struct RowSums {
         for (int i = inner1; i < n; ++i)
             for (int c = 0; c < C; ++c) pad[std::size_t(i) * C + c] = row[std::size_t(width - 1) * C + c];
         // Differences of running sums: prefix[k + C] = sum of pad[<= k] of
-        // k's channel, kept in registers as it is stored (read back from the
-        // array C values apart, which GCC vectorised in pairs, each load
-        // waited on the store before it: 13 times slower in RGB); exact
-        // modulo 2^32 since a window's sum fits.
+        // k's channel, kept in registers as it is stored, so no load waits on
+        // the store of a value C places before it; exact modulo 2^32 since a
+        // window's sum fits.
         std::array<std::uint32_t, C> sum{};
         for (std::size_t k = 0; k < pad.size(); k += C)
             for (int c = 0; c < C; ++c) prefix[k + C + std::size_t(c)] = sum[std::size_t(c)] += pad[k + std::size_t(c)];

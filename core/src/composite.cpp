@@ -63,7 +63,7 @@ void exact_pixel(const std::uint8_t* s, const std::uint8_t* l, bool grey, const 
 // that): those pixels, about 1 in 250, are redone exactly in double.
 struct ShadeConstants {
     const Params* params;  // for the pixels redone exactly
-    const std::uint8_t* light_end;  // the end of the light buffer the row reads (wide loads stop 16 bytes short)
+    const std::uint8_t* light_end;  // the end of the light buffer the row reads (wide loads end 16 bytes before it)
     float tex_scale, inv_denom;
     const float* unit;  // v / 255, v in 0..255
 };

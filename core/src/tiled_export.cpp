@@ -22,6 +22,13 @@ namespace isolux {
 
 namespace {
 
+// <?xml version="1.0" encoding="UTF-8"?>, as Tiled writes it.
+void add_declaration(pugi::xml_document& doc) {
+    auto decl = doc.append_child(pugi::node_declaration);
+    decl.append_attribute("version") = "1.0";
+    decl.append_attribute("encoding") = "UTF-8";
+}
+
 void add_property(pugi::xml_node props, const std::string& name, const char* type, const std::string& value) {
     pugi::xml_node p = props.append_child("property");
     p.append_attribute("name") = name.c_str();
@@ -40,9 +47,7 @@ std::string colour_text(const Light& l) {
 void write_tsx(const fs::path& path, const std::string& name, const Tileset& ts, const std::vector<int>& sprites,
                const fs::path& image_dir, int offset_x, int offset_y, const char* alignment) {
     pugi::xml_document doc;
-    auto decl = doc.append_child(pugi::node_declaration);
-    decl.append_attribute("version") = "1.0";
-    decl.append_attribute("encoding") = "UTF-8";
+    add_declaration(doc);
     pugi::xml_node t = doc.append_child("tileset");
     t.append_attribute("version") = "1.8";
     t.append_attribute("tiledversion") = "1.8.2";
@@ -205,9 +210,7 @@ ExportTilesets collect_tilesets(const World& world, const Grid& g, bool floors_a
 }
 
 pugi::xml_node start_map(pugi::xml_document& doc, const Map& map, const Grid& g) {
-    auto decl = doc.append_child(pugi::node_declaration);
-    decl.append_attribute("version") = "1.0";
-    decl.append_attribute("encoding") = "UTF-8";
+    add_declaration(doc);
     pugi::xml_node m = doc.append_child("map");
     m.append_attribute("version") = "1.8";
     m.append_attribute("tiledversion") = "1.8.2";

@@ -175,7 +175,7 @@ void read_isolux_properties(const std::map<std::string, std::string>& props, con
     }
     if (const std::string t = get("isolux_opacity_threshold"); !t.empty()) fields["opacity_threshold"] = property_value(t);
     if (const std::string f = get("isolux_footprint"); !f.empty()) fields["footprint"] = parse_json(f, where + ": isolux_footprint");
-    read_sprite_fields(Fields{fields, where + ": isolux properties"}, s);
+    read_sprite_fields(Fields{fields, where + " (isolux_* properties)"}, s);
     if (!get("isolux_name").empty()) s.name = get("isolux_name");
 }
 
