@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gui/accuracy_panel.hpp"
+#include "gui/app_frame.hpp"
 #include "gui/dialogs.hpp"
 #include "gui/editor.hpp"
 #include "gui/gpu_tracer.hpp"
@@ -62,51 +63,13 @@ struct App {
     std::string gpu_tracer_error;  // why it is not available ("" when it is)
     std::string tracer_override;   // --tracer: wins over the saved setting, not saved
     std::string scene_arg;         // --scene, for messages about it
-    // Work beyond huge_trace_steps waits for the user's word (the CLI's
-    // --allow-huge): the frame is not traced until then.
-    struct HugeWork {
-        bool asking = false;
-        double steps = 0;
-        bool approved = false;
-        Params approved_params;
-        std::size_t approved_lights = 0;
-        bool declined = false;  // "Not now" or Cancel: these parameters stay untraced, unasked, until they change
-        Params declined_params;
-        // How a script answers the prompt (script command long-work): undo
-        // the change (the default), trace it, or trace it and press Cancel
-        // once the work is under way.
-        std::string script_answer = "undo";
-    } huge;
-    // Approved long work runs on a worker thread with the CPU tracer, whose
-    // rays check for Cancel every 64 rays, while the window shows only its
-    // progress (long_work_prompt): the worker reads the document, so nothing
-    // else may edit it meanwhile.
-    struct LongTrace {
-        std::thread worker;
-        std::atomic<bool> cancel{false}, finished{false};
-        std::atomic<std::int64_t> done{0};  // trace_work's steps so far
-        double total = 0;                   // trace_work's estimate for the frame
-        double started = 0;                 // App::now when it began
-        double seconds = 0;                 // how long the worker took, once finished
-        FrameReport report;                 // once finished, not cancelled
-        bool cancelled = false;
-        std::string error;
-        bool running() const { return worker.joinable() && !finished.load(); }
-    } long_trace;
+    HugeWork huge;         // app_frame.hpp: the budget; dialogs.cpp draws its prompt
+    LongTrace long_trace;  // app_frame.hpp: the worker; dialogs.cpp draws its progress
     Editor editor;
     Ui ui;
     Stats stats;
     FrameState flat_frame;  // flat lighting for the split view
-    // The 3D reference over the view, for the truth overlays and the 2.5D | 3D
-    // split: recomputed only when what it shows changed.
-    struct Truth {
-        bool valid = false;
-        Params params;
-        std::vector<Light> lights;
-        Rect view;
-        std::uint64_t revision = 0;
-        LightTexture texture;
-    } truth;
+    TruthCache truth;  // app_frame.cpp
     int split_texture_holds = 0;  // what the renderer's second light texture holds: 0 nothing, 1 flat, 2 truth
     AccuracyPanel accuracy;
     std::optional<Script> script;

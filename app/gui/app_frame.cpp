@@ -1,6 +1,8 @@
 // The app's frame: app_frame.hpp.
 #include "gui/app_frame.hpp"
 
+#include "gui/app.hpp"
+
 #include <chrono>
 #include <iostream>
 #include <cmath>
@@ -33,7 +35,7 @@ LightTracer chosen_tracer(App& app) {
 // parameters, lights, view and world are the same. Null (and the status
 // says why) when it cannot be made, e.g. a tileset without shapes.
 const LightTexture* update_truth(App& app, const Scene& scene) {
-    App::Truth& t = app.truth;
+    TruthCache& t = app.truth;
     const Editor& e = app.editor;
     if (t.valid && t.params == scene.params && t.lights == scene.lights && t.view == app.view &&
         t.revision == e.world.revision)
@@ -61,7 +63,7 @@ const LightTexture* update_truth(App& app, const Scene& scene) {
 // dialogs.cpp: trace it, or undo the change). A script undoes the change and
 // says why; a screenshot run stops with the CLI's message and exit code 2.
 bool work_allowed(App& app, const Scene& scene, bool screenshot_mode) {
-    App::HugeWork& h = app.huge;
+    HugeWork& h = app.huge;
     const double steps = trace_work(scene, app.view);
     if (steps <= huge_trace_steps) return true;
     if (h.approved && h.approved_params == scene.params && scene.lights.size() <= h.approved_lights) return true;
@@ -99,7 +101,7 @@ bool work_allowed(App& app, const Scene& scene, bool screenshot_mode) {
 // reuses its cached trace ends at once: the first moments are waited for
 // here, so such frames never show the progress.
 bool run_long_trace(App& app, const Scene& scene, const Camera& cam, FrameReport& rep) {
-    App::LongTrace& job = app.long_trace;
+    LongTrace& job = app.long_trace;
     Editor& e = app.editor;
     if (!job.worker.joinable()) {
         job.cancel = false;
@@ -112,7 +114,7 @@ bool run_long_trace(App& app, const Scene& scene, const Camera& cam, FrameReport
         e.frame.options.tracer = {};  // the CPU's, which checks for Cancel
         e.frame.options.control = TraceControl{&job.cancel, &job.done};
         job.worker = std::thread([&app, scene, cam, frame = e.frame_number] {
-            App::LongTrace& j = app.long_trace;
+            LongTrace& j = app.long_trace;
             const auto t0 = std::chrono::steady_clock::now();
             try {
                 j.report = render_frame(app.editor.frame, app.editor.world, scene, cam, frame);
@@ -134,7 +136,7 @@ bool run_long_trace(App& app, const Scene& scene, const Camera& cam, FrameReport
     const double seconds = job.seconds;
     char text[200];
     if (job.cancelled || !job.error.empty()) {
-        App::HugeWork& h = app.huge;
+        HugeWork& h = app.huge;
         h.approved = false;
         h.declined = true;
         h.declined_params = scene.params;
@@ -195,7 +197,7 @@ void push_stats(App& app, const FrameReport& rep, double frame_ms, double dt) {
 
 // Stops a long trace the window is closing on (its work is thrown away).
 void stop_long_trace(App& app) {
-    App::LongTrace& job = app.long_trace;
+    LongTrace& job = app.long_trace;
     if (!job.worker.joinable()) return;
     job.cancel = true;
     job.worker.join();

@@ -312,7 +312,7 @@ void edits_popup(App& app) {
 // Work beyond the budget (app_frame.cpp: work_allowed): trace it anyway, or undo
 // the change that asked for it. Until then the last frame stays on screen.
 void huge_work_prompt(App& app) {
-    App::HugeWork& h = app.huge;
+    HugeWork& h = app.huge;
     if (!h.asking) return;
     if (!ImGui::IsPopupOpen("Long work")) ImGui::OpenPopup("Long work");
     if (!ImGui::BeginPopupModal("Long work", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
@@ -344,7 +344,7 @@ void huge_work_prompt(App& app) {
 }
 
 void long_work_prompt(App& app) {
-    App::LongTrace& job = app.long_trace;
+    LongTrace& job = app.long_trace;
     if (!ImGui::IsPopupOpen("Tracing")) ImGui::OpenPopup("Tracing");
     if (!ImGui::BeginPopupModal("Tracing", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
     const double f = std::min(1.0, double(job.done.load()) / std::max(1.0, job.total));

@@ -47,7 +47,7 @@ void recovery_popup(App& app);
 void edits_popup(App& app);
 // Work beyond the budget (app_frame.cpp: work_allowed): trace it anyway, or undo.
 void huge_work_prompt(App& app);
-// Approved long work's progress, time and Cancel (App::LongTrace), drawn
+// Approved long work's progress, time and Cancel (LongTrace), drawn
 // alone while its worker runs.
 void long_work_prompt(App& app);
 
