@@ -89,7 +89,7 @@ Params params_from_args(const ParamArgs& a, Params p) {
         std::error_code ec;
         bool builtin = !std::filesystem::exists(a.preset, ec) && a.preset.find('.') == std::string::npos;
         p = builtin ? builtin_preset(a.preset) : load_preset(a.preset, &warnings);
-        for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
+        for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << printable(w) << "\n";
     }
     if (a.area) {
         const std::size_t comma = a.area->find(',');
@@ -185,7 +185,7 @@ Scene scene_from_args(const RenderArgs& a) {
     if (!a.scene.empty()) {
         std::vector<std::string> warnings;
         s = load_scene(a.scene, &warnings);
-        for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
+        for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << printable(w) << "\n";
     }
     if (!a.seed.empty()) s.seed = a.seed;
     if (!a.size.empty()) {
@@ -266,7 +266,7 @@ int run_check_tileset(const CheckArgs& a) {
         drawn.push_back({&s, std::move(fp)});
     }
     if (a.json) {
-        std::cout << report.dump(2) << "\n";
+        std::cout << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     } else {
         std::cout << "sprite                obstacle centre     anchor        distance  detected\n";
         for (const auto& e : report["sprites"]) {
@@ -276,7 +276,7 @@ int run_check_tileset(const CheckArgs& a) {
                           c.is_null() ? "none" : (std::to_string(int(c[0].get<double>())) + ", " + std::to_string(int(c[1].get<double>()))).c_str(),
                           (std::to_string(e["anchor"][0].get<int>()) + ", " + std::to_string(e["anchor"][1].get<int>())).c_str(),
                           e["distance"].is_null() ? "-" : std::to_string(int(std::lround(e["distance"].get<double>()))).c_str(),
-                          e["detected"].dump().c_str());
+                          e["detected"].dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
             std::cout << line << "\n";
             if (!e["warning"].is_null()) std::cout << "  warning: " << e["warning"].get<std::string>() << "\n";
         }
@@ -339,7 +339,7 @@ std::pair<Scene, World> tiled_from_args(const RenderArgs& a) {
     if (!a.scene.empty() || !a.seed.empty() || !a.size.empty() || !a.layout.empty() || !a.tileset.empty())
         throw Error("--map: the map is the level; --scene, --seed, --size, --layout and --tileset do not apply to it");
     TiledMap t = load_tiled(a.map);
-    for (const auto& w : t.warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
+    for (const auto& w : t.warnings) std::cerr << "isolux-cli: warning: " << printable(w) << "\n";
     std::cout << "map " << a.map << ": " << t.world.placed.instances.size() << " sprites, " << t.scene.lights.size()
               << " lights; Tiled's pixel (0, 0) is world (" << t.origin_x << ", " << t.origin_y << ")\n";
     Scene s = t.scene;
@@ -476,7 +476,7 @@ struct SweepArgs {
 int run_sweep_command(const SweepArgs& a) {
     std::vector<std::string> warnings;
     Scene s = load_scene(a.scene, &warnings);
-    for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
+    for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << printable(w) << "\n";
     std::vector<SweepAxis> axes;
     for (const std::string& text : a.params) axes.push_back(parse_sweep_axis(text, s.params, "--param"));
     std::vector<double> step;
@@ -633,7 +633,7 @@ int isolux_cli_main(int argc, char** argv) {
         if (*export_tiled_cmd) {
             std::vector<std::string> warnings;
             const Scene scene = load_scene(export_scene, &warnings);
-            for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << w << "\n";
+            for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << printable(w) << "\n";
             const World world = build_world(scene, export_scene);
             TiledExport opt;
             opt.images = export_images;

@@ -15,7 +15,7 @@ World build_world(const Scene& scene, std::string_view source, std::vector<std::
         TiledMap t = load_tiled(scene.map);
         for (const std::string& line : t.warnings) {
             if (warnings) warnings->push_back(line);
-            else std::cerr << "isolux: warning: " << line << "\n";
+            else std::cerr << "isolux: warning: " << printable(line) << "\n";
         }
         return std::move(t.world);
     }
@@ -27,7 +27,7 @@ World build_world(const Scene& scene, std::string_view source, std::vector<std::
     }
     std::vector<std::string> own;
     World w = make_world(load_tileset(manifest), scene, source, warnings ? warnings : &own);
-    for (const std::string& line : own) std::cerr << "isolux: warning: " << line << "\n";
+    for (const std::string& line : own) std::cerr << "isolux: warning: " << printable(line) << "\n";
     return w;
 }
 

@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
+#include "isolux/error.hpp"
 #include "isolux/files.hpp"
 
 namespace fs = std::filesystem;
@@ -21,12 +20,11 @@ fs::path config_dir() {
 
 Settings load_settings(const fs::path& dir, std::string* warning) {
     Settings s;
-    std::ifstream f(dir / "settings.json");
-    if (!f) return s;
-    std::ostringstream ss;
-    ss << f.rdbuf();
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(dir / "settings.json", ec))) return s;
     try {
-        auto j = nlohmann::json::parse(ss.str());
+        // Checked as every input is: a FIFO or a device there is refused, not read.
+        auto j = nlohmann::json::parse(read_text_file(dir / "settings.json"));
         if (j.contains("recent") && j["recent"].is_array())
             for (const auto& r : j["recent"]) {
                 if (s.recent.size() >= 8) break;
@@ -45,6 +43,8 @@ Settings load_settings(const fs::path& dir, std::string* warning) {
             const std::string t = j["tracer"].get<std::string>();
             if (t == "auto" || t == "cpu" || t == "gpu") s.tracer = t;
         }
+    } catch (const Error& e) {
+        if (warning) *warning = std::string(e.what()) + "; using default settings";
     } catch (const std::exception&) {
         if (warning) *warning = (dir / "settings.json").string() + ": unreadable, using defaults";
     }
@@ -57,7 +57,8 @@ void save_settings(const fs::path& dir, const Settings& s) {
     nlohmann::json recent = nlohmann::json::array();
     for (const RecentFile& f : s.recent) recent.push_back({{"path", f.path}, {"kind", std::string(to_string(f.kind))}});
     nlohmann::json j{{"schema_version", 1}, {"recent", recent}, {"show_stats", s.show_stats}, {"tracer", s.tracer}};
-    write_file_atomic(dir / "settings.json", j.dump(2) + "\n");
+    // Paths that are not UTF-8 are written with U+FFFD in their place, not refused.
+    write_file_atomic(dir / "settings.json", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 std::string_view to_string(FileKind k) {

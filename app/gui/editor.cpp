@@ -415,10 +415,7 @@ std::string window_title(const Editor& e) {
 }
 
 FileKind detect_file_kind(const fs::path& path) {
-    check_input_file(path, max_text_file_bytes);  // a FIFO or a folder is refused here, by name
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw Error(path.string() + ": cannot open");
-    const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const std::string text = read_text_file(path);  // a FIFO or a folder is refused here, by name
     if (path.extension() == ".tmx") return FileKind::scene;  // a Tiled map opens as a scene lighting it
     // By the fields only each kind has; the loader then checks the file whole.
     if (text.find("\"sprites\"") != std::string::npos) return FileKind::tileset;

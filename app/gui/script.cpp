@@ -24,8 +24,7 @@
 namespace isolux::app {
 
 Script load_script(const std::filesystem::path& path) {
-    std::ifstream f(path);
-    if (!f) throw Error(path.string() + ": cannot open script");
+    std::istringstream f(read_text_file(path));  // checked as every input is
     Script s;
     std::string text;
     int line = 0;
@@ -101,7 +100,7 @@ std::string stats_json(const Stats& s) {
     for (int k = 0; k < 4; ++k) gpu[gpu_names[k]] = mean(stage_count + k);
     nlohmann::json j = {{"frames", n}, {"frame_ms", s.frame_ms}, {"tracer", s.tracer}, {"lights_traced", s.lights_traced},
                         {"cpu_ms", cpu}, {"gpu_ms", gpu}};
-    return j.dump(2) + "\n";
+    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace

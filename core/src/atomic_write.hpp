@@ -9,6 +9,10 @@ namespace isolux {
 // keeps the link (a bounded walk: a loop is an error).
 std::filesystem::path write_target(const std::filesystem::path& path);
 
+// Throws Error naming `path` when it exists and is not a regular file (a
+// FIFO, a device, a socket, a folder): a save never renames over one.
+void check_output_target(const std::filesystem::path& path);
+
 // A temporary sibling of the target that keeps its extension (OpenImageIO
 // picks the writer from it), created empty up front so that a folder where
 // nothing can be written says why before any writer library hides the
@@ -24,7 +28,7 @@ public:
     const std::filesystem::path& target() const { return target_; }
     const std::filesystem::path& temp() const { return temp_; }
     // Replaces the target by the finished temporary file, keeping the old
-    // file's permissions and its hard links.
+    // file's permissions and its hard links (file_io.cpp: copy_into_linked).
     void commit();
 
 private:

@@ -1,5 +1,6 @@
 // Beyond the paper: the seed's map plus hand edits (edits.hpp).
 #include "isolux/edits.hpp"
+#include "isolux/warnings.hpp"
 
 #include <algorithm>
 
@@ -57,11 +58,18 @@ std::vector<ResolvedEdit> resolve_edits(const std::vector<TileEdit>& edits, cons
 
 void warn_edits_outside(const std::vector<TileEdit>& edits, int width, int height, std::string_view source,
                         std::vector<std::string>& warnings) {
-    for (std::size_t i = 0; i < edits.size(); ++i)
-        if (!inside(edits[i].col, edits[i].row, width, height))
-            warnings.push_back(entry_name(source, i) + ": tile [" + std::to_string(edits[i].col) + ", " +
-                               std::to_string(edits[i].row) + "] is outside the " + std::to_string(width) + "x" +
-                               std::to_string(height) + " map: kept in the scene, not applied");
+    WarningRun run(&warnings, "edits outside the " + std::to_string(width) + "x" + std::to_string(height) +
+                                  " map (kept in the scene, not applied)");
+    for (std::size_t i = 0; i < edits.size(); ++i) {
+        if (inside(edits[i].col, edits[i].row, width, height)) continue;
+        if (!run.wanted()) {
+            run.add({});
+            continue;
+        }
+        run.add(entry_name(source, i) + ": tile [" + std::to_string(edits[i].col) + ", " + std::to_string(edits[i].row) +
+                "] is outside the " + std::to_string(width) + "x" + std::to_string(height) +
+                " map: kept in the scene, not applied");
+    }
 }
 
 std::vector<int> overlay_sprites(const Tile& t) {

@@ -5,8 +5,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
-#include <fstream>
-#include <iterator>
+#include <vector>
 #include <system_error>
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -24,6 +23,18 @@ namespace {
 std::string quoted(const fs::path& p) { return p.string(); }
 
 }  // namespace
+
+void check_output_target(const fs::path& path) {
+    std::error_code ec;
+    const fs::file_status st = fs::symlink_status(path, ec);
+    if (ec || st.type() == fs::file_type::not_found || st.type() == fs::file_type::regular) return;
+    const char* what = st.type() == fs::file_type::directory ? "a folder"
+                       : st.type() == fs::file_type::fifo    ? "a FIFO (a pipe)"
+                       : st.type() == fs::file_type::socket  ? "a socket"
+                       : (st.type() == fs::file_type::character || st.type() == fs::file_type::block) ? "a device"
+                                                                                                       : "not a regular file";
+    throw Error(quoted(path) + ": is " + what + ": isolux writes only regular files (name a file to create or replace)");
+}
 
 fs::path write_target(const fs::path& path) {
     fs::path p = path;
@@ -93,34 +104,93 @@ bool write_all(int fd, const char* data, std::size_t size) {
     return true;
 }
 
-// A file with other hard links keeps them: the finished temporary file's
-// bytes are copied into it in place (a rename would leave the other names on
-// the old contents). Space is reserved first, so a full disk fails before
-// any old byte changes; then the old file takes the new bytes and its size.
-// False when the file has one name (the caller renames) or the space cannot
-// be had (the caller renames too: the other names keep the old contents).
+// A whole file's bytes by POSIX reads (an iostream would throw, or stop
+// short, on a read error such as EIO); false with errno set on failure.
+bool read_all(const fs::path& path, std::string& out) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return false;
+    out.clear();
+    char buf[65536];
+    for (;;) {
+        const ssize_t n = ::read(fd, buf, sizeof buf);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            const int err = errno;
+            ::close(fd);
+            errno = err;
+            return false;
+        }
+        if (n == 0) break;
+        out.append(buf, std::size_t(n));
+    }
+    ::close(fd);
+    return true;
+}
+
+// Writes `bytes` into a new file `path` (which must not exist) and syncs it.
+bool write_new_synced(const fs::path& path, const std::string& bytes) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0) return false;
+    const bool ok = write_all(fd, bytes.data(), bytes.size()) && ::fsync(fd) == 0;
+    const int err = errno;
+    ::close(fd);
+    errno = err;
+    return ok;
+}
+
+// The copy of a linked file's old bytes kept beside it while it is written
+// in place: ".NAME.oldPID" (not the temporary files' pattern: no later save
+// removes it as litter).
+fs::path old_copy_of(const fs::path& path) {
+    fs::path c = path;
+    c.replace_filename("." + path.filename().string() + ".old" + std::to_string(::getpid()));
+    return c;
+}
+
+// A file with other hard links keeps them (a rename would leave the other
+// names on the old contents): the finished temporary file's bytes are
+// written into it in place, but only once a complete, synced copy of its
+// old bytes stands beside it (old_copy_of), as Vim and Emacs do for linked
+// files. Killed while writing in place, the file is torn, but its old bytes
+// are in the copy and its new ones in the temporary file. Space is reserved
+// first, so a full disk fails before any old byte changes. False when the
+// file has one name, or the copy or the space cannot be had: the caller
+// renames, and the other names keep the old contents (a note says so).
 bool copy_into_linked(const fs::path& tmp, const fs::path& path) {
     struct stat st {};
     if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_nlink < 2) return false;
-    std::ifstream in(tmp, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (!in && !in.eof()) return false;
+    std::string bytes, old;
+    if (!read_all(tmp, bytes) || !read_all(path, old)) return false;
+    const fs::path copy = old_copy_of(path);
+    std::error_code ec;
+    fs::remove(copy, ec);
+    if (!write_new_synced(copy, old)) {
+        fs::remove(copy, ec);
+        return false;
+    }
     const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
-    if (fd < 0) return false;
-    if (!bytes.empty() && ::posix_fallocate(fd, 0, off_t(bytes.size())) != 0) {
-        ::close(fd);
+    if (fd < 0 || (!bytes.empty() && ::posix_fallocate(fd, 0, off_t(bytes.size())) != 0)) {
+        if (fd >= 0) ::close(fd);
+        fs::remove(copy, ec);
         return false;
     }
     const bool ok = write_all(fd, bytes.data(), bytes.size()) && ::ftruncate(fd, off_t(bytes.size())) == 0 &&
                     ::fsync(fd) == 0;
     const int err = errno;
     ::close(fd);
-    if (!ok)  // the new contents stay in the temporary file
-        throw Error(quoted(path) + ": cannot write in place: " + std::strerror(err) + "; the new contents are in " +
-                    quoted(tmp));
-    std::error_code ec;
+    if (!ok)  // the new contents stay in the temporary file, the old ones in the copy
+        throw Error(quoted(path) + ": cannot write in place: " + std::strerror(err) + "; the old contents are in " +
+                    quoted(copy) + ", the new ones in " + quoted(tmp));
+    fs::remove(copy, ec);
     fs::remove(tmp, ec);
     return true;
+}
+
+// What saves had to do that the user should know (thread-local: each
+// thread's saves report to it).
+std::vector<std::string>& notes() {
+    thread_local std::vector<std::string> n;
+    return n;
 }
 
 // Replaces `path` by the finished temporary file, keeping the old file's
@@ -133,6 +203,10 @@ void commit_temp(const fs::path& tmp, const fs::path& path) {
     std::error_code ec;
     const fs::file_status old = fs::status(path, ec);
     if (!ec && fs::is_regular_file(old)) fs::permissions(tmp, old.permissions(), ec);
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && st.st_nlink >= 2 && notes().size() < 100)
+        notes().push_back(quoted(path) + ": had " + std::to_string(st.st_nlink - 1) +
+                          " other hard link(s), which keep the old contents: there was no room to write it in place");
     fs::rename(tmp, path, ec);
     if (ec) {
         fs::remove(tmp, ec);
@@ -144,6 +218,7 @@ void commit_temp(const fs::path& tmp, const fs::path& path) {
 }  // namespace
 
 AtomicWrite::AtomicWrite(const fs::path& link) : target_(write_target(link)), temp_(temp_sibling(target_)) {
+    check_output_target(target_);
     create_temp(temp_, target_);
 }
 
@@ -183,18 +258,25 @@ void check_input_file(const fs::path& path, std::uintmax_t max_bytes) {
 
 std::string read_text_file(const fs::path& path) {
     check_input_file(path, max_text_file_bytes);
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw Error(quoted(path) + ": cannot open");
-    std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    if (f.bad()) throw Error(quoted(path) + ": cannot read: " + std::strerror(errno));
+    std::string text;
+    if (!read_all(path, text)) throw Error(quoted(path) + ": cannot read: " + std::strerror(errno));
+    if (text.size() > max_text_file_bytes)  // grew since it was checked
+        throw Error(quoted(path) + ": is over the " + std::to_string(max_text_file_bytes >> 20) + " MB isolux reads");
     return text;
+}
+
+std::vector<std::string> take_write_notes() {
+    std::vector<std::string> n;
+    n.swap(notes());
+    return n;
 }
 
 void write_file_atomic(const fs::path& link, std::string_view contents) {
     AtomicWrite w(link);
     const int fd = ::open(w.temp().c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+    errno = 0;
     bool ok = fd >= 0 && write_all(fd, contents.data(), contents.size()) && ::fsync(fd) == 0;
-    int err = ok ? 0 : errno;
+    int err = ok ? 0 : (errno ? errno : EIO);
     if (fd >= 0 && ::close(fd) != 0 && ok) ok = false, err = errno;
     if (!ok) throw Error(quoted(w.target()) + ": cannot write: " + std::strerror(err) + "; the old file is kept");
     w.commit();

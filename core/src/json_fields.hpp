@@ -18,6 +18,13 @@ using nlohmann::json;
 // Parses `text`; throws Error naming `source` and the byte where it fails.
 json parse_json(std::string_view text, std::string_view source);
 
+// `j` as a file's text, indented, ending in a newline. A string that is not
+// UTF-8 (a Latin-1 file name, a light's name from a TMX) is written with
+// U+FFFD in place of its bad bytes: a save never fails on a name.
+inline std::string file_text(const json& j) {
+    return j.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+}
+
 // Field access that names the file and the field in every error.
 struct Fields {
     const json& obj;

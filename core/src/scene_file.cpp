@@ -45,7 +45,7 @@ Params preset_from_json(std::string_view text, std::string_view source, std::vec
 std::string preset_to_json(const Params& p) {
     json j = params_json(p);
     j["schema_version"] = schema_version;
-    return j.dump(2) + "\n";
+    return file_text(j);
 }
 
 Params load_preset(const fs::path& path, std::vector<std::string>* warnings) {
@@ -228,7 +228,7 @@ std::string scene_to_json(const Scene& s) {
            {"camera", {{"x", s.camera.x}, {"y", s.camera.y}, {"width", s.camera.width}, {"height", s.camera.height}}}};
     if (!s.edits.empty()) j["edits"] = edits_json(s.edits);
     if (!s.map.empty()) j["map"] = s.map;
-    return j.dump(2) + "\n";
+    return file_text(j);
 }
 
 Scene load_scene(const fs::path& path, std::vector<std::string>* warnings) {

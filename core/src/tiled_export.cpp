@@ -5,6 +5,7 @@
 #include <pugixml.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <sstream>
 
@@ -45,7 +46,8 @@ std::string colour_text(const Light& l) {
 // An image-collection tileset of `sprites`, written as a TSX; returns the
 // gid of each sprite (0 when not in it).
 void write_tsx(const fs::path& path, const std::string& name, const Tileset& ts, const std::vector<int>& sprites,
-               const fs::path& image_dir, int offset_x, int offset_y, const char* alignment) {
+               const std::vector<std::string>& image_files, const fs::path& image_dir, int offset_x, int offset_y,
+               const char* alignment) {
     pugi::xml_document doc;
     add_declaration(doc);
     pugi::xml_node t = doc.append_child("tileset");
@@ -89,7 +91,8 @@ void write_tsx(const fs::path& path, const std::string& name, const Tileset& ts,
         pugi::xml_node img = tile.append_child("image");
         img.append_attribute("width") = s.image.width;
         img.append_attribute("height") = s.image.height;
-        img.append_attribute("source") = (image_dir.filename() / (s.name + ".png")).string().c_str();
+        img.append_attribute("source") =
+            (image_dir.filename() / image_files[std::size_t(sprites[i])]).string().c_str();
     }
     std::ostringstream out;
     doc.save(out, "  ");
@@ -180,7 +183,45 @@ struct ExportTilesets {
     std::vector<int> floor_gid, overlay_gid;      // by sprite index; 0 when unused
     int floor_offset_x = 0, floor_offset_y = 0;   // the floors' tileoffset
     int first_floor = 1, first_overlay = 1;
+    std::vector<std::string> image_files;          // by sprite index: its PNG's name in the images folder
 };
+
+// A sprite's name made into a file name that stays inside the images folder:
+// letters, digits, '-', '_' and '.' kept, anything else (a '/', a space) '_',
+// no leading dot (no "..", no hidden file), at most 100 characters.
+std::string safe_file_stem(const std::string& name) {
+    std::string out;
+    for (char c : name) {
+        const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+                          c == '_' || c == '.';
+        out += keep ? c : '_';
+        if (out.size() == 100) break;
+    }
+    while (!out.empty() && out.front() == '.') out.erase(out.begin());
+    return out.empty() ? "sprite" : out;
+}
+
+// One PNG name per sprite used, distinct even where names are the same or
+// differ only in case or in characters made safe ("oak", "oak_2", ...), so
+// no image is written twice or over another.
+std::vector<std::string> image_file_names(const Tileset& ts, const std::vector<int>& floors, const std::vector<int>& overlays) {
+    std::vector<std::string> files(ts.sprites.size());
+    std::vector<std::string> taken;  // lower-cased
+    auto lower = [](std::string t) {
+        for (char& c : t) c = char(std::tolower(static_cast<unsigned char>(c)));
+        return t;
+    };
+    for (const std::vector<int>* list : {&floors, &overlays})
+        for (int s : *list) {
+            const std::string stem = safe_file_stem(ts.sprites[std::size_t(s)].name);
+            std::string file = stem + ".png";
+            for (int k = 2; std::find(taken.begin(), taken.end(), lower(file)) != taken.end(); ++k)
+                file = stem + "_" + std::to_string(k) + ".png";
+            taken.push_back(lower(file));
+            files[std::size_t(s)] = file;
+        }
+    return files;
+}
 
 ExportTilesets collect_tilesets(const World& world, const Grid& g, bool floors_as_objects, const fs::path& tmx) {
     const Tileset& ts = world.tileset;
@@ -206,6 +247,7 @@ ExportTilesets collect_tilesets(const World& world, const Grid& g, bool floors_a
     e.first_overlay = e.first_floor + int(e.floors.size());
     for (std::size_t i = 0; i < e.floors.size(); ++i) e.floor_gid[std::size_t(e.floors[i])] = e.first_floor + int(i);
     for (std::size_t i = 0; i < e.overlays.size(); ++i) e.overlay_gid[std::size_t(e.overlays[i])] = e.first_overlay + int(i);
+    e.image_files = image_file_names(ts, e.floors, e.overlays);
     return e;
 }
 
@@ -256,28 +298,40 @@ void write_tileset_refs(pugi::xml_node m, const ExportTilesets& e, const std::st
     t.append_attribute("source") = (base + "_overlays.tsx").c_str();
 }
 
-// Floors: one tile layer, CSV.
-void write_floor_layer(pugi::xml_node m, const World& world, const ExportTilesets& e, int& next_id) {
+// Floors: tile layers, CSV; each tile's floors from the placed sprites (a
+// seeded map holds one a tile; a Tiled map read in may stack several, one
+// layer each, marked isolux_kind floor so that they read back as floors).
+void write_floor_layers(pugi::xml_node m, const World& world, const ExportTilesets& e, int& next_id) {
     const Map& map = world.map;
-    pugi::xml_node layer = m.append_child("layer");
-    layer.append_attribute("id") = next_id++;
-    layer.append_attribute("name") = "floors";
-    layer.append_attribute("width") = map.width;
-    layer.append_attribute("height") = map.height;
-    std::string csv = "\n";
-    for (int row = 0; row < map.height; ++row) {
-        for (int col = 0; col < map.width; ++col) {
-            const int sprite = world.placed.tile_instances.empty()
-                                   ? map.at(col, row).floor
-                                   : world.placed.instances[world.placed.tile_instances[std::size_t(row * map.width + col)][0]].sprite;
-            csv += std::to_string(e.floor_gid[std::size_t(sprite)]);
-            if (row + 1 < map.height || col + 1 < map.width) csv += ",";
-        }
-        csv += "\n";
+    const std::size_t tiles = std::size_t(map.width) * map.height;
+    std::vector<std::vector<int>> floors_at(tiles);
+    std::size_t layers = 1;
+    for (const SpriteInstance& in : world.placed.instances) {
+        if (in.sprite < 0 || in.tile < 0 || std::size_t(in.tile) >= tiles) continue;
+        if (world.tileset.sprites[std::size_t(in.sprite)].kind != SpriteKind::floor) continue;
+        floors_at[std::size_t(in.tile)].push_back(in.sprite);
+        layers = std::max(layers, floors_at[std::size_t(in.tile)].size());
     }
-    pugi::xml_node data = layer.append_child("data");
-    data.append_attribute("encoding") = "csv";
-    data.text() = csv.c_str();
+    for (std::size_t k = 0; k < layers; ++k) {
+        pugi::xml_node layer = m.append_child("layer");
+        layer.append_attribute("id") = next_id++;
+        layer.append_attribute("name") = k == 0 ? "floors" : ("floors " + std::to_string(k + 1)).c_str();
+        layer.append_attribute("width") = map.width;
+        layer.append_attribute("height") = map.height;
+        if (layers > 1) add_property(layer.append_child("properties"), "isolux_kind", nullptr, "floor");
+        std::string csv = "\n";
+        for (int row = 0; row < map.height; ++row) {
+            for (int col = 0; col < map.width; ++col) {
+                const std::vector<int>& here = floors_at[std::size_t(row) * map.width + col];
+                csv += std::to_string(k < here.size() ? e.floor_gid[std::size_t(here[k])] : 0);
+                if (row + 1 < map.height || col + 1 < map.width) csv += ",";
+            }
+            csv += "\n";
+        }
+        pugi::xml_node data = layer.append_child("data");
+        data.append_attribute("encoding") = "csv";
+        data.text() = csv.c_str();
+    }
 }
 
 // Overlays (and, in the paper layout, floors): tile objects in draw order,
@@ -391,18 +445,19 @@ std::pair<int, int> export_tiled(const World& world, const Scene& scene, const f
 
     const ExportTilesets e = collect_tilesets(world, g, floors_as_objects, tmx);
     for (const std::vector<int>* list : {&e.floors, &e.overlays})
-        for (int s : *list) save_image(images.dir / (ts.sprites[std::size_t(s)].name + ".png"), ts.sprites[std::size_t(s)].image);
+        for (int s : *list) save_image(images.dir / e.image_files[std::size_t(s)], ts.sprites[std::size_t(s)].image);
     if (!e.floors.empty())
-        write_tsx(dir / (base + "_floors.tsx"), base + "_floors", ts, e.floors, images.dir, e.floor_offset_x,
-                  e.floor_offset_y, nullptr);
-    write_tsx(dir / (base + "_overlays.tsx"), base + "_overlays", ts, e.overlays, images.dir, 0, 0, "topleft");
+        write_tsx(dir / (base + "_floors.tsx"), base + "_floors", ts, e.floors, e.image_files, images.dir,
+                  e.floor_offset_x, e.floor_offset_y, nullptr);
+    write_tsx(dir / (base + "_overlays.tsx"), base + "_overlays", ts, e.overlays, e.image_files, images.dir, 0, 0,
+              "topleft");
 
     pugi::xml_document doc;
     pugi::xml_node m = start_map(doc, world.map, g);
     int next_id = 1, object_id = 1;
     write_map_properties(m, scene, world.map.layout, origin);
     write_tileset_refs(m, e, base);
-    if (!floors_as_objects) write_floor_layer(m, world, e, next_id);
+    if (!floors_as_objects) write_floor_layers(m, world, e, next_id);
     write_overlay_objects(m, world, g, e, floors_as_objects, origin, next_id, object_id);
     write_light_objects(m, scene, g, origin, next_id, object_id);
     write_obstacle_objects(m, world, scene, g, origin, next_id, object_id);

@@ -16,6 +16,7 @@
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
 #include "isolux/params.hpp"
+#include "isolux/warnings.hpp"
 #include "json_fields.hpp"
 #include "sprite_fields.hpp"
 #include "tiled_grid.hpp"
@@ -50,7 +51,7 @@ Image load_tiled_image(const fs::path& file, const pugi::xml_node& image, const 
     }
 }
 
-TiledTileset read_tileset(const fs::path& tmx, const pugi::xml_node& ref, std::vector<std::string>& warnings) {
+TiledTileset read_tileset(const fs::path& tmx, const pugi::xml_node& ref, WarningRun& animated) {
     TiledTileset t;
     t.firstgid = int_attr(tmx, ref, "firstgid", 1, 0x0FFFFFFF);
     pugi::xml_document external;
@@ -100,7 +101,7 @@ TiledTileset read_tileset(const fs::path& tmx, const pugi::xml_node& ref, std::v
             const std::string name = p.attribute("name").value();
             if (name.rfind("isolux_", 0) == 0) t.props[id][name] = p.attribute("value").value();
         }
-        if (tile.child("animation")) warnings.push_back(where_of(file, tile) + ": animated: its first frame only is lit");
+        if (tile.child("animation")) animated.add(where_of(file, tile) + ": animated: its first frame only is lit");
     }
     return t;
 }
@@ -255,7 +256,9 @@ struct Placed {
 class LayerReader {
 public:
     LayerReader(const fs::path& tmx, const Grid& g, MapSprites& sprites, const Tileset& ts, TiledMap& out)
-        : tmx_(tmx), g_(g), sprites_(sprites), ts_(ts), out_(out) {}
+        : tmx_(tmx), g_(g), sprites_(sprites), ts_(ts), out_(out),
+          image_layers_(&out.warnings, "image layers left out"),
+          scaled_(&out.warnings, "scaled tile objects drawn at their image's size") {}
 
     // Every visible layer under `m`, groups flattened with their offsets
     // added. Walked with a stack of its own, not by recursion: a file sets
@@ -280,7 +283,7 @@ public:
             const double ly = stack.back().oy + real_attr(tmx_, layer, "offsety", 0);
             if (std::abs(lx) > 1e7 || std::abs(ly) > 1e7) fail(tmx_, layer, "is offset beyond 1e7 pixels");
             if (type == "group") stack.push_back({layer.first_child(), lx, ly});
-            else if (type == "imagelayer") out_.warnings.push_back(where_of(tmx_, layer) + ": image layers are not lit (left out)");
+            else if (type == "imagelayer") image_layers_.add(where_of(tmx_, layer) + ": image layers are not lit (left out)");
             else if (type == "layer") read_tile_layer(layer, lx, ly);
             else read_object_group(layer, lx, ly);
         }
@@ -396,7 +399,7 @@ private:
         const TiledTileset* set = sprites_.set_of(raw & gid_mask);
         const double w = real_attr(tmx_, o, "width", s.image.width), h = real_attr(tmx_, o, "height", s.image.height);
         if (std::abs(w - s.image.width) > 0.01 || std::abs(h - s.image.height) > 0.01)
-            out_.warnings.push_back(where_of(tmx_, o) + ": scaled tile objects are drawn at their image's size");
+            scaled_.add(where_of(tmx_, o) + ": scaled tile objects are drawn at their image's size");
         const std::string align = set->alignment.empty() || set->alignment == "unspecified"
                                       ? (g_.isometric ? "bottom" : "bottomleft")
                                       : set->alignment;
@@ -422,6 +425,7 @@ private:
     const Tileset& ts_;
     TiledMap& out_;
     std::vector<Placed> placed_;
+    WarningRun image_layers_, scaled_;
     bool first_tile_layer_ = true, overlay_seen_ = false;
     int tile_layers_ = 0;
 };
@@ -494,7 +498,10 @@ TiledMap load_tiled(const fs::path& tmx) {
     if (!m) throw Error(tmx.string() + ": no <map>: not a TMX file");
     const Grid g = read_map_grid(tmx, m);
     std::vector<TiledTileset> sets;
-    for (pugi::xml_node t : m.children("tileset")) sets.push_back(read_tileset(tmx, t, out.warnings));
+    {
+        WarningRun animated(&out.warnings, "animated tiles lit by their first frame");
+        for (pugi::xml_node t : m.children("tileset")) sets.push_back(read_tileset(tmx, t, animated));
+    }
     Tileset& ts = out.world.tileset;
     ts.tile_width = g.tw;
     ts.tile_height = g.th;

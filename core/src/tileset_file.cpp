@@ -193,7 +193,7 @@ FootprintSpec parse_footprint(std::string_view text, std::string_view source) {
 
 std::string footprint_to_json(const FootprintSpec& spec) {
     const json j = footprint_json(spec);
-    return j.empty() ? "" : j.dump();
+    return j.empty() ? "" : j.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 void save_manifest_footprints(const fs::path& manifest, const Tileset& ts) {
@@ -210,7 +210,7 @@ void save_manifest_footprints(const fs::path& manifest, const Tileset& ts) {
         if (f.empty()) entry.erase("footprint");
         else entry["footprint"] = f;
     }
-    write_file_atomic(manifest, j.dump(2) + "\n");
+    write_file_atomic(manifest, file_text(j));
 }
 
 void save_generated_tileset(const fs::path& folder, const GeneratedTileset& g) {
@@ -235,7 +235,7 @@ void save_generated_tileset(const fs::path& folder, const GeneratedTileset& g) {
     json j{{"schema_version", schema_version},
            {"tile", {{"width", g.tileset.tile_width}, {"height", g.tileset.tile_height}}},
            {"sprites", sprites}};
-    write_file_atomic(folder / "tileset.json", j.dump(2) + "\n");
+    write_file_atomic(folder / "tileset.json", file_text(j));
 }
 
 }  // namespace isolux

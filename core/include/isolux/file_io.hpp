@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace isolux {
 
@@ -22,8 +23,14 @@ void check_input_file(const std::filesystem::path& path, std::uintmax_t max_byte
 std::string read_text_file(const std::filesystem::path& path);
 
 // Writes `contents` through a temporary file and rename (through a symlink,
-// to its target; a file with other hard links is written in place once the
-// new bytes are whole and synced beside it).
+// to its target). A file with other hard links keeps them: it is written in
+// place once its old bytes stand copied and synced beside it. A target that
+// exists and is not a regular file (a FIFO, a device) is refused, as every
+// writer of isolux refuses it.
 void write_file_atomic(const std::filesystem::path& path, std::string_view contents);
+
+// What this thread's saves since the last call had to do that the user
+// should know (a hard link that could not be kept), then forgotten.
+std::vector<std::string> take_write_notes();
 
 }  // namespace isolux
