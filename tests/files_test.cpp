@@ -425,6 +425,41 @@ TEST(Files, savingAFileWithHardLinksKeepsThemAndItsInode) {
     EXPECT_EQ(load_image(d.path / "shot_link.png").rgba, im.rgba);
 }
 
+TEST(Files, noSaveReplacesAFifoADeviceOrASocketAndTheMessageSaysWhy) {
+    TempDir d;
+    const fs::path fifo = d.path / "pipe", link = d.path / "link.png";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    fs::create_symlink(fifo, link);
+    std::string m = error_of([&] { write_file_atomic(fifo, "x"); });
+    EXPECT_MENTIONS(m, "is a FIFO");
+    m = error_of([&] { save_image(link, Image(2, 2)); });
+    EXPECT_MENTIONS(m, "is a FIFO");
+    m = error_of([&] { check_output_file(d.path / "no" / "such.csv"); });
+    EXPECT_MENTIONS(m, "does not exist");
+    EXPECT_TRUE(fs::is_fifo(fifo));
+    // The machine's own /dev/null is refused by name (nothing is written: the
+    // check comes before any temporary file).
+    m = error_of([&] { check_output_file("/dev/null"); });
+    EXPECT_MENTIONS(m, "is a device");
+    EXPECT_TRUE(fs::is_character_file("/dev/null"));
+}
+
+TEST(Files, aReadErrorIsAnErrorNamingTheFileNotAnotherException) {
+    // /proc/self/mem is a regular file whose reads fail (EIO at offset 0).
+    std::string m;
+    try {
+        read_text_file("/proc/self/mem");
+    } catch (const Error& e) {
+        m = e.what();
+    }
+    EXPECT_MENTIONS(m, "/proc/self/mem: cannot read");
+}
+
+TEST(Files, messagesCarryControlCharactersEscaped) {
+    const std::string m = Error(std::string("a\x1b[2J\nb\x07" "c\xc2\x9b" "d\xc3\xa9")).what();
+    EXPECT_EQ(m, "a\\x1b[2J\\x0ab\\x07c\\x9bd\xc3\xa9");  // C0, C1 (UTF-8) escaped; é kept
+}
+
 namespace {
 
 // A manifest of one floor and one overlay (a 4x4 PNG each) whose overlay

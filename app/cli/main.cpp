@@ -228,6 +228,7 @@ struct CheckArgs {
 };
 
 int run_check_tileset(const CheckArgs& a) {
+    if (!a.sheet.empty()) check_image_output(a.sheet);  // before the work, not after it
     const Tileset ts = load_tileset(a.manifest);
     const Params p = params_from_args(a.params, Params{});
     nlohmann::json report = {{"sprites", nlohmann::json::array()}};
@@ -474,6 +475,9 @@ struct SweepArgs {
 };
 
 int run_sweep_command(const SweepArgs& a) {
+    // Outputs checked before the work, not after it.
+    check_output_file(a.out);
+    if (!a.chart.empty()) check_output_file(a.chart);
     std::vector<std::string> warnings;
     Scene s = load_scene(a.scene, &warnings);
     for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << printable(w) << "\n";
@@ -531,6 +535,13 @@ int run_sweep_command(const SweepArgs& a) {
 
 // The whole command line (tests/fuzz/fuzz_cli.cpp calls it too).
 int isolux_cli_main(int argc, char** argv) {
+    // What the saves had to do that the user should know (a hard link that
+    // could not be kept), said once the command ends, however it ends.
+    struct SayNotes {
+        ~SayNotes() {
+            for (const std::string& n : take_write_notes()) std::cerr << "isolux-cli: note: " << printable(n) << "\n";
+        }
+    } say_notes;
     CLI::App app{"isolux-cli: renders seeded isometric maps and the paper's lighting with no display."};
     app.require_subcommand(1);
 
@@ -662,6 +673,9 @@ int isolux_cli_main(int argc, char** argv) {
         return 2;
     } catch (const std::bad_alloc&) {
         std::cerr << "isolux-cli: out of memory: try a smaller map or --view\n";
+        return 2;
+    } catch (const std::exception& e) {  // a library's own (a file system error, say): still one line, exit 2
+        std::cerr << "isolux-cli: " << printable(e.what()) << "\n";
         return 2;
     }
     return 0;

@@ -265,6 +265,17 @@ std::string read_text_file(const fs::path& path) {
     return text;
 }
 
+void check_output_file(const fs::path& link) {
+    const fs::path path = write_target(link);
+    check_output_target(path);
+    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        throw Error(quoted(link) + ": cannot write: its folder " + quoted(dir) + " does not exist");
+    if (::access(dir.c_str(), W_OK) != 0)
+        throw Error(quoted(link) + ": cannot write: " + std::strerror(errno) + " (its folder " + quoted(dir) + ")");
+}
+
 std::vector<std::string> take_write_notes() {
     std::vector<std::string> n;
     n.swap(notes());

@@ -100,7 +100,7 @@ void check_image_output(const fs::path& link) {
     const fs::path path = write_target(link);
     std::error_code dir_ec;
     if (fs::is_directory(path, dir_ec)) throw Error(quoted(path) + ": is a folder: name an image file (.png or .exr)");
-    check_output_target(path);
+    check_output_file(path);
     std::string ext = path.extension().string();
     for (char& c : ext) c = char(std::tolower(c));
     if (ext != ".exr" && ext != ".png") throw Error(quoted(path) + ": unsupported image extension (use .png or .exr)");

@@ -15,6 +15,7 @@
 #include "isolux/obstacle_map.hpp"
 #include "isolux/params.hpp"
 #include "isolux/truth.hpp"
+#include "atomic_write.hpp"
 #include "tiled_grid.hpp"
 
 namespace fs = std::filesystem;
@@ -435,6 +436,7 @@ void write_image_layers(pugi::xml_node m, const World& world, const Scene& scene
 
 std::pair<int, int> export_tiled(const World& world, const Scene& scene, const fs::path& tmx, const TiledExport& options) {
     if (tmx.extension() != ".tmx") throw Error(tmx.string() + ": the map must be a .tmx file");
+    check_output_target(write_target(tmx));  // a FIFO or a device is refused before any image or TSX is written
     const Tileset& ts = world.tileset;
     const std::string base = tmx.stem().string();
     const fs::path dir = tmx.parent_path().empty() ? fs::path(".") : tmx.parent_path();

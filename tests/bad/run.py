@@ -16,8 +16,8 @@ if "--instrumented" in sys.argv[3:]:
 cases = []  # (name, args, want_exit, fragment)
 
 
-def case(name, args, want, fragment=""):
-    cases.append((name, args, want, fragment))
+def case(name, args, want, fragment="", max_lines=None):
+    cases.append((name, args, want, fragment, max_lines))
 
 
 def write(name, data):
@@ -208,9 +208,10 @@ case("path_check_tileset_loop", ["check-tileset", T("loop_a.json")], 2, "loop_a.
 
 # 6. Tiled maps (render --map): the TMX reader's refusals, and its paths.
 import base64 as _b64, zlib as _zlib
-def tmx(name, body, attrs='orientation="isometric" width="2" height="2" tilewidth="64" tileheight="32"', frag=None, want=2):
+def tmx(name, body, attrs='orientation="isometric" width="2" height="2" tilewidth="64" tileheight="32"', frag=None, want=2,
+        max_lines=None):
     path = write(os.path.join("tmx", name + ".tmx"), f'<?xml version="1.0"?><map {attrs}>{body}</map>')
-    case("tmx_" + name, ["render", "--map", path, "--out", T("out.png")], want, name if frag is None else frag)
+    case("tmx_" + name, ["render", "--map", path, "--out", T("out.png")], want, name if frag is None else frag, max_lines)
 TS = '<tileset firstgid="1" name="t" tilewidth="64" tileheight="64" tilecount="1" columns="0"><tile id="0"><image source="t.png" width="2" height="2"/></tile></tileset>'
 write(os.path.join("tmx", "t.png"), png(2, 2))
 L = lambda data: f'<layer name="g" width="2" height="2">{data}</layer>'
@@ -249,10 +250,87 @@ case("tmx_fifo", ["render", "--map", T("fifo.json"), "--out", T("out.png")], 2, 
 case("tmx_loop", ["render", "--map", T("loop_a.json"), "--out", T("out.png")], 2, "loop_a.json")
 case("tmx_with_seed", ["render", "--map", T(os.path.join("tmx", "ok.tmx")), "--seed", "x", "--out", T("out.png")], 2, "do not apply")
 
+# 7. What a received file, an output path or an odd environment can still do.
+import socket, stat as _stat
+SCENE = os.path.join(src, "assets/scenes/default.json")
+MANIFEST = os.path.abspath(os.path.join(src, "assets/default/tileset.json"))
+keep_special = []  # (path, test): special files that must still be what they were after every case
+os.mkfifo(T("out_fifo"))
+keep_special.append((T("out_fifo"), _stat.S_ISFIFO))
+os.symlink(T("out_fifo"), T("out_link_to_fifo"))
+sock = socket.socket(socket.AF_UNIX)
+sock.bind(T("out_socket"))
+keep_special.append((T("out_socket"), _stat.S_ISSOCK))
+specials = [("fifo", T("out_fifo"), "FIFO"), ("link_to_fifo", T("out_link_to_fifo"), "FIFO"), ("socket", T("out_socket"), "socket")]
+if os.geteuid() == 0:
+    # A device node of our own (a copy of /dev/null's numbers): never the machine's.
+    os.mknod(T("out_device"), 0o666 | _stat.S_IFCHR, os.makedev(1, 3))
+    keep_special.append((T("out_device"), _stat.S_ISCHR))
+    specials.append(("device", T("out_device"), "device"))
+else:
+    print("bad inputs: not root: the device-node output case needs mknod and is left out")
+writers = [
+    ("render", lambda out: R[:-1] + [out]),
+    ("preset", lambda out: ["preset", "--out", out]),
+    ("sweep_out", lambda out: ["sweep", "--scene", SCENE, "--param", "ray_skip=1", "--out", out]),
+    ("sweep_chart", lambda out: ["sweep", "--scene", SCENE, "--param", "ray_skip=1", "--out", T("sweep.csv"), "--chart", out]),
+    ("check_sheet", lambda out: ["check-tileset", MANIFEST, "--sheet", out]),
+    ("export_tiled", lambda out: ["export-tiled", "--scene", SCENE, "--out", out]),
+]
+for wname, args in writers:
+    for sname, target, frag in specials:
+        # The sheet and the render check the extension first; give them one the
+        # special file carries through a link named for it.
+        path = target
+        if wname in ("render", "check_sheet", "export_tiled"):
+            path = T(f"link_{wname}_{sname}" + (".tmx" if wname == "export_tiled" else ".png"))
+            os.symlink(target, path)
+        case(f"out_special_{wname}_{sname}", args(path), 2, frag)
+# Outputs checked before the work: a missing folder or a wrong extension is
+# refused up front, naming the path.
+case("out_sweep_missing_folder", ["sweep", "--scene", SCENE, "--param", "ray_skip=1,2", "--out", T("no", "such", "s.csv")], 2, "does not exist")
+case("out_sweep_chart_missing_folder", ["sweep", "--scene", SCENE, "--param", "ray_skip=1,2", "--out", T("s.csv"),
+                                        "--chart", T("no", "such", "c.svg")], 2, "c.svg")
+case("out_sheet_extension", ["check-tileset", MANIFEST, "--sheet", T("sheet.bmp")], 2, "extension")
+case("out_sheet_missing_folder", ["check-tileset", MANIFEST, "--sheet", T("no", "such", "sheet.png")], 2, "does not exist")
+case("out_preset_missing_folder", ["preset", "--out", T("no", "such", "p.json")], 2, "No such file")
+# Read errors other than "missing": a file that is regular but cannot be read.
+case("read_error_tileset", R + ["--tileset", "/proc/self/mem"], 2, "/proc/self/mem")
+case("read_error_preset", R + ["--preset", "/proc/self/mem"], 2, "/proc/self/mem")
+tmx("tsx_read_error", '<tileset firstgid="1" source="/proc/self/mem"/>' + L('<data encoding="csv">1,1,1,1</data>'), frag="/proc/self/mem")
+# Deep nesting: groups a file sets the depth of are walked without recursion.
+deep = 20000
+tmx("groups_nested_20000", TS + "<group>" * deep + L('<data encoding="csv">1,1,1,1</data>') + "</group>" * deep, frag="", want=0)
+tmx("groups_nested_20000_unclosed", "<group>" * deep, frag="malformed XML")
+# Control characters from files are printed escaped (the run refuses any raw ESC below).
+scene("control_chars_in_colour", '{"lights": [{"x": 1, "y": 1, "color": "\\u001b[2J\\u001b]52;c;aGk=\\u0007"}]}', 2, "\\x1b[2J")
+tileset("control_chars_in_image_name", O(image="\u001b[31mred.png"), 2, "\\x1b[31mred.png")
+tmx("control_chars_in_layer_name", TS + '<layer name="\u001b[2J" width="3" height="2"><data encoding="csv">1,1,1,1,1,1</data></layer>', frag="\\x1b[2J")
+# Warnings capped: a million faulty entries print a dozen lines.
+many_edits = json.dumps({"width": 3, "height": 3, "edits": [{"tile": [100 + i, 0], "floor": "grass"} for i in range(200000)]})
+case("warnings_capped_edits_outside", ["render", "--scene", write("many_edits.scene.json", many_edits), "--out", T("out.png")],
+     0, "more edits outside", max_lines=12)
+tmx("warnings_capped_image_layers", TS + L('<data encoding="csv">1,1,1,1</data>') + '<imagelayer name="i"/>' * 200000,
+    frag="more image layers", want=0, max_lines=12)
+# A map read back exports again (its floors kept: tests/tiled_test.cpp checks the pixels).
+case("reexport_tiled_map", ["export-tiled", "--scene", write("reexport.scene.json", json.dumps({"map": T("tmx", "ok.tmx")})),
+                            "--out", T("reexport", "map.tmx")], 0)
+# Sprite names that are paths write nothing outside the export's folder.
+names_doc = json.load(open(MANIFEST))
+for i, sprite in enumerate(names_doc["sprites"]):
+    sprite["image"] = os.path.join(os.path.dirname(MANIFEST), sprite["image"])
+    if "height_map" in sprite:
+        sprite["height_map"] = os.path.join(os.path.dirname(MANIFEST), sprite["height_map"])
+    sprite["name"] = ["../../escaped", "/tmp/isolux_bad_absolute", "same", "same"][i % 4] if i < 8 else sprite["name"]
+write("names/tileset.json", json.dumps(names_doc))
+case("export_names_are_not_paths", ["export-tiled", "--scene", write("names.scene.json", json.dumps(
+    {"width": 4, "height": 4, "tileset": T("names", "tileset.json")})), "--out", T("names", "out", "map.tmx")], 0)
+must_not_exist = [T("escaped.png"), T("names", "escaped.png"), "/tmp/isolux_bad_absolute.png"]
+
 # Run them all.
 failures = []
 worst_s = worst_mb = 0.0
-for name, args, want, fragment in cases:
+for name, args, want, fragment, max_lines in cases:
     start = time.monotonic()
     proc = subprocess.Popen([cli, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     try:
@@ -277,10 +355,22 @@ for name, args, want, fragment in cases:
         problems.append(f"{len(lines)} lines of message, want one")
     if fragment and fragment not in err:
         problems.append(f"message lacks {fragment!r}")
+    if "\x1b" in err or "\x07" in err:
+        problems.append("a raw control character reached the terminal")
+    if max_lines is not None and len(lines) > max_lines:
+        problems.append(f"{len(lines)} lines of message, want at most {max_lines}")
     if seconds > LIMIT_S:
         problems.append(f"took {seconds:.1f} s")
     if problems:
         failures.append(f"{name}: {'; '.join(problems)}: {err.strip()[:300]}")
+for path, is_kind in keep_special:
+    if not is_kind(os.lstat(path).st_mode):
+        failures.append(f"{path}: a special file was replaced by a save")
+for path in must_not_exist:
+    if os.path.exists(path):
+        failures.append(f"{path}: written outside the export's folder")
+        os.remove(path)
+sock.close()
 shutil.rmtree(tmp, ignore_errors=True)
 for f in failures:
     print("FAIL", f)

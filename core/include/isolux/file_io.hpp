@@ -29,6 +29,11 @@ std::string read_text_file(const std::filesystem::path& path);
 // writer of isolux refuses it.
 void write_file_atomic(const std::filesystem::path& path, std::string_view contents);
 
+// What a save to `path` would refuse, checked before the work that makes
+// its contents: a target that is not a regular file, a folder that does not
+// exist or cannot be written. Throws Error naming the path.
+void check_output_file(const std::filesystem::path& path);
+
 // What this thread's saves since the last call had to do that the user
 // should know (a hard link that could not be kept), then forgotten.
 std::vector<std::string> take_write_notes();
