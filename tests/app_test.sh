@@ -272,16 +272,18 @@ SCRIPT
 rm -rf "$ISOLUX_CONFIG_DIR"
 if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/bad.script" >"$tmp/log" 2>&1; then ok; else bad "bad-input run crashed"; cat "$tmp/log"; fi
 [ "$(json "$tmp/after_bad.json" "len(d['lights'])")" = "3" ] && ok || bad "a corrupt file replaced the document"
-[ -f "$ISOLUX_CONFIG_DIR/autosave.json" ] && ok || bad "unsaved work was not autosaved"
-[ "$(json "$ISOLUX_CONFIG_DIR/autosave.json" "len(d['lights'])")" = "4" ] && ok || bad "the autosave lacks the last light"
+# The window's own autosave (autosave-PID.json: each window has its own).
+autosave=$(ls "$ISOLUX_CONFIG_DIR"/autosave-*.json 2>/dev/null | head -1)
+[ -n "$autosave" ] && [ "$(ls "$ISOLUX_CONFIG_DIR"/autosave*.json | wc -l)" = "1" ] && ok || bad "unsaved work was not autosaved (in one file)"
+[ "$(json "$autosave" "len(d['lights'])")" = "4" ] && ok || bad "the autosave lacks the last light"
 
-# 4b. A crash's autosave survives a later clean run that never offered it
-# (a screenshot run, a script's quit).
-cp "$ISOLUX_CONFIG_DIR/autosave.json" "$tmp/autosave.before"
+# 4b. A closed window's autosave survives later clean runs that never
+# offered it (a screenshot run, a script's quit), which keep their own apart.
+cp "$autosave" "$tmp/autosave.before"
 timeout 120 "$app" --scene "$src/assets/scenes/default.json" --frames 1 --screenshot "$tmp/again.png" >"$tmp/log" 2>&1 || { bad "screenshot run"; cat "$tmp/log"; }
 printf 'wait 2\nquit\n' >"$tmp/quit.script"
 timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/quit.script" >"$tmp/log" 2>&1 || { bad "quit run"; cat "$tmp/log"; }
-cmp -s "$ISOLUX_CONFIG_DIR/autosave.json" "$tmp/autosave.before" && ok || bad "a clean run deleted or replaced an unrecovered autosave"
+cmp -s "$autosave" "$tmp/autosave.before" && ok || bad "a clean run deleted or replaced an unrecovered autosave"
 
 # 4c. move-lights moves every light each frame (each frame retraces them
 #     all), and save-stats writes the Stats panel's mean stage times.

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "gui/editor.hpp"
 #include "test_util.hpp"
@@ -13,6 +15,15 @@ using isolux::test::TempDir;
 namespace fs = std::filesystem;
 
 namespace {
+// The process id of a process that has ended: a window that crashed.
+long dead_window() {
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    return long(child);
+}
+
 Scene small_scene() {
     Scene s;
     s.width = s.height = 6;
@@ -89,17 +100,23 @@ TEST(Editor, regenerateBuildsTheSeedsMapAndUndoRestoresTheOldOne) {
 
 TEST(Editor, unsavedWorkIsAutosavedAndRecovered) {
     TempDir c{false};
+    fs::path crashed;
     {
         Editor e = make_editor(small_scene(), c.path);
+        e.window = dead_window();  // the window that will crash
         place_light(e, 30, 40, 10.0);
         EXPECT_FALSE(autosave_tick(e, 10.5));  // not yet due
         EXPECT_TRUE(autosave_tick(e, 10.0 + autosave_delay));
         EXPECT_TRUE(fs::exists(autosave_path(e)));
+        crashed = autosave_path(e);
         // ... and the app crashes here.
     }
     Editor e = make_editor(small_scene(), c.path);
     ASSERT_TRUE(has_recovery(e));
+    EXPECT_EQ(recovery_path(e), crashed);
     EXPECT_TRUE(recover_autosave(e, 0));
+    EXPECT_FALSE(fs::exists(crashed));      // the dead window's file goes...
+    EXPECT_TRUE(fs::exists(autosave_path(e)));  // ...once this window holds the work
     ASSERT_EQ(e.scene.lights.size(), 1u);
     EXPECT_EQ(e.scene.lights[0].y, 40.5);
     EXPECT_TRUE(e.dirty);  // recovered work is unsaved until saved
@@ -107,6 +124,30 @@ TEST(Editor, unsavedWorkIsAutosavedAndRecovered) {
     EXPECT_FALSE(e.dirty);
     EXPECT_FALSE(has_recovery(e));  // saving clears the autosave
     EXPECT_EQ(e.settings.recent.size(), 1u);
+}
+
+TEST(Editor, eachWindowHasItsOwnAutosaveAndNeverTouchesAnotherLiveOne) {
+    TempDir c{false};
+    Editor a = make_editor(small_scene(), c.path);  // this process: a window that runs
+    Editor b = make_editor(small_scene(), c.path);
+    b.window = long(::getppid());                    // another window that runs
+    place_light(a, 30, 40, 1.0);
+    place_light(b, 50, 60, 1.0);
+    ASSERT_TRUE(autosave_tick(a, 1.0 + autosave_delay));
+    ASSERT_TRUE(autosave_tick(b, 1.0 + autosave_delay));
+    EXPECT_NE(autosave_path(a), autosave_path(b));
+    // A live window's autosave is never offered to another, nor removed by its clean exit.
+    EXPECT_FALSE(has_recovery(a));
+    EXPECT_FALSE(has_recovery(b));
+    discard_autosave(b);
+    EXPECT_TRUE(fs::exists(autosave_path(a)));
+    EXPECT_FALSE(fs::exists(autosave_path(b)));
+    // An older version's single autosave.json counts as a dead window's.
+    fs::copy_file(autosave_path(a), c.path / "autosave.json");
+    EXPECT_EQ(recovery_path(b), c.path / "autosave.json");
+    discard_recovery(b);
+    EXPECT_FALSE(fs::exists(c.path / "autosave.json"));
+    EXPECT_TRUE(fs::exists(autosave_path(a)));
 }
 
 TEST(Editor, settingsSurviveACorruptFile) {
@@ -183,6 +224,7 @@ TEST(Editor, theMapPanelShowsTheDocumentAfterUndoRedoOpenAndRecover) {
     EXPECT_EQ(map_fields(e).seed, "opened");
 
     regenerate(e, "unsaved", 9, 9, Layout::paper, 7);
+    e.window = dead_window();  // this window crashes after its autosave
     EXPECT_TRUE(autosave_tick(e, 7 + autosave_delay));
     Editor fresh = make_editor(small_scene(), c.path);
     ASSERT_TRUE(recover_autosave(fresh, 0));

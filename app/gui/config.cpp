@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include "isolux/error.hpp"
@@ -15,7 +17,18 @@ fs::path config_dir() {
     if (const char* d = std::getenv("ISOLUX_CONFIG_DIR"); d && *d) return d;
     if (const char* x = std::getenv("XDG_CONFIG_HOME"); x && *x) return fs::path(x) / "isolux";
     if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".config" / "isolux";
-    return fs::temp_directory_path() / "isolux-config";
+    // No home: a folder of this user's own under the temporary folder, made
+    // 0700. One that is not a real folder owned by this user and closed to
+    // others (a link or a folder someone planted) is never used: a fresh
+    // private one is made instead, for this run only.
+    const fs::path dir = fs::temp_directory_path() / ("isolux-config-" + std::to_string(::getuid()));
+    ::mkdir(dir.c_str(), 0700);
+    struct stat st {};
+    if (::lstat(dir.c_str(), &st) == 0 && S_ISDIR(st.st_mode) && st.st_uid == ::getuid() && (st.st_mode & 077) == 0)
+        return dir;
+    std::string own = (fs::temp_directory_path() / "isolux-config-XXXXXX").string();
+    if (::mkdtemp(own.data())) return own;
+    return dir / "unusable";  // saves there fail by name; nothing is written elsewhere
 }
 
 Settings load_settings(const fs::path& dir, std::string* warning) {

@@ -263,7 +263,7 @@ void recovery_popup(App& app) {
     ImGui::OpenPopup("Recover unsaved work?");
     if (ImGui::BeginPopupModal("Recover unsaved work?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::TextUnformatted("isolux did not close cleanly last time.");
-        ImGui::Text("An autosaved scene is waiting in %s", autosave_path(e).string().c_str());
+        ImGui::Text("An autosaved scene is waiting in %s", recovery_path(e).string().c_str());
         if (ImGui::Button("Recover")) {
             app.ui.dialogs.recovery_offered = false;
             ImGui::CloseCurrentPopup();
@@ -271,7 +271,7 @@ void recovery_popup(App& app) {
         }
         ImGui::SameLine();
         if (ImGui::Button("Discard")) {
-            discard_autosave(e);
+            discard_recovery(e);
             app.ui.dialogs.recovery_offered = false;
             ImGui::CloseCurrentPopup();
         }

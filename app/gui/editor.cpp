@@ -4,6 +4,9 @@
 #include "gui/editor.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <unistd.h>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -79,6 +82,7 @@ Editor make_editor(const Scene& scene, const fs::path& config) {
     Editor e;
     e.scene = scene;
     e.config = config;
+    e.window = long(::getpid());
     std::string warning;
     e.settings = load_settings(config, &warning);
     if (!warning.empty()) set_status(e, warning, true);
@@ -294,7 +298,7 @@ bool load_tileset_from(Editor& e, const fs::path& manifest, double now) {
     return true;
 }
 
-fs::path autosave_path(const Editor& e) { return e.config / "autosave.json"; }
+fs::path autosave_path(const Editor& e) { return e.config / ("autosave-" + std::to_string(e.window) + ".json"); }
 
 bool autosave_tick(Editor& e, double now) {
     if (e.autosave_due < 0 || now < e.autosave_due || !e.dirty) return false;
@@ -303,27 +307,68 @@ bool autosave_tick(Editor& e, double now) {
         std::error_code ec;
         fs::create_directories(e.config, ec);
         save_scene(autosave_path(e), scene_to_save(e));
-    } catch (const Error& err) {
+    } catch (const std::exception& err) {
         set_status(e, std::string("autosave failed: ") + err.what(), true);
         return false;
     }
     return true;
 }
 
-bool has_recovery(const Editor& e) { return fs::exists(autosave_path(e)); }
+void discard_autosave(Editor& e) {
+    std::error_code ec;
+    fs::remove(autosave_path(e), ec);
+}
+
+namespace {
+
+// Whether process `pid` runs (a window whose autosave is live).
+bool window_alive(long pid) { return pid > 0 && (::kill(pid_t(pid), 0) == 0 || errno == EPERM); }
+
+}  // namespace
+
+fs::path recovery_path(const Editor& e) {
+    fs::path best;
+    fs::file_time_type newest{};
+    std::error_code ec;
+    int seen = 0;
+    for (fs::directory_iterator it(e.config, ec); !ec && it != fs::directory_iterator() && ++seen < 10000; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        bool dead = name == "autosave.json";  // an older version's, whose window is gone
+        if (!dead && name.rfind("autosave-", 0) == 0 && name.size() > 14 && name.ends_with(".json")) {
+            const std::string id = name.substr(9, name.size() - 14);
+            if (id.find_first_not_of("0123456789") != std::string::npos || id.size() > 9) continue;
+            const long pid = std::stol(id);
+            dead = pid != e.window && !window_alive(pid);
+        }
+        std::error_code tec;
+        if (!dead || !it->is_regular_file(tec)) continue;
+        const fs::file_time_type t = fs::last_write_time(it->path(), tec);
+        if (best.empty() || t > newest) best = it->path(), newest = t;
+    }
+    return best;
+}
+
+bool has_recovery(const Editor& e) { return !recovery_path(e).empty(); }
 
 bool recover_autosave(Editor& e, double now) {
-    const fs::path p = autosave_path(e);
-    if (!load_scene_impl(e, p, now, false)) return false;
+    const fs::path p = recovery_path(e);
+    if (p.empty() || !load_scene_impl(e, p, now, false)) return false;
     e.scene_path.clear();  // recovered work is unsaved until the user saves it
     e.dirty = true;
+    // Kept as this window's own before the dead window's file goes.
+    e.autosave_due = 0;
+    if (autosave_tick(e, now)) {
+        std::error_code ec;
+        fs::remove(p, ec);
+    }
     set_status(e, "recovered the autosaved scene: save it to keep it");
     return true;
 }
 
-void discard_autosave(Editor& e) {
+void discard_recovery(Editor& e) {
+    const fs::path p = recovery_path(e);
     std::error_code ec;
-    fs::remove(autosave_path(e), ec);
+    if (!p.empty()) fs::remove(p, ec);
 }
 
 std::filesystem::path tileset_manifest(const Editor& e) {

@@ -113,6 +113,9 @@ struct Editor {
     std::filesystem::path config;  // per-user config folder
     Settings settings;
     double autosave_due = -1;  // seconds (editor clock) when an autosave is due; -1: none
+    // The window this editor is: its process id (make_editor). Its autosave
+    // is config/autosave-WINDOW.json, so two windows never share one.
+    long window = 0;
 };
 
 inline constexpr double autosave_delay = 2.0;  // seconds after a change
@@ -187,14 +190,24 @@ bool load_tileset_from(Editor& e, const std::filesystem::path& manifest, double 
 // Opens a Recent entry as the kind it was saved or opened as.
 bool open_recent(Editor& e, const RecentFile& file, double now);
 
-// Autosave: writes the document to config/autosave.json when due. Returns
-// true when it wrote.
+// Autosave: writes the document to this window's own file,
+// config/autosave-WINDOW.json, when due. Returns true when it wrote.
 bool autosave_tick(Editor& e, double now);
 std::filesystem::path autosave_path(const Editor& e);
-// Whether an autosave from an earlier session waits to be recovered.
-bool has_recovery(const Editor& e);
-bool recover_autosave(Editor& e, double now);
+// Removes this window's autosave (a clean exit with nothing unsaved).
 void discard_autosave(Editor& e);
+
+// Recovery: the newest autosave of a window that no longer runs (its
+// process is gone: a crash, or a close that kept unsaved work), or the
+// single autosave.json of older versions; never a live window's. Empty when
+// there is none.
+std::filesystem::path recovery_path(const Editor& e);
+bool has_recovery(const Editor& e);
+// Loads it as unsaved work, autosaves it as this window's own, then removes
+// the dead window's file.
+bool recover_autosave(Editor& e, double now);
+// The user discarded it: removes the dead window's file.
+void discard_recovery(Editor& e);
 
 // The tileset inspector's edits: a sprite's footprint, applied to the world
 // at once (the manifest is its own file, not part of the scene's undo), and

@@ -320,16 +320,13 @@ int main(int argc, char** argv) {
     stop_long_trace(app);
     try {
         save_settings(config, app.editor.settings);
-    } catch (const Error&) {
+    } catch (const std::exception&) {
     }
-    // A clean exit: unsaved work stays in the autosave only if it was dirty.
-    // An autosave from an earlier crash is deleted only once its recovery was
-    // offered and answered: never by a screenshot or script run, nor when the
-    // window closes with the prompt still showing.
-    const bool recovery_unanswered = app.ui.dialogs.recovery_offered || ((screenshot_mode || app.script) && had_recovery);
-    if (recovery_unanswered) {
-        // Leave the earlier session's work where the next start offers it.
-    } else if (app.editor.dirty) {
+    // A clean exit: this window's unsaved work stays in its own autosave, and
+    // its autosave goes when nothing is unsaved. Another window's autosave
+    // (an earlier crash's) is never touched here: it goes only once its
+    // recovery was offered and answered.
+    if (app.editor.dirty) {
         app.editor.autosave_due = 0;
         autosave_tick(app.editor, 1e300);
     } else {
