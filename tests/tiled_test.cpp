@@ -96,3 +96,34 @@ TEST(TiledExport, spriteNamesNeverBecomePathsAndSameNamesGetImagesOfTheirOwn) {
     ASSERT_EQ(a.height, b.height);
     EXPECT_TRUE(a.rgba == b.rgba);
 }
+
+TEST(TiledExport, aReExportWritesNewFilesThenTheMapThenRemovesTheOldOnes) {
+    TempDir d;
+    Scene scene = small_scene();
+    const World w = make_world(test::default_tileset(), scene);
+    const fs::path tmx = d.path / "level.tmx";
+    auto names = [&](const std::string& text) { return read_text_file(tmx).find(text) != std::string::npos; };
+    TiledExport with_images;
+    with_images.images = true;
+    export_tiled(w, scene, tmx, with_images);
+    EXPECT_TRUE(names("\"level_overlays.tsx\""));
+    EXPECT_TRUE(fs::exists(d.path / "level_images"));
+    EXPECT_TRUE(fs::exists(d.path / "level_final.png"));
+    // The second export's files stand under the other names before the map
+    // names them; the first export's are gone once it does.
+    scene.lights.push_back(Light{200.5, 150.5});
+    export_tiled(w, scene, tmx, with_images);
+    EXPECT_TRUE(names("\"level_overlays.1.tsx\""));
+    ASSERT_TRUE(fs::exists(d.path / "level_overlays.1.tsx"));
+    EXPECT_NE(read_text_file(d.path / "level_overlays.1.tsx").find("\"level_images.1/"), std::string::npos);
+    EXPECT_TRUE(fs::exists(d.path / "level_final.1.png"));
+    for (const char* old : {"level_overlays.tsx", "level_floors.tsx", "level_images", "level_final.png", "level_light.png"})
+        EXPECT_FALSE(fs::exists(d.path / old)) << old << " outlived the export that replaced it";
+    EXPECT_EQ(load_tiled(tmx).scene.lights.size(), 2u);
+    // And back: a third export takes the first names again.
+    export_tiled(w, scene, tmx);
+    EXPECT_TRUE(names("\"level_overlays.tsx\""));
+    EXPECT_FALSE(fs::exists(d.path / "level_overlays.1.tsx"));
+    EXPECT_FALSE(fs::exists(d.path / "level_images.1"));
+    EXPECT_EQ(load_tiled(tmx).scene.lights.size(), 2u);
+}

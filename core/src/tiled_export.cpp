@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cstdio>
 #include <sstream>
+#include <tuple>
 
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
@@ -134,20 +135,66 @@ std::vector<Rect> obstacle_rects(const Mask& m) {
     return done;
 }
 
-// The export's folder for images, taken back if the export fails (a full
-// disk, say) and it made the folder.
-struct ImageFolder {
-    fs::path dir;
-    bool made = false, done = false;
-    explicit ImageFolder(fs::path d) : dir(std::move(d)) {
-        std::error_code ec;
-        made = !fs::exists(dir, ec);
-        fs::create_directories(dir, ec);
-        if (ec) throw Error(dir.string() + ": cannot create (" + ec.message() + ")");
+// The names of one generation of an export's files beside its TMX. A
+// re-export writes the generation the existing TMX does not name, replaces
+// the TMX last, then removes the old generation: killed at any moment, the
+// TMX on disk names files that are whole (the previous export's until the
+// rename, the new one's after it). A first export is generation 0.
+struct ExportFiles {
+    std::string floors_tsx, overlays_tsx, images, light_png, final_png;  // names in the map's folder
+
+    ExportFiles(const std::string& base, int generation) {
+        const std::string g = generation == 0 ? "" : ".1";
+        floors_tsx = base + "_floors" + g + ".tsx";
+        overlays_tsx = base + "_overlays" + g + ".tsx";
+        images = base + "_images" + g;
+        light_png = base + "_light" + g + ".png";
+        final_png = base + "_final" + g + ".png";
     }
-    ~ImageFolder() {
-        std::error_code e;
-        if (made && !done) fs::remove_all(dir, e);
+    void remove_from(const fs::path& dir) const {
+        std::error_code ec;
+        for (const std::string* f : {&floors_tsx, &overlays_tsx, &light_png, &final_png}) fs::remove(dir / *f, ec);
+        fs::remove_all(dir / images, ec);
+    }
+};
+
+// The generation the map at `tmx` names (0 or 1), or -1 when there is no map
+// there that isolux wrote.
+int generation_on_disk(const fs::path& tmx, const std::string& base) {
+    std::error_code ec;
+    if (!fs::is_regular_file(tmx, ec)) return -1;
+    std::string text;
+    try {
+        text = read_text_file(tmx);
+    } catch (const Error&) {
+        return -1;
+    }
+    for (int g : {1, 0})
+        if (text.find("\"" + ExportFiles(base, g).overlays_tsx + "\"") != std::string::npos) return g;
+    return -1;
+}
+
+// The new generation's files, taken back if the export fails before its map
+// names them (a full disk, say). `ours`: an isolux map stands there, so
+// files under the new generation's names are an interrupted export's
+// leftovers that no map names, cleared first; otherwise only a folder the
+// export made is taken back, as anything else there may be the user's.
+struct NewFiles {
+    fs::path dir;
+    ExportFiles files;
+    bool ours, made = false, done = false;
+    NewFiles(fs::path d, ExportFiles f, bool ours_) : dir(std::move(d)), files(std::move(f)), ours(ours_) {
+        if (ours) files.remove_from(dir);
+        std::error_code ec;
+        made = !fs::exists(dir / files.images, ec);
+        fs::create_directories(dir / files.images, ec);
+        if (ec) throw Error((dir / files.images).string() + ": cannot create (" + ec.message() + ")");
+    }
+    ~NewFiles() {
+        std::error_code ec;
+        if (done) return;
+        if (ours) files.remove_from(dir);
+        else if (made) fs::remove_all(dir / files.images, ec);
     }
 };
 
@@ -288,15 +335,15 @@ void write_map_properties(pugi::xml_node m, const Scene& scene, Layout layout, s
     }
 }
 
-void write_tileset_refs(pugi::xml_node m, const ExportTilesets& e, const std::string& base) {
+void write_tileset_refs(pugi::xml_node m, const ExportTilesets& e, const ExportFiles& files) {
     if (!e.floors.empty()) {
         pugi::xml_node t = m.append_child("tileset");
         t.append_attribute("firstgid") = e.first_floor;
-        t.append_attribute("source") = (base + "_floors.tsx").c_str();
+        t.append_attribute("source") = files.floors_tsx.c_str();
     }
     pugi::xml_node t = m.append_child("tileset");
     t.append_attribute("firstgid") = e.first_overlay;
-    t.append_attribute("source") = (base + "_overlays.tsx").c_str();
+    t.append_attribute("source") = files.overlays_tsx.c_str();
 }
 
 // Floors: tile layers, CSV; each tile's floors from the placed sprites (a
@@ -411,13 +458,14 @@ void write_obstacle_objects(pugi::xml_node m, const World& world, const Scene& s
 
 // The light texture and the final frame as hidden image layers (PNG beside the map).
 void write_image_layers(pugi::xml_node m, const World& world, const Scene& scene, const fs::path& dir,
-                        const std::string& base, std::pair<int, int> origin, int& next_id) {
+                        const ExportFiles& files, std::pair<int, int> origin, int& next_id) {
     FrameState st;
     const Rect view = world.placed.bounds;
     render_frame(st, world, scene, Camera{double(view.x), double(view.y), view.w, view.h}, 0);
-    const std::pair<const char*, Image> layers[] = {{"light", light_texture_image(st.light)}, {"final", st.final}};
-    for (const auto& [name, image] : layers) {
-        const std::string file = base + "_" + name + ".png";
+    const std::tuple<const char*, Image, const std::string*> layers[] = {
+        {"light", light_texture_image(st.light), &files.light_png}, {"final", st.final, &files.final_png}};
+    for (const auto& [name, image, file_name] : layers) {
+        const std::string& file = *file_name;
         save_image(dir / file, image);
         pugi::xml_node il = m.append_child("imagelayer");
         il.append_attribute("id") = next_id++;
@@ -440,36 +488,39 @@ std::pair<int, int> export_tiled(const World& world, const Scene& scene, const f
     const Tileset& ts = world.tileset;
     const std::string base = tmx.stem().string();
     const fs::path dir = tmx.parent_path().empty() ? fs::path(".") : tmx.parent_path();
-    ImageFolder images(dir / (base + "_images"));
+    const int old_generation = generation_on_disk(write_target(tmx), base);
+    NewFiles written(dir, ExportFiles(base, old_generation == 0 ? 1 : 0), old_generation >= 0);
+    const ExportFiles& files = written.files;
+    const fs::path images = dir / files.images;
     const Grid g = grid_of(world.map);
     const bool floors_as_objects = world.map.layout == Layout::paper;
     const std::pair<int, int> origin = tiled_origin(world, g);
 
     const ExportTilesets e = collect_tilesets(world, g, floors_as_objects, tmx);
     for (const std::vector<int>* list : {&e.floors, &e.overlays})
-        for (int s : *list) save_image(images.dir / e.image_files[std::size_t(s)], ts.sprites[std::size_t(s)].image);
+        for (int s : *list) save_image(images / e.image_files[std::size_t(s)], ts.sprites[std::size_t(s)].image);
     if (!e.floors.empty())
-        write_tsx(dir / (base + "_floors.tsx"), base + "_floors", ts, e.floors, e.image_files, images.dir,
-                  e.floor_offset_x, e.floor_offset_y, nullptr);
-    write_tsx(dir / (base + "_overlays.tsx"), base + "_overlays", ts, e.overlays, e.image_files, images.dir, 0, 0,
-              "topleft");
+        write_tsx(dir / files.floors_tsx, base + "_floors", ts, e.floors, e.image_files, images, e.floor_offset_x,
+                  e.floor_offset_y, nullptr);
+    write_tsx(dir / files.overlays_tsx, base + "_overlays", ts, e.overlays, e.image_files, images, 0, 0, "topleft");
 
     pugi::xml_document doc;
     pugi::xml_node m = start_map(doc, world.map, g);
     int next_id = 1, object_id = 1;
     write_map_properties(m, scene, world.map.layout, origin);
-    write_tileset_refs(m, e, base);
+    write_tileset_refs(m, e, files);
     if (!floors_as_objects) write_floor_layers(m, world, e, next_id);
     write_overlay_objects(m, world, g, e, floors_as_objects, origin, next_id, object_id);
     write_light_objects(m, scene, g, origin, next_id, object_id);
     write_obstacle_objects(m, world, scene, g, origin, next_id, object_id);
-    if (options.images) write_image_layers(m, world, scene, dir, base, origin, next_id);
+    if (options.images) write_image_layers(m, world, scene, dir, files, origin, next_id);
     m.append_attribute("nextlayerid") = next_id;
     m.append_attribute("nextobjectid") = object_id;
     std::ostringstream out;
     doc.save(out, "  ");
-    write_file_atomic(tmx, out.str());
-    images.done = true;
+    write_file_atomic(tmx, out.str());  // the map names the new files from here on
+    written.done = true;
+    if (old_generation >= 0) ExportFiles(base, old_generation).remove_from(dir);
     return origin;
 }
 
