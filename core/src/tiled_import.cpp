@@ -41,17 +41,31 @@ struct TiledTileset {
     std::string kind;                              // the tileset's isolux_kind
 };
 
-Image load_tiled_image(const fs::path& file, const pugi::xml_node& image, const fs::path& base) {
+// The sprite pixels a map loads in all, against max_input_sprite_pixels.
+struct PixelBudget {
+    std::int64_t used = 0;
+    void add(const fs::path& file, const pugi::xml_node& node, const Image& im) {
+        used += std::int64_t(im.width) * im.height;
+        if (used > max_input_sprite_pixels)
+            fail(file, node, "brings the map's images to " + std::to_string(used >> 20) + " megapixels, over the " +
+                                 std::to_string(max_input_sprite_pixels >> 20) + " a map may load");
+    }
+};
+
+Image load_tiled_image(const fs::path& file, const pugi::xml_node& image, const fs::path& base, PixelBudget& budget) {
     const std::string source = image.attribute("source").value();
     if (source.empty()) fail(file, image, "has no source (embedded image data is not supported)");
+    Image im;
     try {
-        return load_image(base / source);
+        im = load_image(base / source);
     } catch (const Error& e) {
         fail(file, image, e.what());
     }
+    budget.add(file, image, im);
+    return im;
 }
 
-TiledTileset read_tileset(const fs::path& tmx, const pugi::xml_node& ref, WarningRun& animated) {
+TiledTileset read_tileset(const fs::path& tmx, const pugi::xml_node& ref, WarningRun& animated, PixelBudget& budget) {
     TiledTileset t;
     t.firstgid = int_attr(tmx, ref, "firstgid", 1, 0x0FFFFFFF);
     pugi::xml_document external;
@@ -80,7 +94,7 @@ TiledTileset read_tileset(const fs::path& tmx, const pugi::xml_node& ref, Warnin
     const fs::path base = file.parent_path();
     if (const pugi::xml_node image = node.child("image")) {
         // A sheet: tiles cut row by row.
-        const Image sheet = load_tiled_image(file, image, base);
+        const Image sheet = load_tiled_image(file, image, base, budget);
         const int spacing = int_attr(file, node, "spacing", 0, 65536, 0), margin = int_attr(file, node, "margin", 0, 65536, 0);
         const int columns = std::max(1, int_attr(file, node, "columns", 0, 65536, (sheet.width - 2 * margin + spacing) / (t.tile_w + spacing)));
         const int count = int_attr(file, node, "tilecount", 0, 1 << 20, columns * ((sheet.height - 2 * margin + spacing) / (t.tile_h + spacing)));
@@ -89,12 +103,13 @@ TiledTileset read_tileset(const fs::path& tmx, const pugi::xml_node& ref, Warnin
             if (x + t.tile_w > sheet.width || y + t.tile_h > sheet.height) break;
             Image tile(t.tile_w, t.tile_h);
             for (int r = 0; r < t.tile_h; ++r) std::copy_n(sheet.at(x, y + r), std::size_t(t.tile_w) * 4, tile.at(0, r));
+            budget.add(file, image, tile);
             t.images.emplace(id, std::move(tile));
         }
     }
     for (pugi::xml_node tile : node.children("tile")) {
         const int id = int_attr(file, tile, "id", 0, 1 << 28);
-        if (const pugi::xml_node image = tile.child("image")) t.images[id] = load_tiled_image(file, image, base);
+        if (const pugi::xml_node image = tile.child("image")) t.images[id] = load_tiled_image(file, image, base, budget);
         const std::string k = property(tile, "isolux_kind");
         if (!k.empty()) t.kinds[id] = k;
         for (pugi::xml_node p : tile.child("properties").children("property")) {
@@ -184,8 +199,8 @@ void read_isolux_properties(const std::map<std::string, std::string>& props, con
 // when first used, into `ts`.
 class MapSprites {
 public:
-    MapSprites(const fs::path& tmx, const Grid& g, std::vector<TiledTileset> sets, Tileset& ts)
-        : tmx_(tmx), g_(g), sets_(std::move(sets)), ts_(ts) {
+    MapSprites(const fs::path& tmx, const Grid& g, std::vector<TiledTileset> sets, Tileset& ts, PixelBudget& budget)
+        : tmx_(tmx), g_(g), sets_(std::move(sets)), ts_(ts), budget_(budget) {
         std::stable_sort(sets_.begin(), sets_.end(), [](const TiledTileset& a, const TiledTileset& b) { return a.firstgid < b.firstgid; });
     }
 
@@ -222,6 +237,7 @@ public:
         if (flips) s.name += "~" + std::to_string(raw >> 29);
         s.kind = floor ? SpriteKind::floor : SpriteKind::overlay;
         s.image = flips ? flipped(set->images.at(id), raw) : set->images.at(id);
+        budget_.add(tmx_, where, s.image);
         // Anchored where Tiled draws it on a cell: the image's top-left is
         // the cell's bottom-left + offset - (0, height), and the anchor is
         // the diamond's centre.
@@ -242,6 +258,7 @@ private:
     const Grid& g_;
     std::vector<TiledTileset> sets_;
     Tileset& ts_;
+    PixelBudget& budget_;
     std::map<std::pair<std::uint32_t, bool>, int> sprite_of_;
 };
 
@@ -334,7 +351,7 @@ private:
             in.ground_x = in.x + s.anchor_x;
             in.ground_y = in.y + s.anchor_y;
             in.tile = y * g_.w + x;
-            placed_.push_back({in, floor});
+            place(layer, {in, floor});
         }
     }
 
@@ -416,7 +433,14 @@ private:
         in.y = int(std::lround(sy - ay + set->offset_y));
         in.ground_x = in.x + s.anchor_x;
         in.ground_y = in.y + s.anchor_y;
-        placed_.push_back({in, false});
+        place(o, {in, false});
+    }
+
+    // Every sprite the map draws, within max_tiled_sprites.
+    void place(const pugi::xml_node& where, const Placed& p) {
+        if (placed_.size() >= std::size_t(max_tiled_sprites))
+            fail(tmx_, where, "draws more than " + std::to_string(max_tiled_sprites) + " sprites, the most a map may");
+        placed_.push_back(p);
     }
 
     const fs::path& tmx_;
@@ -498,15 +522,16 @@ TiledMap load_tiled(const fs::path& tmx) {
     if (!m) throw Error(tmx.string() + ": no <map>: not a TMX file");
     const Grid g = read_map_grid(tmx, m);
     std::vector<TiledTileset> sets;
+    PixelBudget budget;
     {
         WarningRun animated(&out.warnings, "animated tiles lit by their first frame");
-        for (pugi::xml_node t : m.children("tileset")) sets.push_back(read_tileset(tmx, t, animated));
+        for (pugi::xml_node t : m.children("tileset")) sets.push_back(read_tileset(tmx, t, animated, budget));
     }
     Tileset& ts = out.world.tileset;
     ts.tile_width = g.tw;
     ts.tile_height = g.th;
     ts.source = tmx.string();
-    MapSprites sprites(tmx, g, std::move(sets), ts);
+    MapSprites sprites(tmx, g, std::move(sets), ts, budget);
     const std::vector<Placed> placed = LayerReader(tmx, g, sprites, ts, out).read_layers(m);
     if (placed.empty()) fail(tmx, m, "draws no tile");
     place_world(tmx, m, g, placed, out);

@@ -109,6 +109,7 @@ Tileset load_tileset(const fs::path& manifest) {
     if (!f.has("sprites") || !j["sprites"].is_array()) f.fail("sprites", "must be an array of sprites");
     const json& arr = j["sprites"];
     std::map<fs::path, Image> sheets;  // ordered: loading order does not depend on hashing
+    std::int64_t total_pixels = 0;     // every sprite's image, and every sheet, against max_input_sprite_pixels
     for (std::size_t i = 0; i < arr.size(); ++i) {
         std::string where = src + ": sprites[" + std::to_string(i) + "]";
         check_object(arr[i], where);
@@ -124,6 +125,7 @@ Tileset load_tileset(const fs::path& manifest) {
         if (it == sheets.end()) {
             try {
                 it = sheets.emplace(image_path, load_image(image_path)).first;
+                total_pixels += std::int64_t(it->second.width) * it->second.height;
             } catch (const Error& e) {
                 throw Error(where + ": image: " + e.what());
             }
@@ -154,6 +156,11 @@ Tileset load_tileset(const fs::path& manifest) {
                                     image_path.filename().string() + " (" + std::to_string(sheet.width) + "x" +
                                     std::to_string(sheet.height) + ")");
         }
+        total_pixels += std::int64_t(rect.w) * rect.h;
+        if (total_pixels > max_input_sprite_pixels)
+            sf.fail("rect", "brings the sprites' images to " + std::to_string(total_pixels >> 20) +
+                                " megapixels, over the " + std::to_string(max_input_sprite_pixels >> 20) +
+                                " a tileset may load (give each sprite its own rect on the sheet)");
         s.image = Image(rect.w, rect.h);
         for (int y = 0; y < rect.h; ++y)
             std::copy_n(sheet.at(rect.x, rect.y + y), std::size_t(rect.w) * 4, s.image.at(0, y));

@@ -325,6 +325,17 @@ for i, sprite in enumerate(names_doc["sprites"]):
 write("names/tileset.json", json.dumps(names_doc))
 case("export_names_are_not_paths", ["export-tiled", "--scene", write("names.scene.json", json.dumps(
     {"width": 4, "height": 4, "tileset": T("names", "tileset.json")})), "--out", T("names", "out", "map.tmx")], 0)
+# Budgets per input, not per item: a small file that asks for gigabytes is refused with its total.
+big_png = write("big/sheet.png", png(4096, 4096, rows=b"".join(b"\0" + b"\0" * (4096 * 4) for _ in range(4096))))
+case("budget_100_sprites_one_large_sheet", R + ["--tileset", write("big/tileset.json", json.dumps({"sprites": [
+    {"name": "g", "image": "sheet.png", "kind": "floor", "tags": ["grass"]}] + [
+    {"name": f"o{i}", "image": "sheet.png", "kind": "overlay"} for i in range(100)]}))], 2, "megapixels")
+tiles = "".join(f'<tile id="{i}"><image source="../big/sheet.png" width="4096" height="4096"/></tile>' for i in range(100))
+tmx("budget_100_tile_images", f'<tileset firstgid="1" name="t" tilewidth="64" tileheight="64" tilecount="100" columns="0">{tiles}</tileset>'
+    + L('<data encoding="csv">1,1,1,1</data>'), frag="megapixels")
+layer_bytes = _b64.b64encode(_zlib.compress(b"\x01\0\0\0" * (1024 * 1024), 9)).decode()
+tmx("budget_64_layers_of_1024", TS + "".join(f'<layer name="l{i}" width="1024" height="1024"><data encoding="base64" compression="zlib">{layer_bytes}</data></layer>' for i in range(64)),
+    attrs='orientation="isometric" width="1024" height="1024" tilewidth="64" tileheight="32"', frag="4194304 sprites")
 must_not_exist = [T("escaped.png"), T("names", "escaped.png"), "/tmp/isolux_bad_absolute.png"]
 
 # Run them all.

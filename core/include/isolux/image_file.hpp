@@ -15,6 +15,12 @@ inline constexpr int max_image_side = 65536;
 // Most pixels an image we read may declare (16 Mpx, 4096 x 4096: 64 MB as
 // RGBA), checked from its header before decoding.
 inline constexpr std::int64_t max_image_pixels = std::int64_t(1) << 24;
+// Most pixels of sprite images one input (a tileset manifest, or a Tiled
+// map with all its tilesets) may load in all (64 Mpx: 256 MB as RGBA): a
+// small file that names one large sheet a hundred times, or a hundred large
+// images, is refused with its total, not loaded.
+inline constexpr std::int64_t max_input_sprite_pixels = std::int64_t(1) << 26;
+
 // Largest image files we read.
 inline constexpr std::uintmax_t max_image_file_bytes = std::uintmax_t(512) << 20;
 

@@ -49,5 +49,9 @@ TiledMap load_tiled(const std::filesystem::path& tmx);
 // compression bomb is refused at that size, not inflated).
 inline constexpr int max_tiled_side = 1024;
 inline constexpr int max_tiled_layers = 256;
+// Sprites a map may draw in all layers (4M: four full layers of a 1024x1024
+// map), and sprite pixels it may load in all its tilesets
+// (max_input_sprite_pixels): a small file cannot ask for gigabytes.
+inline constexpr int max_tiled_sprites = 1 << 22;
 
 }  // namespace isolux
