@@ -102,3 +102,33 @@ TEST(Accuracy, unknownParametersAndBadValuesAreErrors) {
     EXPECT_THROW(run_sweep(small_world(), lit(), {{"ray_skip", {"0"}}}, quick()), Error);
     EXPECT_THROW(run_sweep(small_world(), lit(), {{"ray_skip", {"x"}}}, quick()), Error);
 }
+
+TEST(Accuracy, aSweepHandsOverEachRowAsItIsMeasuredSoAStopKeepsThem) {
+    SweepOptions o = quick();
+    o.frames = 2;
+    std::vector<std::size_t> sizes;
+    std::string last_csv;
+    const std::vector<SweepAxis> axes = {{"ray_skip", {"1", "2", "4"}}};
+    o.rows_so_far = [&](const std::vector<SweepPoint>& so_far) {
+        sizes.push_back(so_far.size());
+        last_csv = sweep_csv(axes, so_far, false);
+    };
+    const auto points = run_sweep(small_world(), lit(), axes, o);
+    EXPECT_EQ(sizes, (std::vector<std::size_t>{1, 2, 3}));
+    // While under way the pareto column is empty (it is known at the end only).
+    const std::size_t header_end = last_csv.find('\n');
+    const std::string header = last_csv.substr(0, header_end);
+    const std::string row = last_csv.substr(header_end + 1, last_csv.find('\n', header_end + 1) - header_end - 1);
+    auto field = [](const std::string& line, std::size_t k) {
+        std::size_t pos = 0;
+        for (std::size_t i = 0; i < k; ++i) pos = line.find(',', pos) + 1;
+        return line.substr(pos, line.find(',', pos) - pos);
+    };
+    std::size_t pareto = 0;
+    while (field(header, pareto) != "pareto") ++pareto;
+    EXPECT_EQ(field(row, pareto), "");
+    const std::string final_csv = sweep_csv(axes, points);
+    const std::string final_row = final_csv.substr(header_end + 1, final_csv.find('\n', header_end + 1) - header_end - 1);
+    EXPECT_TRUE(field(final_row, pareto) == "0" || field(final_row, pareto) == "1") << final_row;
+    EXPECT_EQ(std::count(last_csv.begin(), last_csv.end(), '\n'), 4);
+}

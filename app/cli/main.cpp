@@ -506,6 +506,9 @@ int run_sweep_command(const SweepArgs& a) {
     for (const SweepAxis& ax : axes) combos *= long(ax.values.size());
     std::cerr << "isolux-cli: sweeping " << combos << " combinations x " << opt.repeats << " runs x " << opt.frames
               << " frames, against " << a.references << "\n";
+    // Each row written as it is measured (the pareto column empty until the
+    // end), so a sweep stopped midway keeps what it measured.
+    opt.rows_so_far = [&](const std::vector<SweepPoint>& so_far) { write_file_atomic(a.out, sweep_csv(axes, so_far, false)); };
     auto points = run_sweep(w, s, axes, opt, [&](int done, int total) {
         std::cerr << "\r  [" << done << "/" << total << "] " << int(100.0 * done / total) << "%" << std::flush;
     });

@@ -359,6 +359,7 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
             for (ErrorMetrics* m : {&pt.light, &pt.final})
                 m->psnr = m->rmse > 0 ? 20.0 * std::log10(255.0 / m->rmse) : std::numeric_limits<double>::infinity();
             out.push_back(pt);
+            if (opt.rows_so_far) opt.rows_so_far(out);
             if (progress) progress(int(out.size()), total);
         }
     }
@@ -366,7 +367,7 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
     return out;
 }
 
-std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points) {
+std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points, bool pareto_known) {
     std::ostringstream s;
     for (const SweepAxis& a : axes) s << a.name << ",";
     for (int k = 0; k < stage_count; ++k) s << "ms_" << to_string(Stage(k)) << ",";
@@ -384,7 +385,7 @@ std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<Swee
         for (const ErrorMetrics* m : {&p.light, &p.final})
             s << "," << num(m->lit_mismatch, 6) << "," << num(m->differing, 6) << "," << m->max_abs << ","
               << num(m->rmse, 5) << "," << num(m->psnr, 5);
-        s << "," << (p.pareto ? 1 : 0) << "," << to_string(p.reference) << "," << num(p.lighting_min_ms, 5) << ","
+        s << "," << (pareto_known ? (p.pareto ? "1" : "0") : "") << "," << to_string(p.reference) << "," << num(p.lighting_min_ms, 5) << ","
           << num(p.lighting_max_ms, 5) << "," << num(p.app_cpu_ms, 5) << "," << num(p.cpu_only_ms, 5);
         for (const AreaErrors* m : {&p.floor, &p.sprite, &p.area})
             s << "," << num(m->lit_mismatch, 6) << "," << num(m->rmse, 5) << "," << m->pixels;

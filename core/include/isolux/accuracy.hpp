@@ -53,16 +53,6 @@ struct AreaErrors {
 void compare_in_areas(const LightTexture& model, const LightTexture& ref, const Surface& surface,
                       const std::vector<Rect>& areas, AreaErrors& floor, AreaErrors& sprite, AreaErrors& all);
 
-struct SweepOptions {
-    int frames = 8;       // frames per run; the camera moves along its path
-    int repeats = 3;      // runs per combination; times are medians over runs
-    double step_x = 24, step_y = 12;  // camera movement per frame, world pixels
-    bool carry_light = true;  // a light at the view's centre moves with the camera
-    bool opacity_correction = true;  // off: the paper's Figure 6, measured (FrameOptions::opacity_correction)
-    // Each combination is measured against each reference (one CSV row each).
-    std::vector<Reference> references = {Reference::every_pixel};
-};
-
 struct SweepPoint {
     Params params;
     std::vector<std::string> values;    // one per axis, as given
@@ -78,6 +68,21 @@ struct SweepPoint {
     AreaErrors floor, sprite, area;      // inside the lights' areas: ground, sprites, both
     bool pareto = false;                 // least final RMSE for its lighting time, among its reference's points
 };
+
+struct SweepOptions {
+    int frames = 8;       // frames per run; the camera moves along its path
+    int repeats = 3;      // runs per combination; times are medians over runs
+    double step_x = 24, step_y = 12;  // camera movement per frame, world pixels
+    bool carry_light = true;  // a light at the view's centre moves with the camera
+    bool opacity_correction = true;  // off: the paper's Figure 6, measured (FrameOptions::opacity_correction)
+    // Each combination is measured against each reference (one CSV row each).
+    std::vector<Reference> references = {Reference::every_pixel};
+    // Called with every point measured so far, each time one is added (not
+    // yet marked for the Pareto front): a caller writes its rows as they
+    // come, so a sweep stopped or failed midway keeps the work it did.
+    std::function<void(const std::vector<SweepPoint>&)> rows_so_far;
+};
+
 
 // Runs every combination of the axes' values over `scene` (its camera as the
 // path's start; width 0 means the whole map). Throws Error on an unknown
@@ -102,7 +107,9 @@ void mark_pareto(std::vector<SweepPoint>& points);
 std::vector<const SweepPoint*> pareto_front(const std::vector<SweepPoint>& points);
 
 // CSV (one row per combination) and an SVG chart of error against time.
-std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points);
+// `pareto_known` false (a sweep under way): the pareto column is left empty.
+std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points,
+                      bool pareto_known = true);
 std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points,
                       const std::string& title);
 
