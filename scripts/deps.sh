@@ -8,7 +8,7 @@ packages=(
   libopenimageio-dev openimageio-tools nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libtcod-dev
   libimgui-dev libglfw3-dev libgl-dev libegl-dev
-  fonts-dejavu-core libpugixml-dev zlib1g-dev libzstd-dev zstd tiled
+  fonts-dejavu-core libpugixml-dev zlib1g-dev libzstd-dev zstd tiled libglm-dev
   xvfb xauth libgl1-mesa-dri libegl-mesa0 python3
 )
 

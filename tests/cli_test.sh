@@ -127,9 +127,17 @@ import json, sys
 d = json.load(open(sys.argv[1]))
 assert set(d) == {"sprites"} and d["sprites"], d
 for s in d["sprites"]:
-    assert set(s) == {"name", "obstacle_center", "obstacle_rect", "anchor", "distance", "detected", "warning"}, s
+    assert set(s) == {"name", "obstacle_center", "obstacle_rect", "anchor", "distance", "detected", "warning",
+                      "objects", "solid_overlap"}, s
     assert s["obstacle_center"] is None or len(s["obstacle_center"]) == 2
     assert s["obstacle_rect"] is None or len(s["obstacle_rect"]) == 4
+    # Each object's footprint is the obstacle's (its centre and box), and its solid stands above the ground.
+    assert len(s["objects"]) == (0 if s["obstacle_center"] is None else 1), s
+    for o in s["objects"]:
+        assert set(o) == {"center", "rect", "height"}, o
+        assert o["center"] == s["obstacle_center"] and o["rect"] == s["obstacle_rect"], s
+        assert o["height"] > 0, s
+    assert s["solid_overlap"] is None, s  # this tileset has no shapes
 PY
 then pass=$((pass + 1)); else echo "FAIL check-tileset --json is not the documented shape"; fail=$((fail + 1)); fi
 [ -s "$tmp/sheet.png" ] && pass=$((pass + 1)) || { echo "FAIL no contact sheet"; fail=$((fail + 1)); }

@@ -4,6 +4,10 @@
 
 #include "isolux/hash.hpp"
 #include "isolux/footprint.hpp"
+#include "isolux/image_file.hpp"
+
+#include <cmath>
+#include <cstdint>
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_map.hpp"
 #include "test_util.hpp"
@@ -236,4 +240,56 @@ TEST(Footprint, explicitRunsPolygonsAndNoneAreTaken) {
     const Mask poly = sprite_footprint(im, op, 16, 31, 64, 32, 25, FootprintMode::polygon, spec);
     EXPECT_EQ(poly.count(), 8 * 4);
     EXPECT_EQ(sprite_footprint(im, op, 16, 31, 64, 32, 25, FootprintMode::none, spec).count(), 0);
+}
+
+// The row-by-row fill against the even-odd rule tested pixel by pixel, on a
+// concave polygon with edges that cross pixel centres' rows at odd places.
+TEST(Footprint, polygonFillIsTheEvenOddRuleAtEveryPixelCentre) {
+    Image im(97, 61);
+    const Mask op = opacity_map(im, 0.5);
+    FootprintSpec spec;
+    Pcg32 rng(7);
+    for (int k = 0; k < 40; ++k) {
+        const double angle = 6.283185307179586 * k / 40;
+        const double r = 10 + double(rng.below(20));
+        spec.polygon.push_back({48 + int(std::lround(r * std::cos(angle) * 1.6)), 30 + int(std::lround(r * std::sin(angle)))});
+    }
+    spec.polygon.push_back({-5, 70});  // a spike out of the sprite
+    const Mask poly = sprite_footprint(im, op, 48, 60, 64, 32, 25, FootprintMode::polygon, spec);
+    long inside_count = 0;
+    for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < im.width; ++x) {
+            bool inside = false;
+            const double px = x + 0.5, py = y + 0.5;
+            const auto& p = spec.polygon;
+            for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+                const double xi = p[i].first, yi = p[i].second, xj = p[j].first, yj = p[j].second;
+                if ((yi > py) != (yj > py) && px < (xj - xi) * (py - yi) / (yj - yi) + xi) inside = !inside;
+            }
+            ASSERT_EQ(poly.get(x, y), inside) << x << "," << y;
+            inside_count += inside;
+        }
+    EXPECT_GT(inside_count, 500);
+}
+
+// A sprite's footprint mask is budgeted with its image: Algorithm 1 on a
+// sprite W wide may mark W x W/2 pixels, so one 65536 x 1 sprite counts for
+// two gigapixels and is refused by the readers (tests/bad/run.py).
+TEST(Footprint, theMaskBudgetCoversAlgorithm1AndRuns) {
+    FootprintSpec spec;
+    EXPECT_EQ(footprint_pixels(128, 128, spec), 128 * 128);
+    EXPECT_EQ(footprint_pixels(128, 8, spec), 128 * 65);
+    EXPECT_GT(footprint_pixels(65536, 1, spec), max_input_sprite_pixels);
+    spec.run_length = 4000;
+    EXPECT_EQ(footprint_pixels(16, 16, spec), 16 * (16 + 2000));
+    // The largest mask each mode draws stays within the bound.
+    Image im(64, 6);
+    for (int x = 0; x < 64; ++x) im.at(x, 5)[3] = 255;
+    const Mask op = opacity_map(im, 0.5);
+    spec.run_x = 0, spec.run_y = 5, spec.run_length = 64;
+    for (FootprintMode m : {FootprintMode::paper, FootprintMode::run, FootprintMode::automatic}) {
+        const Mask mask = sprite_footprint(im, op, 32, 5, 64, 32, 25, m, spec);
+        EXPECT_LE(std::int64_t(mask.width) * mask.height, footprint_pixels(64, 6, spec)) << int(m);
+        EXPECT_GT(mask.count(), 0) << int(m);
+    }
 }

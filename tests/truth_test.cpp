@@ -2,6 +2,7 @@
 // the exact 2D line (core/src/truth.cpp, core/src/solid.cpp).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "isolux/hash.hpp"
@@ -239,4 +240,86 @@ TEST(HeightRays, aLowObstacleUnderAHighLightCastsAShortShadow) {
     heights.height[std::size_t(20) * 41 + 30] = 20;
     const LightMask n = trace_light_over(obstacles, heights, 0, 0, 20, 20, 20.0, p, area);
     EXPECT_FALSE(lit(n, 20, 0));
+}
+
+// One intensity for every tracer: where nothing blocks, the paper's tracer
+// (then shape_light, as render_frame does), the exact line, the 3D reference
+// and rays over obstacles all give shaped_falloff, for each falloff shape and
+// edge fade (a round, faded light has no square edge in any of them).
+TEST(Truth, everyTracerGivesTheOneIntensityFunctionForEveryShapeAndFade) {
+    const Rect area{-30, -20, 61, 41};
+    const Mask clear(area);
+    const Surface s = ground(area);
+    const WorldSolids nothing;
+    for (FalloffShape shape : {FalloffShape::chebyshev, FalloffShape::euclidean})
+        for (bool fade : {false, true}) {
+            Params p;
+            p.falloff_scale = 6;
+            p.falloff_shape = shape;
+            p.edge_fade = fade;
+            LightMask paper = trace_light(clear, 0, 0, 30, 20, p, area, true);
+            shape_light(paper, p);
+            const LightMask line = exact_line_light(clear, 0, 0, 30, 20, p, area);
+            const LightMask truth = truth_light(s, nothing, 0, 0, 32, 30, 20, p, area, false);
+            ObstacleHeights flat;
+            flat.rect = area;
+            flat.height.assign(clear.bits.size(), 0);
+            LightMask over = trace_light_over(clear, flat, 0, 0, 30, 20, 32, p, area);
+            shape_light(over, p);
+            long faded = 0;
+            for (int y = area.y; y < area.y + area.h; ++y)
+                for (int x = area.x; x < area.x + area.w; ++x) {
+                    const std::uint8_t want = shaped_falloff(x, y, 30, 20, p);
+                    const std::size_t i = std::size_t(y - area.y) * area.w + (x - area.x);
+                    ASSERT_EQ(paper.value[i], want) << int(shape) << fade << " paper " << x << "," << y;
+                    ASSERT_EQ(line.value[i], want) << int(shape) << fade << " exact_line " << x << "," << y;
+                    ASSERT_EQ(truth.value[i], want) << int(shape) << fade << " 3d " << x << "," << y;
+                    ASSERT_EQ(over.value[i], want) << int(shape) << fade << " over " << x << "," << y;
+                    faded += fade && want == 0;
+                }
+            if (fade && shape == FalloffShape::euclidean) {
+                EXPECT_GT(faded, 100);  // the round light's corners: nothing
+            }
+        }
+}
+
+// The 3D reference on a curved sprite surface whose heights are whole pixels
+// (as a height map stores them): every pixel that faces the light clearly is
+// lit, with no bands of self-shadow from a surface point rebuilt a fraction
+// of a pixel inside its own solid. The ground around stays as it was.
+TEST(Truth, aCurvedSurfaceFromWholePixelHeightsHasNoSelfShadowAcne) {
+    const Solid canopy{SolidKind::ellipsoid, {0, 0, 45}, {28, 28, 24}};
+    const Rect area{-120, -110, 241, 201};
+    Surface s = ground(area);
+    for (int y = area.y; y < area.y + area.h; ++y)
+        for (int x = area.x; x < area.x + area.w; ++x) {
+            const double h = surface_height({canopy}, x + 0.5, y + 0.5);
+            if (!std::isfinite(h) || h < 0) continue;
+            const std::size_t i = std::size_t(y - area.y) * area.w + (x - area.x);
+            s.instance[i] = 0;
+            s.height[i] = float(std::lround(h));
+        }
+    Params p = wide();
+    for (const auto& [lx, ly, lh] : {std::array<double, 3>{-100, -20, 90}, {90, 30, 60}, {0, -100, 120}}) {
+        const LightMask m = truth_light(s, one(canopy), std::int64_t(lx), std::int64_t(ly), lh, 120, 110, p, area, false);
+        // The light stands lh above the ground point its centre pixel shows.
+        const Vec3 foot = ground_frame(std::floor(lx) + 0.5, std::floor(ly) + 0.5, 0);
+        const Vec3 light{foot.x, foot.y, lh};
+        long facing = 0, dark = 0;
+        for (int y = area.y; y < area.y + area.h; ++y)
+            for (int x = area.x; x < area.x + area.w; ++x) {
+                const std::size_t i = std::size_t(y - area.y) * area.w + (x - area.x);
+                if (s.instance[i] != 0) continue;
+                const Vec3 q = ground_frame(x + 0.5, y + 0.5, s.height[i]);
+                const Vec3 n = solid_normal(canopy, q);
+                Vec3 l{light.x - q.x, light.y - q.y, light.z - q.z};
+                const double len = std::sqrt(l.x * l.x + l.y * l.y + l.z * l.z);
+                if ((n.x * l.x + n.y * l.y + n.z * l.z) / len < 0.3) continue;
+                ++facing;
+                dark += !lit(m, x, y);
+            }
+        EXPECT_GT(facing, 300);
+        EXPECT_LE(dark, facing / 200) << "light at " << lx << "," << ly << " height " << lh << ": " << dark << " of "
+                                      << facing << " facing pixels dark";
+    }
 }

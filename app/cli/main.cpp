@@ -23,6 +23,7 @@
 #include "isolux/footprint.hpp"
 #include "isolux/tileset_generator.hpp"
 #include "isolux/tiled.hpp"
+#include "isolux/solid_estimate.hpp"
 #include "isolux/truth.hpp"
 
 using namespace isolux;
@@ -60,7 +61,7 @@ void check_work(double steps, bool allow, const std::string& what) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.2g", steps);
     throw Error(what + " would trace about " + std::string(buf) +
-                " ray steps (minutes or more): use a smaller area, border rays or fewer frames, or --allow-huge");
+                " ray steps (minutes or more): use a smaller area or view, border rays or fewer frames, or --allow-huge");
 }
 
 // --preset, then one flag per row of the parameter table: --name-with-dashes
@@ -232,7 +233,12 @@ int run_check_tileset(const CheckArgs& a) {
     const Tileset ts = load_tileset(a.manifest);
     const Params p = params_from_args(a.params, Params{});
     nlohmann::json report = {{"sprites", nlohmann::json::array()}};
-    std::vector<std::pair<const Sprite*, Mask>> drawn;
+    struct DrawnSprite {
+        const Sprite* sprite;
+        Mask footprint;
+        std::vector<EstimatedObject> objects;
+    };
+    std::vector<DrawnSprite> drawn;
     int warnings = 0;
     for (const Sprite& s : ts.sprites) {
         if (s.kind != SpriteKind::overlay) continue;
@@ -261,10 +267,21 @@ int run_check_tileset(const CheckArgs& a) {
             e["distance"] = nullptr;
             if (s.footprint.mode != FootprintMode::none) warning = "no obstacle: light passes through this sprite";
         }
+        // Beyond the paper: each object's solid, estimated from the alpha alone,
+        // and how much of the manifest's shape it shares, where there is one.
+        const std::vector<EstimatedObject> objects = estimate_objects(fr.estimate, fp);
+        e["objects"] = nlohmann::json::array();
+        for (const EstimatedObject& o : objects)
+            e["objects"].push_back({{"center", {std::round(o.center_x * 10) / 10, std::round(o.center_y * 10) / 10}},
+                                    {"rect", {o.rect.x, o.rect.y, o.rect.w, o.rect.h}},
+                                    {"height", o.height()}});
+        e["solid_overlap"] = s.shape.empty() ? nlohmann::json(nullptr)
+                                             : nlohmann::json(std::round(volume_overlap(objects, s.anchor_x, s.anchor_y,
+                                                                                        s.shape) * 1000) / 1000);
         e["warning"] = warning.empty() ? nlohmann::json(nullptr) : nlohmann::json(warning);
         warnings += !warning.empty();
         report["sprites"].push_back(e);
-        drawn.push_back({&s, std::move(fp)});
+        drawn.push_back({&s, std::move(fp), objects});
     }
     if (a.json) {
         std::cout << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
@@ -284,9 +301,11 @@ int run_check_tileset(const CheckArgs& a) {
         std::cout << warnings << " warning" << (warnings == 1 ? "" : "s") << "\n";
     }
     if (!a.sheet.empty()) {
-        // A contact sheet: each sprite with its obstacle (red) and anchor (cyan cross).
+        // A contact sheet: each sprite with its obstacle (red), its estimated
+        // solid's outline (yellow) and its anchor (cyan cross).
         int cell_w = 1, cell_h = 1;
-        for (const auto& [s, fp] : drawn) cell_w = std::max(cell_w, s->image.width + 8), cell_h = std::max(cell_h, s->image.height + 8);
+        for (const DrawnSprite& d : drawn)
+            cell_w = std::max(cell_w, d.sprite->image.width + 8), cell_h = std::max(cell_h, d.sprite->image.height + 8);
         const int cols = std::max(1, std::min(int(drawn.size()), 2048 / cell_w));
         const int rows = std::max(1, int((drawn.size() + std::size_t(cols) - 1) / std::size_t(cols)));
         if (std::int64_t(cols) * cell_w * std::int64_t(rows) * cell_h > (1LL << 26))
@@ -295,7 +314,7 @@ int run_check_tileset(const CheckArgs& a) {
         Image sheet(cols * cell_w, rows * cell_h);
         for (std::size_t i = 3; i < sheet.rgba.size(); i += 4) sheet.rgba[i] = 255;
         for (std::size_t k = 0; k < drawn.size(); ++k) {
-            const Sprite& s = *drawn[k].first;
+            const Sprite& s = *drawn[k].sprite;
             const int ox = int(k % std::size_t(cols)) * cell_w + 4, oy = int(k / std::size_t(cols)) * cell_h + 4;
             for (int y = 0; y < s.image.height; ++y)
                 for (int x = 0; x < s.image.width; ++x) {
@@ -303,8 +322,16 @@ int run_check_tileset(const CheckArgs& a) {
                     std::uint8_t* d = sheet.at(ox + x, oy + y);
                     for (int c = 0; c < 3; ++c) d[c] = std::uint8_t((src[c] * src[3] + 40 * (255 - src[3])) / 255);
                 }
-            static constexpr std::uint8_t red[4] = {255, 40, 40, 255}, cyan[4] = {0, 255, 255, 255};
-            paint_mask(sheet, Rect{-ox, -oy, sheet.width, sheet.height}, drawn[k].second, 0, 0, red);
+            static constexpr std::uint8_t red[4] = {255, 40, 40, 255}, cyan[4] = {0, 255, 255, 255},
+                                          yellow[4] = {255, 220, 0, 255};
+            // The estimated solid's outline (yellow): where its drawn discs end.
+            const Mask solid = solid_silhouette(drawn[k].objects, s.image.width, s.image.height);
+            for (int y = 0; y < solid.height; ++y)
+                for (int x = 0; x < solid.width; ++x)
+                    if (solid.get(x, y) && (!solid.get(x - 1, y) || !solid.get(x + 1, y) || !solid.get(x, y - 1) ||
+                                            !solid.get(x, y + 1)))
+                        std::copy_n(yellow, 4, sheet.at(ox + x, oy + y));
+            paint_mask(sheet, Rect{-ox, -oy, sheet.width, sheet.height}, drawn[k].footprint, 0, 0, red);
             for (int d = -5; d <= 5; ++d) {
                 for (auto [x, y] : {std::pair{s.anchor_x + d, s.anchor_y}, std::pair{s.anchor_x, s.anchor_y + d}})
                     if (x >= 0 && y >= 0 && x < cell_w - 8 && y < cell_h - 8) std::copy_n(cyan, 4, sheet.at(ox + x, oy + y));
@@ -385,7 +412,10 @@ int run_render(const RenderArgs& a) {
         w = build_world(s, a.scene.empty() ? "scene" : a.scene);
     }
     Rect view = view_from_args(a, s, w);
-    check_work(trace_work(s, view) * (a.frames > 1 ? std::max(1, a.frames / std::max(1, s.params.trace_every)) : 1),
+    // Every frame's trace and pixels, and the reference's own work where one is drawn.
+    const bool reference_drawn = a.layer == "truth" || a.layer == "difference";
+    check_work(render_work(s, view, a.frames) +
+                   (reference_drawn ? reference_work(w, s, view, parse_reference(a.reference, "--reference")) : 0),
                a.allow_huge, "this render");
     Image out;
     if (a.layer == "map" || a.layer == "obstacles") {
@@ -593,7 +623,9 @@ int isolux_cli_main(int argc, char** argv) {
                                          "what the footprint estimate detected (baked ground, baked shadow)");
     check->add_option("manifest", ca.manifest, "Tileset manifest")->required();
     check->add_flag("--json", ca.json, "Print one JSON object: {\"sprites\": [{\"name\", \"obstacle_center\", ...}]}");
-    check->add_option("--sheet", ca.sheet, "Write a contact sheet: every sprite with its obstacle (red) and anchor (cyan)");
+    check->add_option("--sheet", ca.sheet,
+                      "Write a contact sheet: every sprite with its obstacle (red), its estimated solid's outline "
+                      "(yellow) and anchor (cyan)");
     add_param_flags(*check, ca.params);
 
     CLI::App* params = app.add_subcommand("params", "List the parameters: field, flag, type, range, default, what a change re-runs");

@@ -4,6 +4,7 @@
 #include "gui/app.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <cmath>
 #include <thread>
@@ -41,6 +42,15 @@ const LightTexture* update_truth(App& app, const Scene& scene) {
         t.revision == e.world.revision)
         return &t.texture;
     try {
+        // Made on the frame's thread: beyond the budget the overlay is refused
+        // with its estimate rather than freezing the window for minutes.
+        const double work = reference_work(e.world, scene, app.view, Reference::three_d);
+        if (work > huge_trace_steps) {
+            char buf[64];
+            std::snprintf(buf, sizeof buf, "%.2g", work);
+            throw Error("the 3D reference of this view would take about " + std::string(buf) +
+                        " ray steps (minutes or more): use a smaller view, area or fewer lights");
+        }
         t.texture = reference_texture(e.world, scene, app.view, Reference::three_d);
     } catch (const Error& err) {
         set_status(app.editor, err.what(), true);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -206,6 +207,39 @@ struct ReferenceFrame {
     std::vector<Rect> areas;
 };
 
+std::size_t bytes_of(const ReferenceFrame& r) {
+    return r.light.texels.size() + r.final.rgba.size() + r.surface.instance.size() * sizeof(std::int32_t) +
+           r.surface.height.size() * sizeof(float);
+}
+
+// The sweep's reference frames by key, oldest dropped first beyond the budget
+// (the newest always kept: a reference larger than the budget still serves
+// the frame that asked for it).
+class ReferenceCache {
+public:
+    const ReferenceFrame* find(const std::string& key) const {
+        const auto it = frames_.find(key);
+        return it == frames_.end() ? nullptr : &it->second;
+    }
+    const ReferenceFrame& add(const std::string& key, ReferenceFrame r) {
+        bytes_ += bytes_of(r);
+        order_.push_back(key);
+        const ReferenceFrame& kept = frames_.emplace(key, std::move(r)).first->second;
+        while (bytes_ > reference_cache_bytes && order_.size() > 1) {
+            const auto old = frames_.find(order_.front());
+            bytes_ -= bytes_of(old->second);
+            frames_.erase(old);
+            order_.pop_front();
+        }
+        return kept;
+    }
+
+private:
+    std::map<std::string, ReferenceFrame> frames_;
+    std::deque<std::string> order_;
+    std::size_t bytes_ = 0;
+};
+
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     if (v.empty()) return 0;
@@ -224,17 +258,33 @@ void add_mean(AreaErrors& acc, const AreaErrors& m, int frames) {
 double sweep_work(const World& world, const Scene& scene, const std::vector<SweepAxis>& axes,
                   const SweepOptions& opt) {
     const Rect view = camera_view(scene.camera, world);
-    double steps = axes.empty() ? trace_work(scene, view) : 0;
+    Scene base = scene;
+    if (opt.carry_light) {
+        Light carried;
+        carried.x = std::floor(view.x + view.w / 2.0) + 0.5;
+        carried.y = std::floor(view.y + view.h / 2.0) + 0.5;
+        base.lights.push_back(carried);
+    }
+    // Per frame of a combination: its rays and pixels on each run, and a
+    // reference per reference (made again when the cache has dropped it);
+    // the costliest value of each axis.
+    const double pixels = double(view.w) * double(view.h) * view_pixel_steps;
+    auto frame_work = [&](const Scene& s) {
+        double reference = 0;
+        for (Reference r : opt.references) reference += reference_work(world, s, view, r) + pixels;
+        return (trace_work(s, view) + pixels) * std::max(1, opt.repeats) + reference;
+    };
+    double per_frame = frame_work(base);
     double combos = 1;
     for (const SweepAxis& ax : axes) {
         combos *= double(ax.values.size());
         for (const std::string& v : ax.values) {
-            Scene probe = scene;
+            Scene probe = base;
             set_param(probe.params, ax.name, v, "sweep");
-            steps = std::max(steps, trace_work(probe, view));
+            per_frame = std::max(per_frame, frame_work(probe));
         }
     }
-    return steps * combos * opt.frames * (opt.repeats + double(opt.references.size()));
+    return combos * std::max(1, opt.frames) * per_frame;
 }
 
 std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const std::vector<SweepAxis>& axes,
@@ -268,35 +318,55 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
     };
 
     // References, one per frame, shared by the combinations whose parameters
-    // the reference does not read (ray skip, rays, blur and l).
-    std::map<std::string, std::vector<ReferenceFrame>> refs;
-    auto reference = [&](const Params& p, Reference which) -> const std::vector<ReferenceFrame>& {
+    // the reference does not read (ray skip, rays, blur and l), in a cache of
+    // at most reference_cache_bytes: beyond it the oldest are dropped and made
+    // again when asked for (sweep_work counts a reference per combination, so
+    // the estimate holds either way), and memory stays bounded whatever the
+    // axes' lengths.
+    ReferenceCache refs;
+    auto reference = [&](const Params& p, Reference which, int f) -> const ReferenceFrame& {
         const Params rp = reference_params(p);
-        const std::string key = std::string(to_string(which)) + (opt.opacity_correction ? ":" : ":raw:") + params_key(rp);
-        auto it = refs.find(key);
-        if (it != refs.end()) return it->second;
-        std::vector<ReferenceFrame> frames;
-        for (int f = 0; f < opt.frames; ++f) {
-            const Scene s = scene_at(rp, f);
-            const Rect view = camera_view(camera_at(f), world);
-            ReferenceFrame r;
-            r.light = reference_texture(world, s, view, which, opt.opacity_correction);
-            r.final = composite(render_sprites(world.tileset, world.placed, view), view, r.light, rp);
-            r.surface = build_surface(world, view, rp.opacity_threshold);
-            for (const Light& l : s.lights) r.areas.push_back(light_area(l, rp));
-            frames.push_back(std::move(r));
-        }
-        return refs.emplace(key, std::move(frames)).first->second;
+        const std::string key = std::string(to_string(which)) + (opt.opacity_correction ? ":" : ":raw:") +
+                                params_key(rp) + "@" + std::to_string(f);
+        if (const ReferenceFrame* hit = refs.find(key)) return *hit;
+        const Scene s = scene_at(rp, f);
+        const Rect view = camera_view(camera_at(f), world);
+        ReferenceFrame r;
+        r.light = reference_texture(world, s, view, which, opt.opacity_correction);
+        r.final = composite(render_sprites(world.tileset, world.placed, view), view, r.light, rp);
+        r.surface = build_surface(world, view, rp.opacity_threshold);
+        for (const Light& l : s.lights) r.areas.push_back(light_area(l, rp));
+        return refs.add(key, std::move(r));
     };
 
     std::vector<SweepPoint> out;
     const int total = int(params.size() * references.size());
     for (std::size_t c = 0; c < params.size(); ++c) {
         if (cancel && cancel->load()) break;
+        // One point per reference; the first repeat's frames are compared as
+        // they are made (never all kept: a long --frames stays in one frame's memory).
+        std::vector<SweepPoint> points(references.size());
+        auto compare_frame = [&](const FrameState& st, int f) {
+            for (std::size_t k = 0; k < references.size(); ++k) {
+                SweepPoint& pt = points[k];
+                const ReferenceFrame& ref = reference(params[c], references[k], f);
+                const ErrorMetrics l = compare_light(st.light, ref.light);
+                const ErrorMetrics fi = compare_images(st.final, ref.final);
+                for (auto [acc, m] : {std::pair{&pt.light, &l}, std::pair{&pt.final, &fi}}) {
+                    acc->lit_mismatch += m->lit_mismatch / opt.frames;
+                    acc->differing += m->differing / opt.frames;
+                    acc->rmse += m->rmse / opt.frames;
+                    acc->max_abs = std::max(acc->max_abs, m->max_abs);
+                }
+                AreaErrors fl, sp, all;
+                compare_in_areas(st.light, ref.light, ref.surface, ref.areas, fl, sp, all);
+                add_mean(pt.floor, fl, opt.frames);
+                add_mean(pt.sprite, sp, opt.frames);
+                add_mean(pt.area, all, opt.frames);
+            }
+        };
         // Times: each repeat's mean per frame; the median over repeats, and the spread.
         std::array<std::vector<double>, stage_count> runs;
-        std::vector<LightTexture> lights;
-        std::vector<Image> finals;
         for (int rep = 0; rep < std::max(1, opt.repeats); ++rep) {
             FrameState st;
             st.options.opacity_correction = opt.opacity_correction;
@@ -306,14 +376,11 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
                 FrameReport r;
                 try {
                     r = render_frame(st, world, scene_at(params[c], f), camera_at(f), f);
+                    if (rep == 0) compare_frame(st, f);
                 } catch (const Cancelled&) {
                     return out;  // the combinations done so far
                 }
                 for (int k = 0; k < stage_count; ++k) sum[k] += r.ms[k];
-                if (rep == 0) {
-                    lights.push_back(st.light);
-                    finals.push_back(st.final);
-                }
             }
             for (int k = 0; k < stage_count; ++k) runs[k].push_back(sum[k] / opt.frames);
         }
@@ -336,26 +403,14 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
         timed.lighting_min_ms = *std::min_element(lighting_runs.begin(), lighting_runs.end());
         timed.lighting_max_ms = *std::max_element(lighting_runs.begin(), lighting_runs.end());
 
-        for (Reference which : references) {
+        for (std::size_t k = 0; k < references.size(); ++k) {
             SweepPoint pt = timed;
-            pt.reference = which;
-            const std::vector<ReferenceFrame>& ref = reference(pt.params, which);
-            for (int f = 0; f < opt.frames; ++f) {
-                const ErrorMetrics l = compare_light(lights[std::size_t(f)], ref[std::size_t(f)].light);
-                const ErrorMetrics fi = compare_images(finals[std::size_t(f)], ref[std::size_t(f)].final);
-                for (auto [acc, m] : {std::pair{&pt.light, &l}, std::pair{&pt.final, &fi}}) {
-                    acc->lit_mismatch += m->lit_mismatch / opt.frames;
-                    acc->differing += m->differing / opt.frames;
-                    acc->rmse += m->rmse / opt.frames;
-                    acc->max_abs = std::max(acc->max_abs, m->max_abs);
-                }
-                AreaErrors fl, sp, all;
-                compare_in_areas(lights[std::size_t(f)], ref[std::size_t(f)].light, ref[std::size_t(f)].surface,
-                                 ref[std::size_t(f)].areas, fl, sp, all);
-                add_mean(pt.floor, fl, opt.frames);
-                add_mean(pt.sprite, sp, opt.frames);
-                add_mean(pt.area, all, opt.frames);
-            }
+            pt.reference = references[k];
+            pt.light = points[k].light;
+            pt.final = points[k].final;
+            pt.floor = points[k].floor;
+            pt.sprite = points[k].sprite;
+            pt.area = points[k].area;
             for (ErrorMetrics* m : {&pt.light, &pt.final})
                 m->psnr = m->rmse > 0 ? 20.0 * std::log10(255.0 / m->rmse) : std::numeric_limits<double>::infinity();
             out.push_back(pt);

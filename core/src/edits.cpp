@@ -3,6 +3,8 @@
 #include "isolux/warnings.hpp"
 
 #include <algorithm>
+#include <map>
+#include <string_view>
 
 #include "isolux/error.hpp"
 #include "isolux/hash.hpp"
@@ -15,18 +17,28 @@ std::string entry_name(std::string_view source, std::size_t i) {
     return std::string(source) + ": edits[" + std::to_string(i) + "]";
 }
 
-int sprite_named(const Tileset& ts, const std::string& name, SpriteKind kind, const std::string& where,
-                 const char* field) {
-    for (std::size_t i = 0; i < ts.sprites.size(); ++i)
-        if (ts.sprites[i].name == name) {
-            if (ts.sprites[i].kind != kind)
-                throw Error(where + ": " + field + " \"" + name + "\" is " +
-                            (kind == SpriteKind::floor ? "an overlay, not a floor" : "a floor, not an overlay") +
-                            " sprite of " + (ts.source.empty() ? std::string("the tileset") : ts.source));
-            return int(i);
-        }
-    throw Error(where + ": " + field + " \"" + name + "\" is not a sprite of " +
-                (ts.source.empty() ? std::string("the tileset") : ts.source));
+// The tileset's sprites by name (the first of a name, as a linear search
+// would find): a lookup per edit costs log(sprites), so a million edits over
+// a large Tiled tileset stay linear in the edits.
+using SpritesByName = std::map<std::string_view, int>;
+
+SpritesByName sprites_by_name(const Tileset& ts) {
+    SpritesByName out;
+    for (std::size_t i = 0; i < ts.sprites.size(); ++i) out.emplace(ts.sprites[i].name, int(i));
+    return out;
+}
+
+int sprite_named(const Tileset& ts, const SpritesByName& names, const std::string& name, SpriteKind kind,
+                 const std::string& where, const char* field) {
+    const auto it = names.find(name);
+    if (it == names.end())
+        throw Error(where + ": " + field + " \"" + name + "\" is not a sprite of " +
+                    (ts.source.empty() ? std::string("the tileset") : ts.source));
+    if (ts.sprites[std::size_t(it->second)].kind != kind)
+        throw Error(where + ": " + field + " \"" + name + "\" is " +
+                    (kind == SpriteKind::floor ? "an overlay, not a floor" : "a floor, not an overlay") +
+                    " sprite of " + (ts.source.empty() ? std::string("the tileset") : ts.source));
+    return it->second;
 }
 
 bool inside(int col, int row, int width, int height) { return col >= 0 && row >= 0 && col < width && row < height; }
@@ -36,20 +48,21 @@ bool inside(int col, int row, int width, int height) { return col >= 0 && row >=
 std::vector<ResolvedEdit> resolve_edits(const std::vector<TileEdit>& edits, const Tileset& ts, std::string_view source) {
     std::vector<ResolvedEdit> out;
     out.reserve(edits.size());
+    const SpritesByName names = sprites_by_name(ts);
     for (std::size_t i = 0; i < edits.size(); ++i) {
         const TileEdit& e = edits[i];
         const std::string where = entry_name(source, i);
         ResolvedEdit r;
         r.col = e.col;
         r.row = e.row;
-        if (e.floor) r.floor = sprite_named(ts, *e.floor, SpriteKind::floor, where, "floor");
+        if (e.floor) r.floor = sprite_named(ts, names, *e.floor, SpriteKind::floor, where, "floor");
         if (e.overlays) {
             if (e.overlays->size() > 3)
                 throw Error(where + ": overlays holds " + std::to_string(e.overlays->size()) +
                             " sprites; a tile holds at most 3");
             r.overlays.emplace();
             for (const std::string& name : *e.overlays)
-                r.overlays->push_back(sprite_named(ts, name, SpriteKind::overlay, where, "overlays"));
+                r.overlays->push_back(sprite_named(ts, names, name, SpriteKind::overlay, where, "overlays"));
         }
         out.push_back(std::move(r));
     }

@@ -32,20 +32,28 @@ Mask mark_run(int w, int h, int x0, int y, int length) {
     return out;
 }
 
+// The even-odd rule at each pixel's centre, a row at a time: a pixel is
+// inside when an odd number of the row's edge crossings lie right of its
+// centre. Time in pixels plus rows x corners, never pixels x corners.
 Mask fill_polygon(int w, int h, const std::vector<std::pair<int, int>>& poly) {
     Mask m(Rect{0, 0, w, h});
     if (poly.size() < 3) return m;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            // Even-odd rule at the pixel's centre.
-            bool inside = false;
-            const double px = x + 0.5, py = y + 0.5;
-            for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-                const double xi = poly[i].first, yi = poly[i].second, xj = poly[j].first, yj = poly[j].second;
-                if ((yi > py) != (yj > py) && px < (xj - xi) * (py - yi) / (yj - yi) + xi) inside = !inside;
-            }
-            if (inside) m.set(x, y);
+    std::vector<double> crossings;
+    for (int y = 0; y < h; ++y) {
+        const double py = y + 0.5;
+        crossings.clear();
+        for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+            const double xi = poly[i].first, yi = poly[i].second, xj = poly[j].first, yj = poly[j].second;
+            if ((yi > py) != (yj > py)) crossings.push_back((xj - xi) * (py - yi) / (yj - yi) + xi);
         }
+        std::sort(crossings.begin(), crossings.end());
+        std::size_t left = 0;  // crossings at or left of the pixel's centre
+        for (int x = 0; x < w; ++x) {
+            const double px = x + 0.5;
+            while (left < crossings.size() && crossings[left] <= px) ++left;
+            if ((crossings.size() - left) % 2 == 1) m.set(x, y);
+        }
+    }
     return m;
 }
 
@@ -171,6 +179,12 @@ Mask tileset_footprint(const Tileset& ts, const Sprite& s, const Params& p, Foot
                                                                                          : FootprintMode::automatic);
     return sprite_footprint(s.image, op, s.anchor_x, s.anchor_y, ts.tile_width, ts.tile_height, p.delta_y, mode,
                             s.footprint, report);
+}
+
+std::int64_t footprint_pixels(int w, int h, const FootprintSpec& spec) {
+    const std::int64_t algorithm1 = std::int64_t(w) * (2 * (w / 4) + 1);
+    const std::int64_t run = std::int64_t(w) * (h + 2 * (std::max(0, spec.run_length) / 4));
+    return std::max({algorithm1, run, std::int64_t(w) * h});
 }
 
 bool mask_centre(const Mask& m, double& x, double& y, Rect& box) {

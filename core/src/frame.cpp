@@ -44,6 +44,12 @@ double trace_work(const Scene& scene, Rect view) {
     return steps;
 }
 
+double render_work(const Scene& scene, Rect view, int frames) {
+    const int n = std::max(1, frames);
+    const int traces = 1 + (n - 1) / std::max(1, scene.params.trace_every);
+    return trace_work(scene, view) * traces + double(view.w) * double(view.h) * view_pixel_steps * n;
+}
+
 Rect camera_view(const Camera& c, const World& w) {
     const double x = std::clamp(std::floor(c.x), -1e9, 1e9), y = std::clamp(std::floor(c.y), -1e9, 1e9);
     // No size: the whole map, wherever the camera was (as isolux-cli renders it).

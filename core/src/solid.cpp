@@ -8,17 +8,20 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 namespace isolux {
 
 namespace {
 
-Vec3 add(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-Vec3 sub(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Vec3 mul(Vec3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Vec3 add(Vec3 a, Vec3 b) { return a + b; }
+Vec3 sub(Vec3 a, Vec3 b) { return a - b; }
+Vec3 mul(Vec3 a, double s) { return a * s; }
+double dot(Vec3 a, Vec3 b) { return glm::dot(a, b); }
+// A zero vector points up (glm::normalize would give NaNs).
 Vec3 unit(Vec3 a) {
-    const double l = std::sqrt(dot(a, a));
-    return l > 0 ? mul(a, 1 / l) : Vec3{0, 0, 1};
+    const double l = glm::length(a);
+    return l > 0 ? a * (1 / l) : Vec3{0, 0, 1};
 }
 
 // Roots of a t^2 + b t + c = 0, appended when real.

@@ -15,6 +15,7 @@
 
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
+#include "isolux/footprint.hpp"
 #include "isolux/params.hpp"
 #include "isolux/warnings.hpp"
 #include "json_fields.hpp"
@@ -41,14 +42,19 @@ struct TiledTileset {
     std::string kind;                              // the tileset's isolux_kind
 };
 
-// The sprite pixels a map loads in all, against max_input_sprite_pixels.
+// The sprite pixels a map loads in all, and the footprint masks its sprites
+// may need, against max_input_sprite_pixels.
 struct PixelBudget {
     std::int64_t used = 0;
     void add(const fs::path& file, const pugi::xml_node& node, const Image& im) {
-        used += std::int64_t(im.width) * im.height;
+        add(file, node, std::int64_t(im.width) * im.height);
+    }
+    void add(const fs::path& file, const pugi::xml_node& node, std::int64_t pixels) {
+        used += pixels;
         if (used > max_input_sprite_pixels)
-            fail(file, node, "brings the map's images to " + std::to_string(used >> 20) + " megapixels, over the " +
-                                 std::to_string(max_input_sprite_pixels >> 20) + " a map may load");
+            fail(file, node, "brings the map's images and footprints to " + std::to_string(used >> 20) +
+                                 " megapixels, over the " + std::to_string(max_input_sprite_pixels >> 20) +
+                                 " a map may load");
     }
 };
 
@@ -247,6 +253,7 @@ public:
         // it stands), tags, threshold and footprint.
         if (auto it = set->props.find(id); it != set->props.end() && !flips)
             read_isolux_properties(it->second, set->file.string() + ": tile " + std::to_string(id), s);
+        budget_.add(tmx_, where, footprint_pixels(s.image.width, s.image.height, s.footprint));
         ts_.sprites.push_back(std::move(s));
         const int index = int(ts_.sprites.size()) - 1;
         sprite_of_[key] = index;

@@ -8,6 +8,7 @@
 
 #include "isolux/error.hpp"
 #include "isolux/file_io.hpp"
+#include "isolux/footprint.hpp"
 #include "isolux/image_file.hpp"
 #include "isolux/scene_file.hpp"
 #include "json_fields.hpp"
@@ -180,6 +181,12 @@ Tileset load_tileset(const fs::path& manifest) {
         s.anchor_x = rect.w / 2;
         s.anchor_y = s.kind == SpriteKind::floor ? ts.tile_height / 2 : rect.h - 1;
         read_sprite_fields(sf, s);
+        total_pixels += footprint_pixels(rect.w, rect.h, s.footprint);
+        if (total_pixels > max_input_sprite_pixels)
+            sf.fail("footprint", "brings the sprites' images and footprints to " + std::to_string(total_pixels >> 20) +
+                                     " megapixels, over the " + std::to_string(max_input_sprite_pixels >> 20) +
+                                     " a tileset may load (Algorithm 1 marks a run's quarter above and below it: a "
+                                     "sprite W pixels wide may need W x W/2)");
         if (sf.has("height_map")) {
             try {
                 s.height = load_gray16(manifest.parent_path() / sf.text("height_map"), rect.w, rect.h);

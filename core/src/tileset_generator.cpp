@@ -12,26 +12,26 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
 #include "isolux/hash.hpp"
 
 namespace isolux {
 
 namespace {
 
-struct V3 {
-    double x = 0, y = 0, z = 0;
-};
-V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V3 normalize(V3 a) {
-    double l = std::sqrt(dot(a, a));
+// GLM's dot and length are (x*x + y*y) + z*z and its square root: the same
+// operations in the same order as written out, so the bytes stay the same.
+using V3 = glm::dvec3;
+// A zero vector points up (glm::normalize would give NaNs).
+V3 unit(V3 a) {
+    const double l = glm::length(a);
     return l > 0 ? a * (1.0 / l) : V3{0, 0, 1};
 }
 
 struct Material {
-    V3 albedo;             // 0..1
+    V3 albedo{0.0};             // 0..1
     double grain = 0.15;   // noise amplitude
     double freq = 0.25;    // noise frequency, per pixel
     int pattern = 0;       // 0 plain, 1 bricks, 2 cobbles, 3 waves, 4 leaves
@@ -41,14 +41,14 @@ enum class Shape { box, ellipsoid, cylinder, cone };
 
 struct Prim {
     Shape shape;
-    V3 c;  // box: min corner; others: centre of base (cylinder, cone) or centre (ellipsoid)
-    V3 r;  // box: max corner; ellipsoid: radii; cylinder/cone: (radius, unused, height)
+    V3 c{0.0};  // box: min corner; others: centre of base (cylinder, cone) or centre (ellipsoid)
+    V3 r{0.0};  // box: max corner; ellipsoid: radii; cylinder/cone: (radius, unused, height)
     int material;
 };
 
 struct Hit {
     double t = std::numeric_limits<double>::infinity();
-    V3 n;
+    V3 n{0.0};
     int material = -1;
 };
 
@@ -57,7 +57,7 @@ const V3 D{-1, -1, -1};
 
 void hit_box(const Prim& p, V3 o, Hit& h) {
     double t0 = -1e30, t1 = 1e30;
-    V3 n0;
+    V3 n0{0.0};
     const double lo[3] = {p.c.x, p.c.y, p.c.z}, hi[3] = {p.r.x, p.r.y, p.r.z}, oo[3] = {o.x, o.y, o.z};
     for (int a = 0; a < 3; ++a) {
         // D is -1 on every axis: entering through the high face.
@@ -80,7 +80,7 @@ void hit_ellipsoid(const Prim& p, V3 o, Hit& h) {
     double t = (-b - std::sqrt(disc)) / (2 * a);
     if (t < 0 || t >= h.t) return;
     V3 x = q + D * t;
-    h = {t, normalize({x.x / (p.r.x * p.r.x), x.y / (p.r.y * p.r.y), x.z / (p.r.z * p.r.z)}), p.material};
+    h = {t, unit({x.x / (p.r.x * p.r.x), x.y / (p.r.y * p.r.y), x.z / (p.r.z * p.r.z)}), p.material};
 }
 
 void hit_cylinder(const Prim& p, V3 o, Hit& h) {
@@ -102,7 +102,7 @@ void hit_cylinder(const Prim& p, V3 o, Hit& h) {
     double t = (-b - std::sqrt(disc)) / (2 * a);
     V3 x = o + D * t;
     if (t < 0 || t >= h.t || x.z < z0 || x.z > z1) return;
-    h = {t, normalize({x.x - p.c.x, x.y - p.c.y, 0}), p.material};
+    h = {t, unit({x.x - p.c.x, x.y - p.c.y, 0}), p.material};
 }
 
 void hit_cone(const Prim& p, V3 o, Hit& h) {
@@ -122,7 +122,7 @@ void hit_cone(const Prim& p, V3 o, Hit& h) {
         if (t < 0 || t >= h.t || x.z < z0 || x.z > zt) continue;
         double dx = x.x - p.c.x, dy = x.y - p.c.y, rr = std::sqrt(dx * dx + dy * dy);
         V3 n = rr > 0 ? V3{dx / rr, dy / rr, k} : V3{0, 0, 1};
-        h = {t, normalize(n), p.material};
+        h = {t, unit(n), p.material};
         return;
     }
 }
@@ -172,7 +172,7 @@ double pattern_value(const Material& mat, V3 x, std::uint64_t seed) {
     }
 }
 
-const V3 kSun = normalize({0.35, 0.6, 1.0});  // from the upper left of the screen
+const V3 kSun = unit({0.35, 0.6, 1.0});  // from the upper left of the screen
 
 struct Rendered {
     Image image;

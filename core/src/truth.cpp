@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
 #include "isolux/error.hpp"
 #include "isolux/frame.hpp"
 #include "isolux/obstacle_map.hpp"
@@ -18,6 +21,8 @@ namespace {
 // as blocked: the height map is rounded to whole pixels and averaged over the
 // pixel, so the point lies up to about a pixel inside or outside its solid.
 constexpr double surface_epsilon = 1.5;
+// How far past its own solid's surface a sprite pixel's point is moved, pixels.
+constexpr double surface_lift = 0.25;
 
 Rect area_of(std::int64_t cx, std::int64_t cy, int a, int b) {
     return {int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1};
@@ -125,7 +130,7 @@ LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::in
     std::vector<std::size_t> candidates;
     for (int y = m.clip.y; y < m.clip.y + m.clip.h; ++y)
         for (int x = m.clip.x; x < m.clip.x + m.clip.w; ++x) {
-            const std::uint8_t v = falloff(std::max(std::llabs(x - cx), std::llabs(y - cy)), p.falloff_scale);
+            const std::uint8_t v = shaped_falloff(x - cx, y - cy, a, b, p);  // the model's intensity, shape and fade
             if (v == 0) continue;
             std::size_t si = 0;
             std::int32_t owner = -1;
@@ -135,31 +140,38 @@ LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::in
                 owner = surface.instance[si];
                 h = surface.height[si];
             }
-            const Vec3 point = ground_frame(x + 0.5, y + 0.5, h);
-            const Vec3 to_light{light.x - point.x, light.y - point.y, light.z - point.z};
-            if (facing) {
-                Vec3 n{0, 0, 1};  // the ground
-                if (owner >= 0) {
-                    double best = 1e300;
-                    for (std::size_t k = 0; k < solids.solids.size(); ++k) {
-                        if (solids.instance[k] != owner) continue;
-                        double d = 0;
-                        const Vec3 nk = solid_normal(solids.solids[k], point, &d);
-                        if (d < best) best = d, n = nk;
-                    }
+            Vec3 point = ground_frame(x + 0.5, y + 0.5, h);
+            Vec3 n{0, 0, 1};  // the ground
+            if (owner >= 0) {
+                // The sprite's own surface nearest the point. Its height is whole
+                // pixels (a height map), so the point may sit a fraction of a
+                // pixel inside its solid, where a grazing segment would run
+                // inside it for pixels and shade it (bands of "acne" on curved
+                // surfaces): it is moved out along the normal, just past the
+                // surface. A point truly facing away still shades itself.
+                double best = 1e300;
+                const Solid* nearest = nullptr;
+                for (std::size_t k = 0; k < solids.solids.size(); ++k) {
+                    if (solids.instance[k] != owner) continue;
+                    double d = 0;
+                    const Vec3 nk = solid_normal(solids.solids[k], point, &d);
+                    if (d < best) best = d, n = nk, nearest = &solids.solids[k];
                 }
-                if (n.x * to_light.x + n.y * to_light.y + n.z * to_light.z <= 0) continue;
+                if (nearest) {
+                    const double out = (solid_contains(*nearest, point) ? best : 0) + surface_lift;
+                    point += n * out;
+                }
             }
-            const double len = std::sqrt(to_light.x * to_light.x + to_light.y * to_light.y + to_light.z * to_light.z);
+            const Vec3 to_light = light - point;
+            if (facing && glm::dot(n, to_light) <= 0) continue;
+            const double len = glm::length(to_light);
             if (len <= surface_epsilon) {
                 m.value[std::size_t(y - m.clip.y) * m.clip.w + (x - m.clip.x)] = v;
                 continue;
             }
             // From the light down to just short of the surface point.
             const double t_end = 1 - surface_epsilon / len;
-            const std::array<Vec3, 2> seg{
-                Vec3{std::min(light.x, point.x), std::min(light.y, point.y), std::min(light.z, point.z)},
-                Vec3{std::max(light.x, point.x), std::max(light.y, point.y), std::max(light.z, point.z)}};
+            const std::array<Vec3, 2> seg{glm::min(light, point), glm::max(light, point)};
             bool blocked = false;
             for (std::size_t k = 0; k < solids.solids.size() && !blocked; ++k)
                 blocked = boxes_meet(seg, solids.bounds[k]) && segment_hits(solids.solids[k], light, point, t_end);
@@ -177,8 +189,7 @@ LightMask exact_line_light(const Mask& obstacles, std::int64_t cx, std::int64_t 
             for (BresenhamRay r(cx, cy, x, y); clear && !r.done(); r.step())
                 clear = !obstacles.get(int(r.x), int(r.y));
             if (clear)
-                m.value[std::size_t(y - m.clip.y) * m.clip.w + (x - m.clip.x)] =
-                    falloff(std::max(std::llabs(x - cx), std::llabs(y - cy)), p.falloff_scale);
+                m.value[std::size_t(y - m.clip.y) * m.clip.w + (x - m.clip.x)] = shaped_falloff(x - cx, y - cy, a, b, p);
         }
     return m;
 }
@@ -196,6 +207,38 @@ Image lit_difference(const LightTexture& model, const LightTexture& reference) {
             if (lit_model != lit_ref) std::copy_n(lit_model ? lit_only_in_model : lit_only_in_reference, 4, out.at(x, y));
         }
     return out;
+}
+
+double reference_work(const World& world, const Scene& scene, Rect rect, Reference ref) {
+    const Params& p = scene.params;
+    if (ref == Reference::every_pixel) {
+        Scene s = scene;
+        s.params.rays = Rays::every_pixel;
+        s.params.ray_skip = 1;
+        return trace_work(s, rect);
+    }
+    // The lit pixels, and the region the lights' rays cross (as reference_texture).
+    double lit_pixels = 0, line_steps = 0;
+    Rect region = rect;
+    for (const Light& l : scene.lights) {
+        const Rect area = light_area(l, p);
+        const Rect lit = intersect(area, rect);
+        if (l.hidden || lit.empty()) continue;
+        lit_pixels += double(lit.w) * double(lit.h);
+        line_steps += double(lit.w) * double(lit.h) * (std::max(area.w, area.h) / 4.0);  // the mean line's steps
+        region = bounding(region, area);
+    }
+    if (ref == Reference::exact_line) return line_steps;
+    // Each lit pixel's segment is tested against every overlay's solid near the region.
+    int tallest = 0;
+    for (const Sprite& s : world.tileset.sprites) tallest = std::max(tallest, std::max(s.image.width, s.image.height));
+    const Rect reach{region.x - tallest, region.y - tallest, region.w + 2 * tallest, region.h + 2 * tallest};
+    double overlays = 0;
+    for (std::size_t i = world.placed.first_overlay; i < world.placed.instances.size(); ++i) {
+        const SpriteInstance& in = world.placed.instances[i];
+        overlays += !intersect(Rect{in.x, in.y, in.w, in.h}, reach).empty();
+    }
+    return lit_pixels * (1 + overlays);
 }
 
 LightTexture reference_texture(const World& world, const Scene& scene, Rect rect, Reference ref,

@@ -336,6 +336,37 @@ tmx("budget_100_tile_images", f'<tileset firstgid="1" name="t" tilewidth="64" ti
 layer_bytes = _b64.b64encode(_zlib.compress(b"\x01\0\0\0" * (1024 * 1024), 9)).decode()
 tmx("budget_64_layers_of_1024", TS + "".join(f'<layer name="l{i}" width="1024" height="1024"><data encoding="base64" compression="zlib">{layer_bytes}</data></layer>' for i in range(64)),
     attrs='orientation="isometric" width="1024" height="1024" tilewidth="64" tileheight="32"', frag="4194304 sprites")
+# A sprite's footprint mask is budgeted with its image: Algorithm 1 marks a
+# quarter of a run above and below it, so a sprite W wide may need W x W/2.
+write("ts/wide.png", png(65536, 1))
+tileset("footprint_mask_65536x1", O(image="wide.png"), 2, "megapixels")
+# A 1000-point footprint polygon on a 2048-pixel sprite is filled row by row.
+write("ts/large.png", png(2048, 2048, rows=b"".join(b"\0" + b"\0" * (2048 * 4) for _ in range(2048))))
+ring = [[1024 + int(1000 * (1 if k % 2 else 0.6) * __import__("math").cos(k * 0.00628318)),
+         1024 + int(1000 * (1 if k % 2 else 0.6) * __import__("math").sin(k * 0.00628318))] for k in range(1000)]
+poly_ts = {"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]},
+                       O(image="large.png", footprint={"polygon": ring})]}
+case("footprint_polygon_1000_points", ["render", "--scene", write("ts/poly.scene.json", json.dumps(
+    {"width": 3, "height": 3, "tileset": write("ts/poly.json", json.dumps(poly_ts)),
+     "edits": [{"tile": [1, 1], "overlays": ["o"]}]})), "--layer", "obstacles", "--out", T("out.png")], 0)
+# A million edits (36 MB) take time in proportion: each sprite name found in a
+# sorted index, not by a search per edit.
+case("edits_a_million", ["render", "--scene", write("million.scene.json", json.dumps(
+    {"width": 8, "height": 8, "edits": [{"tile": [i % 8, (i // 8) % 8], "floor": "grass"} for i in range(1000000)]})),
+    "--out", T("out.png")], 0)
+# Work counted whole before it starts: frames and view pixels, and the 3D reference.
+case("work_frames_and_view", ["render", "--size", "3x3", "--frames", "100000", "--out", T("out.png")], 2, "allow-huge")
+case("work_3d_reference", ["render", "--size", "40x40", "--light", "600,400", "--light", "800,500", "--area", "1500,1500",
+                           "--layer", "truth", "--out", T("out.png")], 2, "allow-huge")
+# A long sweep keeps one frame and a bounded cache of references, not every
+# frame nor a reference per value of a long axis.
+small_view = json.load(open(os.path.join(src, "assets/scenes/default.json")))
+small_view["camera"] = {"x": 500, "y": 300, "width": 320, "height": 240}
+small_view_path = write("small_view.scene.json", json.dumps(small_view))
+case("sweep_50_frames", ["sweep", "--scene", small_view_path, "--frames", "50", "--repeats", "1",
+                         "--param", "ray_skip=1,2", "--out", T("s50.csv")], 0)
+case("sweep_40_values", ["sweep", "--scene", small_view_path, "--frames", "1", "--repeats", "1", "--reference", "every_pixel",
+                         "--param", "light_height=" + ",".join(str(v) for v in range(1, 41)), "--out", T("s40.csv")], 0)
 must_not_exist = [T("escaped.png"), T("names", "escaped.png"), "/tmp/isolux_bad_absolute.png"]
 
 # Run them all.

@@ -69,6 +69,10 @@ struct SweepPoint {
     bool pareto = false;                 // least final RMSE for its lighting time, among its reference's points
 };
 
+// The most bytes of reference frames a sweep keeps for the combinations that
+// share them; beyond it a reference is made again when asked for.
+inline constexpr std::size_t reference_cache_bytes = std::size_t(256) << 20;
+
 struct SweepOptions {
     int frames = 8;       // frames per run; the camera moves along its path
     int repeats = 3;      // runs per combination; times are medians over runs
@@ -94,10 +98,11 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
                                   const std::function<void(int, int)>& progress = {},
                                   const std::atomic<bool>* cancel = nullptr);
 
-// The ray steps a sweep traces at most, before any of it starts: the
-// costliest combination's trace_work over the scene's camera view, times
-// the combinations, frames and runs (references included). Compared with
-// huge_trace_steps by isolux-cli and the app alike.
+// A sweep's work at most, in trace_work's steps, before any of it starts: the
+// costliest combination's frames (rays and view pixels, as render_work) on
+// every run, and each frame's references (reference_work), times the
+// combinations and frames; the light the camera carries included. Compared
+// with huge_trace_steps by isolux-cli and the app alike.
 double sweep_work(const World& world, const Scene& scene, const std::vector<SweepAxis>& axes, const SweepOptions& options);
 
 // Marks the points on the Pareto front of (lighting_ms, final RMSE), one front

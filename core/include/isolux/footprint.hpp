@@ -4,6 +4,7 @@
 // its own sprites with neither (docs/method.md has the evidence for the
 // default).
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -34,6 +35,13 @@ Mask sprite_footprint(const Image& sprite, const Mask& opacity, int anchor_x, in
 // The footprint of tileset sprite `s` under the preset `p` (its own mode, else
 // the preset's footprint), as build_obstacle_map stamps it.
 Mask tileset_footprint(const Tileset& tileset, const Sprite& s, const Params& p, FootprintReport* report = nullptr);
+
+// The most pixels the footprint mask of a w x h sprite may hold, whatever
+// the preset's footprint: Algorithm 1 marks run/4 pixels above and below a
+// run as wide as the sprite (w x (w/2 + 1)), a run footprint as much about
+// its own length. Readers count it against max_input_sprite_pixels, so a
+// small file cannot ask for gigabytes of mask (one 65536 x 1 sprite would).
+std::int64_t footprint_pixels(int w, int h, const FootprintSpec& spec);
 
 // The centre (mean of its pixels) and bounding box of a mask; false when empty.
 bool mask_centre(const Mask& m, double& x, double& y, Rect& box);

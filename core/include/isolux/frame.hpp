@@ -162,6 +162,14 @@ struct FrameState {
 // before it starts. About 1e9 steps take a few seconds on one core.
 double trace_work(const Scene& scene, Rect view);
 
+// The work of `frames` frames over `view`, in trace_work's steps: a full trace
+// on each of the frames that retrace (every l frames, the first included),
+// plus every frame's stages that read each view pixel (sprites, opacity
+// correction, blur, shift, composite), a pixel counted as view_pixel_steps.
+// What a long --frames or a large view costs, known before it starts.
+inline constexpr double view_pixel_steps = 4;
+double render_work(const Scene& scene, Rect view, int frames);
+
 // Work beyond this many steps (minutes or more on one core) is refused by
 // isolux-cli unless --allow-huge, and asked about by the app before it runs.
 constexpr double huge_trace_steps = 4e9;

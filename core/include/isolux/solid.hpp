@@ -13,20 +13,21 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 namespace isolux {
 
 enum class SolidKind { box, cylinder, cone, ellipsoid };
 std::string_view to_string(SolidKind k);
 
-struct Vec3 {
-    double x = 0, y = 0, z = 0;
-    friend bool operator==(const Vec3&, const Vec3&) = default;
-};
+// A point or direction in the ground frame, pixels (GLM, double precision:
+// the 3D reference tests segments against solids hundreds of pixels long).
+using Vec3 = glm::dvec3;
 
 struct Solid {
     SolidKind kind = SolidKind::box;
-    Vec3 a;  // box: min corner; cylinder and cone: centre of the base; ellipsoid: centre
-    Vec3 b;  // box: max corner; cylinder and cone: (radius, radius, height); ellipsoid: radii
+    Vec3 a{0.0};  // box: min corner; cylinder and cone: centre of the base; ellipsoid: centre
+    Vec3 b{0.0};  // box: max corner; cylinder and cone: (radius, radius, height); ellipsoid: radii
     friend bool operator==(const Solid&, const Solid&) = default;
 };
 

@@ -6,7 +6,8 @@
 //   3d:          the true shapes: a pixel's 3D surface point is lit when the
 //                segment to the light (at its height) clears every solid;
 //   3d_facing:   3d, and the surface faces the light.
-// Every reference uses the model's falloff, so only visibility differs.
+// Every reference uses the model's intensity (shaped_falloff: its falloff,
+// shape and edge fade), so only visibility differs.
 #pragma once
 #include <cstdint>
 #include <string_view>
@@ -47,7 +48,7 @@ WorldSolids world_solids(const World& world, Rect region);
 double light_height(const Light& light, const Params& p);
 
 // One light (centre pixel cx, cy; half-extents a, b; `height` above the
-// ground) against the true shapes: value = falloff(max(|dx|, |dy|)) where the
+// ground) against the true shapes: value = shaped_falloff(dx, dy) where the
 // pixel's surface point sees the light, 0 elsewhere. `surface` must cover
 // `clip`. With `facing`, a surface turned away from the light is dark too.
 LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::int64_t cx, std::int64_t cy,
@@ -57,6 +58,13 @@ LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::in
 // line from the centre (both ends included) is an obstacle.
 LightMask exact_line_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
                            Rect clip);
+
+// The work of reference_texture over `rect`, in trace_work's steps, known
+// before it starts: every_pixel's own trace; for exact_line a Bresenham line
+// per lit pixel (half the area's width long on average); for the 3D
+// references a segment per lit pixel tested against every overlay that
+// meets the lights' areas.
+double reference_work(const World& world, const Scene& scene, Rect rect, Reference ref);
 
 // The scene's light texture over `rect` by the reference: every light that
 // meets `rect`, accumulated as the model does (colour, intensity), light mode,

@@ -1,0 +1,57 @@
+// Beyond the paper: a sprite's 3D occupancy estimated from its alpha alone (no
+// manifest shape, no normal map), so that what stands off the ground (a canopy
+// above a trunk) can cast a shadow. The paper keeps only where an object
+// meets the ground (Algorithm 1's footprint).
+//
+// Each object is a solid of revolution about the vertical axis through its
+// footprint's centre, in the ground frame of solid.hpp (screen x = X - Y,
+// screen y = (X + Y) / 2 - Z): a stack of discs, one per pixel of height. A
+// disc of radius r at height z is drawn as an ellipse r*sqrt(2) wide and
+// r/sqrt(2) high on each side of screen row (footprint row - z); each disc is
+// the largest whose ellipse lies inside the object's opaque pixels, so the
+// solid is the largest of its kind the silhouette allows (docs/method.md).
+#pragma once
+#include <vector>
+
+#include "isolux/image.hpp"
+#include "isolux/params.hpp"
+#include "isolux/solid.hpp"
+#include "isolux/tileset.hpp"
+
+namespace isolux {
+
+struct EstimatedObject {
+    double center_x = 0, center_y = 0;  // the footprint's centre, sprite pixels (as check-tileset's obstacle_center)
+    Rect rect;                          // the footprint's bounding box, sprite pixels
+    std::vector<double> radius;         // radius[z]: the disc from height z to z + 1, ground pixels (0: none)
+
+    // The top of the solid above the ground, pixels (0: no solid).
+    double height() const { return double(radius.size()); }
+    // The heights [z_low, z_high) the solid fills at ground distance `d` from
+    // its axis; false where it fills none.
+    bool span_at(double d, double& z_low, double& z_high) const;
+    // Whether the ground-frame point `p`, relative to the axis's foot, lies inside.
+    bool contains(Vec3 p) const;
+};
+
+// The object standing in a sprite whose object pixels are `object` (the
+// footprint estimate's opacity, baked ground and shadows taken out) and whose
+// footprint is `footprint` (both in sprite pixels). None when the footprint
+// or the object is empty.
+std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint);
+
+// The objects of tileset sprite `s` under preset `p`: its footprint as the
+// obstacle map stamps it (tileset_footprint) and the estimate's pixels.
+std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite& s, const Params& p);
+
+// The sprite pixels (of a w x h sprite) where the objects' discs are drawn:
+// the estimated solids' silhouette, for a contact sheet or the inspector.
+Mask solid_silhouette(const std::vector<EstimatedObject>& objects, int w, int h);
+
+// The share of the volume two occupancies share, |A and B| / |A or B|, over
+// 1-pixel voxels: the estimated objects (relative to the sprite's anchor at
+// (anchor_x, anchor_y)) against the manifest's shape. 0 when both are empty.
+double volume_overlap(const std::vector<EstimatedObject>& objects, int anchor_x, int anchor_y,
+                      const std::vector<Solid>& shape);
+
+}  // namespace isolux

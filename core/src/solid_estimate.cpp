@@ -1,0 +1,179 @@
+// Beyond the paper: solids of revolution fitted to a sprite's silhouette
+// (solid_estimate.hpp).
+#include "isolux/solid_estimate.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+
+#include "isolux/footprint.hpp"
+
+namespace isolux {
+
+namespace {
+
+constexpr double sqrt2 = 1.4142135623730951;
+
+// Per row of the object's mask: the opaque run through column `c`, as the
+// first and last column (first > last: column c is transparent there).
+struct RunsThrough {
+    int y0 = 0;
+    std::vector<int> first, last;
+};
+
+RunsThrough runs_through(const Mask& m, int c) {
+    RunsThrough r;
+    r.y0 = m.y0;
+    r.first.assign(std::size_t(m.height), 1);
+    r.last.assign(std::size_t(m.height), 0);
+    for (int j = 0; j < m.height; ++j) {
+        const int y = m.y0 + j;
+        if (!m.get(c, y)) continue;
+        int a = c, b = c;
+        while (m.get(a - 1, y)) --a;
+        while (m.get(b + 1, y)) ++b;
+        r.first[std::size_t(j)] = a;
+        r.last[std::size_t(j)] = b;
+    }
+    return r;
+}
+
+// Whether the disc of radius r at screen centre (fx, yc) fits the object: on
+// every row, the pixels whose centres its ellipse holds are opaque. Such a
+// row's pixels always include column floor(fx), so the run through it decides.
+bool disc_fits(const RunsThrough& runs, double fx, double yc, double r) {
+    const double a = r * sqrt2, b = r / sqrt2;
+    const int y_top = int(std::floor(yc - b - 0.5)), y_bottom = int(std::ceil(yc + b - 0.5));
+    for (int y = y_top; y <= y_bottom; ++y) {
+        const double v = (y + 0.5 - yc) / b;
+        if (v * v > 1) continue;
+        const double hw = a * std::sqrt(1 - v * v);
+        const int x0 = int(std::ceil(fx - hw - 0.5)), x1 = int(std::floor(fx + hw - 0.5));
+        if (x0 > x1) continue;  // no pixel centre on this row
+        const int j = y - runs.y0;
+        if (j < 0 || j >= int(runs.first.size())) return false;
+        if (x0 < runs.first[std::size_t(j)] || x1 > runs.last[std::size_t(j)]) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+bool EstimatedObject::span_at(double d, double& z_low, double& z_high) const {
+    int lo = -1, hi = -1;
+    for (std::size_t z = 0; z < radius.size(); ++z)
+        if (radius[z] >= d && radius[z] > 0) {
+            if (lo < 0) lo = int(z);
+            hi = int(z);
+        }
+    if (lo < 0) return false;
+    z_low = lo;
+    z_high = hi + 1;
+    return true;
+}
+
+bool EstimatedObject::contains(Vec3 p) const {
+    if (p.z < 0 || p.z >= height()) return false;
+    const double r = radius[std::size_t(p.z)];
+    return r > 0 && std::hypot(p.x, p.y) <= r;
+}
+
+std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint) {
+    EstimatedObject o;
+    if (!mask_centre(footprint, o.center_x, o.center_y, o.rect) || object.count() == 0) return {};
+    const int c = int(std::floor(o.center_x));
+    const RunsThrough runs = runs_through(object, c);
+    // The object's top row: nothing of it stands above.
+    int top = object.y0 + object.height;
+    for (int j = 0; j < object.height && top == object.y0 + object.height; ++j)
+        for (int i = 0; i < object.width; ++i)
+            if (object.bits[std::size_t(j) * object.width + i]) {
+                top = object.y0 + j;
+                break;
+            }
+    const double widest = object.width / sqrt2 + 1;
+    // One disc per pixel of height, from the ground up, each the largest that
+    // fits (a bisection: a smaller disc of the same centre fits wherever a
+    // larger one does), until the discs' ellipses reach the top row: a flat
+    // top seen from above is one disc's ellipse, not a dome of small discs.
+    double reached = o.center_y;  // the highest screen row the discs' ellipses reach
+    for (int z = 0;; ++z) {
+        const double yc = o.center_y - (z + 0.5);
+        if (yc < top || reached <= top + 0.5) break;
+        double lo = 0, hi = widest;
+        if (!disc_fits(runs, o.center_x, yc, 0.5)) {
+            hi = 0;
+        } else {
+            lo = 0.5;
+            for (int k = 0; k < 16; ++k) {
+                const double mid = (lo + hi) / 2;
+                (disc_fits(runs, o.center_x, yc, mid) ? lo : hi) = mid;
+            }
+        }
+        const double r = hi == 0 ? 0 : lo;
+        o.radius.push_back(r);
+        if (r > 0) reached = std::min(reached, yc - r / sqrt2);
+    }
+    while (!o.radius.empty() && o.radius.back() == 0) o.radius.pop_back();
+    return {o};
+}
+
+std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite& s, const Params& p) {
+    FootprintReport report;
+    const Mask footprint = tileset_footprint(tileset, s, p, &report);
+    return estimate_objects(report.estimate, footprint);
+}
+
+Mask solid_silhouette(const std::vector<EstimatedObject>& objects, int w, int h) {
+    Mask m(Rect{0, 0, w, h});
+    for (const EstimatedObject& o : objects)
+        for (std::size_t z = 0; z < o.radius.size(); ++z) {
+            const double r = o.radius[z], a = r * sqrt2, b = r / sqrt2, yc = o.center_y - (double(z) + 0.5);
+            if (r <= 0) continue;
+            for (int y = int(std::floor(yc - b)); y <= int(std::ceil(yc + b)); ++y) {
+                const double v = (y + 0.5 - yc) / b;
+                if (v * v > 1) continue;
+                const double hw = a * std::sqrt(1 - v * v);
+                for (int x = int(std::ceil(o.center_x - hw - 0.5)); x <= int(std::floor(o.center_x + hw - 0.5)); ++x)
+                    m.set(x, y);
+            }
+        }
+    return m;
+}
+
+double volume_overlap(const std::vector<EstimatedObject>& objects, int anchor_x, int anchor_y,
+                      const std::vector<Solid>& shape) {
+    // Each object's axis foot in the anchor's ground frame, and the bounds of both.
+    std::vector<Vec3> feet;
+    Vec3 lo{1e300}, hi{-1e300};
+    for (const EstimatedObject& o : objects) {
+        const Vec3 foot = ground_frame(o.center_x - anchor_x, o.center_y - anchor_y, 0);
+        feet.push_back(foot);
+        double r = 0;
+        for (double v : o.radius) r = std::max(r, v);
+        lo = glm::min(lo, foot - Vec3{r, r, 0});
+        hi = glm::max(hi, foot + Vec3{r, r, o.height()});
+    }
+    for (const Solid& s : shape) {
+        const auto b = solid_bounds(s);
+        lo = glm::min(lo, b[0]);
+        hi = glm::max(hi, b[1]);
+    }
+    if (!(lo.x <= hi.x)) return 0;
+    long both = 0, either = 0;
+    for (double z = std::floor(lo.z) + 0.5; z < hi.z; z += 1)
+        for (double y = std::floor(lo.y) + 0.5; y < hi.y; y += 1)
+            for (double x = std::floor(lo.x) + 0.5; x < hi.x; x += 1) {
+                const Vec3 p{x, y, z};
+                bool in_estimate = false, in_shape = false;
+                for (std::size_t k = 0; k < objects.size() && !in_estimate; ++k)
+                    in_estimate = objects[k].contains(p - feet[k]);
+                for (std::size_t k = 0; k < shape.size() && !in_shape; ++k) in_shape = solid_contains(shape[k], p);
+                both += in_estimate && in_shape;
+                either += in_estimate || in_shape;
+            }
+    return either ? double(both) / double(either) : 0;
+}
+
+}  // namespace isolux

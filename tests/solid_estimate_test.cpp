@@ -1,0 +1,116 @@
+// Solids estimated from a sprite's alpha alone (core/src/solid_estimate.cpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "isolux/footprint.hpp"
+#include "isolux/solid_estimate.hpp"
+#include "test_util.hpp"
+
+using namespace isolux;
+
+namespace {
+
+// The opaque pixels of `shape` drawn by the projection with its anchor at
+// (ax, ay) of a w x h sprite: where the view line meets a solid.
+Mask drawn(const std::vector<Solid>& shape, int w, int h, int ax, int ay) {
+    Mask m(Rect{0, 0, w, h});
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (std::isfinite(surface_height(shape, x + 0.5 - ax, y + 0.5 - ay))) m.set(x, y);
+    return m;
+}
+
+// A footprint of a few pixels around the anchor: where the trunk stands.
+Mask foot(int w, int h, int ax, int ay) {
+    Mask m(Rect{0, 0, w, h});
+    for (int y = ay - 2; y < ay + 2; ++y)
+        for (int x = ax - 2; x < ax + 2; ++x) m.set(x, y);
+    return m;
+}
+
+const Solid trunk{SolidKind::cylinder, {0, 0, 0}, {4, 4, 30}};
+const Solid canopy{SolidKind::ellipsoid, {0, 0, 45}, {28, 28, 24}};
+
+}  // namespace
+
+// A tree drawn from its true shapes: the estimate stands a canopy off the
+// ground above a thin trunk and shares most of the tree's volume. A dome's
+// outline reaches above its top (seen from above at an angle), so the top is
+// estimated a few pixels low: the discs stop once their ellipses reach the
+// outline's top row.
+TEST(SolidEstimate, aTreeGetsATrunkAndACanopyStandingOffTheGround) {
+    const int w = 200, h = 170, ax = 100, ay = 150;
+    const Mask object = drawn({trunk, canopy}, w, h, ax, ay);
+    const auto objects = estimate_objects(object, foot(w, h, ax, ay));
+    ASSERT_EQ(objects.size(), 1u);
+    const EstimatedObject& o = objects[0];
+    EXPECT_NEAR(o.center_x, ax, 0.01);
+    EXPECT_NEAR(o.center_y, ay, 0.01);
+    EXPECT_NEAR(o.height(), 45 + 24, 10);
+    double lo = 0, hi = 0;
+    ASSERT_TRUE(o.span_at(0, lo, hi));  // at the axis: from the ground to the top
+    EXPECT_EQ(lo, 0);
+    EXPECT_EQ(hi, o.height());
+    // 20 px from the axis, past the trunk: only the canopy, well off the ground.
+    ASSERT_TRUE(o.span_at(20, lo, hi));
+    const double half = 24 * std::sqrt(1 - (20.0 / 28) * (20.0 / 28));
+    EXPECT_NEAR(lo, 45 - half, 4);
+    EXPECT_GT(lo, 20);
+    EXPECT_NEAR(hi, 45 + half, 6);
+    EXPECT_FALSE(o.span_at(35, lo, hi));  // beyond the canopy: nothing
+    EXPECT_GT(volume_overlap(objects, ax, ay, {trunk, canopy}), 0.75);
+}
+
+// A box standing on its footprint, and an empty footprint or sprite.
+TEST(SolidEstimate, aCylinderIsItselfAndEmptyInputsGiveNoObject) {
+    const int w = 120, h = 120, ax = 60, ay = 100;
+    const Solid post{SolidKind::cylinder, {0, 0, 0}, {20, 20, 50}};
+    const Mask object = drawn({post}, w, h, ax, ay);
+    const auto objects = estimate_objects(object, foot(w, h, ax, ay));
+    ASSERT_EQ(objects.size(), 1u);
+    EXPECT_NEAR(objects[0].height(), 50, 3);
+    double lo = 0, hi = 0;
+    ASSERT_TRUE(objects[0].span_at(15, lo, hi));
+    EXPECT_EQ(lo, 0);
+    EXPECT_NEAR(hi, 50, 3);
+    EXPECT_GT(volume_overlap(objects, ax, ay, {post}), 0.85);
+    EXPECT_TRUE(estimate_objects(object, Mask(Rect{0, 0, w, h})).empty());
+    EXPECT_TRUE(estimate_objects(Mask(Rect{0, 0, w, h}), foot(w, h, ax, ay)).empty());
+}
+
+// The default tileset, whose sprites were drawn from their manifest shapes:
+// every overlay gets an object, and the trees' estimates share most of their
+// shapes' volume. (Walls and fences are long boxes, not solids of revolution;
+// docs/method.md has every sprite's figure.)
+TEST(SolidEstimate, theDefaultTilesetsTreesShareMostOfTheirShapesVolume) {
+    const Tileset ts = test::default_tileset();
+    const Params p;
+    int trees = 0;
+    for (const Sprite& s : ts.sprites) {
+        if (s.kind != SpriteKind::overlay) continue;
+        const auto objects = sprite_objects(ts, s, p);
+        ASSERT_EQ(objects.size(), 1u) << s.name;
+        EXPECT_GE(objects[0].height(), 4) << s.name;
+        ASSERT_FALSE(s.shape.empty()) << s.name;
+        if (std::find(s.tags.begin(), s.tags.end(), "tree") == s.tags.end()) continue;
+        ++trees;
+        EXPECT_GT(volume_overlap(objects, s.anchor_x, s.anchor_y, s.shape), 0.6) << s.name;
+    }
+    EXPECT_EQ(trees, 3);
+}
+
+// The estimate's silhouette lies inside the sprite's opaque pixels (each disc
+// is the largest that fits) and covers most of them.
+TEST(SolidEstimate, theSolidsSilhouetteLiesInsideTheSpriteAndCoversMostOfIt) {
+    const int w = 200, h = 170, ax = 100, ay = 150;
+    const Mask object = drawn({trunk, canopy}, w, h, ax, ay);
+    const Mask drawn_solid = solid_silhouette(estimate_objects(object, foot(w, h, ax, ay)), w, h);
+    long inside = 0, outside = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (drawn_solid.get(x, y)) (object.get(x, y) ? inside : outside) += 1;
+    EXPECT_EQ(outside, 0);
+    EXPECT_GT(double(inside), 0.85 * double(object.count()));
+}
