@@ -229,6 +229,9 @@ quit
 SCRIPT
 timeout 120 "$app" --scene "$tmp/ts_scene.json" --script "$tmp/inspect.script" >"$tmp/log" 2>&1 || { bad "inspector run"; cat "$tmp/log"; }
 [ "$(json "$tmp/ts/tileset.json" "d['x_custom'], d['sprites'][5]['x_note'], d['sprites'][5]['footprint']")" = "('keep me', 'mine', {'mode': 'run', 'run': [50, 100, 20]})" ] && ok || bad "the inspector's footprint was not saved into the manifest with its other fields: $(head -c 300 "$tmp/ts/tileset.json")"
+# The inspector draws the oak's estimated solid as a yellow outline (255, 220, 0): dozens of pixels.
+yellow=$(oiiotool "$tmp/i_shot.png" --colorcount "1,0.8627,0,1" 2>/dev/null | awk '{print $1}')
+[ "${yellow:-0}" -gt 50 ] && ok || bad "the inspector shows no estimated solid (yellow pixels: ${yellow:-none})"
 
 # 2f. A script with a bad number is refused with its line, not a crash.
 printf 'wait 1\nclick abc 10\n' >"$tmp/badnum.script"

@@ -279,7 +279,20 @@ FrameReport render_app_frame(App& app, bool screenshot_mode) {
     if (acc.heatmap) {
         // The heat map replaces the other overlays while it is on; it is
         // recomputed (two CPU frames) only when the settings or view change.
-        if (acc.heatmap_stale || settings_changed || !(acc.heat.rect == app.view)) {
+        const bool wanted = acc.heatmap_stale || settings_changed || !(acc.heat.rect == app.view);
+        // Made on the frame's thread: beyond the budget it is refused with its estimate.
+        const double work = wanted ? reference_work(e.world, scene, app.view, acc.reference) +
+                                         render_work(scene, app.view, 1)
+                                   : 0;
+        if (work > huge_trace_steps) {
+            char buf[64];
+            std::snprintf(buf, sizeof buf, "%.2g", work);
+            set_status(app.editor,
+                       "the error heat map of this view would take about " + std::string(buf) +
+                           " ray steps (minutes or more): use a smaller view, area or fewer lights",
+                       true);
+            acc.heatmap = false;
+        } else if (wanted) {
             acc.heat = error_heatmap(e.world, scene, app.view, acc.reference, &acc.heat_metrics);
             acc.heatmap_stale = false;
             renderer_upload_overlay(app.renderer, acc.heat.image, acc.heat.rect);

@@ -10,6 +10,7 @@
 #include "gui/app.hpp"
 #include "gui/inspector.hpp"
 #include "isolux/footprint.hpp"
+#include "isolux/solid_estimate.hpp"
 
 namespace isolux::app {
 
@@ -47,6 +48,14 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
     for (int y = 0; y < obstacle.height; ++y)
         for (int x = 0; x < obstacle.width; ++x)
             if (obstacle.bits[std::size_t(y) * obstacle.width + x]) px(obstacle.x0 + x, obstacle.y0 + y, IM_COL32(255, 50, 50, 200));
+    // The solid estimated from the alpha alone: its outline in yellow (beyond the paper).
+    const std::vector<EstimatedObject> objects = estimate_objects(r.estimate, obstacle);
+    const Mask solid = solid_silhouette(objects, s.image.width, s.image.height);
+    for (int y = 0; y < solid.height; ++y)
+        for (int x = 0; x < solid.width; ++x)
+            if (solid.get(x, y) &&
+                (!solid.get(x - 1, y) || !solid.get(x + 1, y) || !solid.get(x, y - 1) || !solid.get(x, y + 1)))
+                px(x, y, IM_COL32(255, 220, 0, 255));
     if (r.trace.run_length > 0)
         dl->AddRect(ImVec2(o.x + r.trace.run_start * z, o.y + r.trace.chosen_line * z),
                     ImVec2(o.x + (r.trace.run_start + r.trace.run_length) * z, o.y + (r.trace.chosen_line + 1) * z),
@@ -70,6 +79,8 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
                     r.baked_ground ? "; baked ground found" : "", r.baked_shadow ? "; baked shadow found" : "");
     else
         ImGui::TextUnformatted("no obstacle: light passes through this sprite");
+    for (const EstimatedObject& ob : objects)
+        ImGui::Text("estimated solid (yellow outline): %.0f px high above its footprint's centre", ob.height());
     (void)index;
 }
 
@@ -97,7 +108,8 @@ void inspector_panel(App& app) {
     ImGui::BeginChild("sprite", ImVec2(0, 0));
     if (ui.inspector.sprite < 0 || ui.inspector.sprite >= int(sprites.size())) {
         ImGui::TextWrapped("Pick a sprite: its obstacle (red), the run Algorithm 1 chose (cyan box), the lines it "
-                           "read (blue band) and the anchor (cyan cross); what the estimate left out is dimmed.");
+                           "read (blue band), the solid estimated from its alpha (yellow outline) and the anchor (cyan "
+                           "cross); what the estimate left out is dimmed.");
     } else {
         const Sprite& s = sprites[std::size_t(ui.inspector.sprite)];
         FootprintSpec spec = s.footprint;

@@ -7,8 +7,12 @@ cd "$(dirname "$0")/../.."
 cli=${1:-build/release/app/isolux-cli}
 out=docs/accuracy
 # A sweep that fails stops the script with its message (it would otherwise leave the page half made).
+# Each sweep says what it starts (the CLI refuses one beyond the work budget, with its estimate).
+sweeps_done=0
 sweep() {
   local said
+  sweeps_done=$((sweeps_done + 1))
+  echo "make.sh: sweep $sweeps_done of 14: ${*: -1}" >&2
   said=$("$cli" sweep "$@" 2>&1 >/dev/null) || { echo "$said" >&2; return 1; }
 }
 for scene in default forest; do
