@@ -67,7 +67,7 @@ bool gpu_tracer_is_software(const GpuTracer& t) {
 
 bool gpu_trace(GpuTracer& t, const Mask& obstacles, std::uint64_t obstacles_revision,
                const std::vector<LightMask*>& masks, const Params& p) {
-    if (!t.program || p.rays_over_obstacles) return false;
+    if (!t.program || p.rays_over_obstacles || p.occluders != Occluders::footprints) return false;  // the CPU traces these
     while (glGetError() != GL_NO_ERROR) {
     }  // earlier errors are not ours
     if (obstacles.width > t.max_texture || obstacles.height > t.max_texture) return false;

@@ -200,6 +200,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
                                                (ch.part.x - st.obstacles.x0)]);
             if (p.rays_over_obstacles)
                 st.obstacle_heights = build_obstacle_heights(world.tileset, world.placed, p, st.obstacles);
+            if (p.occluders != Occluders::footprints) st.occluders = build_occluders(world, p, c.obstacle_region);
             repaint_ground_lines(c.ground, world.placed, st.opacity, ch.part);
             st.obstacles_revision = next_obstacles_revision();
         }
@@ -234,6 +235,8 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     st.obstacles = build_obstacle_map(world.tileset, world.placed, p, c.obstacle_region, &c.footprints);
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
+    // Beyond the paper: solids with height stop the rays (occluders.hpp).
+    st.occluders = p.occluders != Occluders::footprints ? build_occluders(world, p, c.obstacle_region) : OccluderMap{};
     c.ground = ground_lines(world.placed, st.opacity, c.obstacle_region);
     st.obstacles_revision = next_obstacles_revision();
     c.obstacle_params = p;
@@ -291,7 +294,7 @@ LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edi
         t.cy = std::int64_t(std::floor(l.y));
         t.a = light_a(l, p);
         t.b = light_b(l, p);
-        t.height = p.rays_over_obstacles ? light_height(l, p) : 0;
+        t.height = p.rays_over_obstacles || p.occluders != Occluders::footprints ? light_height(l, p) : 0;
         t.colour = {l.r, l.g, l.b};
         t.intensity = l.intensity;
         const Rect clip = intersect(light_area(l, p), tex_rect);
@@ -365,8 +368,11 @@ std::vector<Rect> prepare_texture(FrameState& st, Rect tex_rect, int channels, b
 void trace_and_accumulate(FrameState& st, const World& world, const Params& p, LightPlan& plan,
                           const std::vector<Rect>& to_clear, Rect tex_rect, const Rect* redo, FrameReport& rep) {
     const int threads = threads_wanted(st.options);
+    // Beyond the paper: solids with height stop the rays, and sprite pixels are
+    // lit by the points they show, in place of the opacity correction.
+    const bool solids = p.occluders != Occluders::footprints && p.mode != Mode::flat;
     const bool correct = st.options.opacity_correction && p.mode != Mode::flat;
-    const bool over = p.rays_over_obstacles && p.mode != Mode::shadow;
+    const bool over = p.rays_over_obstacles && p.mode != Mode::shadow && !solids;
     const std::size_t n = plan.todo.size();
     std::vector<double> trace_ms(n, 0), correct_ms(n, 0);
     // The order threads take the lights in: the costliest first, so that a
@@ -382,7 +388,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
 
     // Another tracer (the app's GPU) first, on this thread, when one is set.
     bool traced_elsewhere = false;
-    if (st.options.tracer && !over && n > 0) {
+    if (st.options.tracer && !over && !solids && n > 0) {
         const auto t0 = Clock::now();
         std::vector<LightMask*> masks;
         for (std::size_t k : plan.todo) {
@@ -405,18 +411,22 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             TracedLight& tl = plan.traced[order[k]];
             const auto t0 = Clock::now();
             const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
-            if (!over && !traced_elsewhere) {
+            if (!over && !solids && !traced_elsewhere) {
                 trace_light_into(tl.mask, st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
                                  area_is_clear(st.obstacles, area), ctl);
             } else {
-                if (over)  // beyond the paper: rays over low obstacles
+                if (solids)
+                    tl.mask = trace_light_solids(st.occluders, tl.cx, tl.cy, tl.a, tl.b, tl.height, p, tl.mask.clip);
+                else if (over)  // beyond the paper: rays over low obstacles
                     tl.mask = trace_light_over(st.obstacles, st.obstacle_heights, tl.cx, tl.cy, tl.a, tl.b, tl.height,
                                                p, tl.mask.clip);
                 control.add(std::int64_t(light_trace_work(tl.a, tl.b, p)));  // progress by whole lights here
             }
             const auto t1 = Clock::now();
             // The ground lines when every sprite's ground fits them; the reference otherwise.
-            if (correct && st.cache.ground.exact)
+            if (correct && solids)
+                light_sprite_points(tl.mask, st.occluders, tl.height, p);
+            else if (correct && st.cache.ground.exact)
                 correct_with_ground_lines(tl.mask, st.cache.ground);
             else if (correct)
                 correct_with_opacity_maps(tl.mask, world.placed, st.opacity);

@@ -70,10 +70,16 @@ const ParamInfo table[] = {
     {"light_height", "--light-height", nullptr, "light height", "", trace_group, ParamType::real, 0, 4096, false, 0,
      256, false, {}, "A light's height above the ground in pixels, for lights that give none. The paper's model "
      "ignores it; the 3D reference and the height options use it.", trace, ISOLUX_FIELD(light_height)},
+    {"occluders", "--occluders", nullptr, "occluders", "", obstacle_group, ParamType::choice, 0, 2, false, 0, 2,
+     false, {"footprints", "solids", "shapes"}, "What stops the rays. footprints: the paper's obstacle map and "
+     "opacity correction; solids: beyond the paper, a solid estimated from each sprite's alpha, the light at its "
+     "height, so canopies cast shadows and a higher light casts shorter ones; shapes: the manifest's own shapes the "
+     "same way (every overlay needs one). Light and shadow modes.", obstacle_map, ISOLUX_FIELD(occluders)},
     {"rays_over_obstacles", "--rays-over-obstacles", nullptr, "rays over obstacles", "", trace_group,
      ParamType::boolean, 0, 1, false, 0, 1, false, {}, "Beyond the paper: a ray passes over an obstacle lower than "
      "the ray at that point (heights estimated from each sprite's opaque rows, the light at its height), so low "
-     "sprites cast shadows of finite length. Light and flat modes.", obstacle_map, ISOLUX_FIELD(rays_over_obstacles)},
+     "sprites cast shadows of finite length. Light and flat modes; with occluders footprints only.", obstacle_map,
+     ISOLUX_FIELD(rays_over_obstacles)},
     {"blur_radius", "--blur-radius", "--blur", "blur radius", "", shade_group, ParamType::integer, 0, 255, false, 0,
      16, false, {}, "Box blur of the light texture, in pixels (paper 3.2).", blur, ISOLUX_FIELD(blur_radius)},
     {"ambient_clarity", "--ambient-clarity", "--ambient", "ambient clarity", "", shade_group, ParamType::real, 0, 1,

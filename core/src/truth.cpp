@@ -61,7 +61,8 @@ Reference parse_reference(std::string_view s, std::string_view source) {
 
 double light_height(const Light& l, const Params& p) { return l.height.value_or(p.light_height); }
 
-Surface build_surface(const World& world, Rect rect, double opacity_threshold) {
+Surface build_surface(const World& world, Rect rect, double opacity_threshold,
+                      const std::vector<std::vector<float>>* heights) {
     Surface s;
     s.rect = rect;
     s.instance.assign(std::size_t(std::max(0, rect.w)) * std::max(0, rect.h), -1);
@@ -86,7 +87,9 @@ Surface build_surface(const World& world, Rect rect, double opacity_threshold) {
                 if (!op.get(sx, sy)) continue;
                 const std::size_t i = std::size_t(y - rect.y) * rect.w + (x - rect.x);
                 s.instance[i] = std::int32_t(k);
-                if (!sp.height.empty()) {
+                if (heights && !(*heights)[std::size_t(in.sprite)].empty()) {
+                    s.height[i] = (*heights)[std::size_t(in.sprite)][std::size_t(sy) * sp.image.width + sx];
+                } else if (!sp.height.empty()) {
                     s.height[i] = float(sp.height[std::size_t(sy) * sp.image.width + sx]);
                 } else {
                     // No height map: the shape's surface seen at the pixel's centre.
@@ -108,7 +111,7 @@ WorldSolids world_solids(const World& world, Rect region) {
         const Sprite& sp = world.tileset.sprites[std::size_t(in.sprite)];
         if (sp.shape.empty())
             throw Error(world.tileset.source + ": sprite \"" + sp.name +
-                        "\" has no shape: the 3D reference needs every overlay's solids (see docs/guide.md)");
+                        "\" has no shape: the 3D reference and occluders shapes need every overlay's solids (see docs/guide.md)");
         const Vec3 origin = ground_frame(in.ground_x, in.ground_y, 0);
         for (const Solid& s : sp.shape) {
             if (!has_volume(s)) continue;

@@ -12,7 +12,7 @@ sweeps_done=0
 sweep() {
   local said
   sweeps_done=$((sweeps_done + 1))
-  echo "make.sh: sweep $sweeps_done of 14: ${*: -1}" >&2
+  echo "make.sh: sweep $sweeps_done of 16: ${*: -1}" >&2
   said=$("$cli" sweep "$@" 2>&1 >/dev/null) || { echo "$said" >&2; return 1; }
 }
 for scene in default forest; do
@@ -22,6 +22,9 @@ for scene in default forest; do
     --frames 8 --repeats 1 --out $out/${scene}_truth.csv
   sweep --scene "$s" --param light_height=4,16,32,64 --reference 3d,3d_facing,exact_line,every_pixel \
     --frames 8 --repeats 1 --no-opacity-correction --out $out/${scene}_truth_nocorr.csv
+  # Beyond the paper: what stops the rays (footprints, solids estimated from the sprites, the true shapes).
+  sweep --scene "$s" --param occluders=footprints,solids,shapes --param light_height=4,16,32,64 --reference 3d \
+    --frames 8 --repeats 1 --out $out/${scene}_occluders.csv
   # Beyond the paper: rays over low obstacles.
   sweep --scene "$s" --param rays_over_obstacles=false,true --param light_height=4,16,32,64 --reference 3d \
     --frames 8 --repeats 1 --out $out/${scene}_height_rays.csv

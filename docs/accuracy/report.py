@@ -149,6 +149,24 @@ for scene, what in SCENES.items():
         lines.append(f"{pct(without)} to {pct(with_c)} at {h} px")
     out(f"The opacity correction moves the sprite mismatch against 3D from {', '.join(lines)}.", "")
 
+out("## Beyond the paper: solids with height (occluders)", "",
+    "`occluders` (`footprints` by default): `solids` traces against a solid of revolution estimated from each",
+    "sprite's alpha, `shapes` against the manifest's own shapes, the light at its height, sprite pixels lit by the",
+    "3D point they show in place of the opacity correction (`core/src/occluders.cpp`; docs/method.md). With",
+    "`shapes` what remains is the tracer's own error; the gap between `shapes` and `solids` is the estimate's.",
+    "Lit mismatch against 3D inside the lights' areas, and the app's CPU time (obstacle map, trace and opacity",
+    "correction or sprite points) per frame:", "")
+for scene in SCENES:
+    rs = rows(f"{scene}_occluders")
+    out(f"**{scene}**:", "", "| light height | ground: footprints | ground: solids | ground: shapes | sprites: footprints | "
+        "sprites: solids | sprites: shapes | app CPU ms: footprints | solids | shapes |", "|---|---|---|---|---|---|---|---|---|---|")
+    for h in ["4", "16", "32", "64"]:
+        f, so, sh = (one(rs, light_height=h, occluders=o) for o in ("footprints", "solids", "shapes"))
+        out(f"| {h} px | {pct(f['floor_lit_mismatch'])} | {pct(so['floor_lit_mismatch'])} | {pct(sh['floor_lit_mismatch'])} | "
+            f"{pct(f['sprite_lit_mismatch'])} | {pct(so['sprite_lit_mismatch'])} | {pct(sh['sprite_lit_mismatch'])} | "
+            f"{f3(f['ms_app_cpu'])} | {f3(so['ms_app_cpu'])} | {f3(sh['ms_app_cpu'])} |")
+    out("")
+
 out("## Beyond the paper: rays over low obstacles", "",
     "`rays_over_obstacles` (off by default): each obstacle pixel carries the estimated height of its sprite (its",
     "opaque rows less its footprint's depth), and a ray from a light at its height passes over obstacles lower",

@@ -367,6 +367,10 @@ case("sweep_50_frames", ["sweep", "--scene", small_view_path, "--frames", "50", 
                          "--param", "ray_skip=1,2", "--out", T("s50.csv")], 0)
 case("sweep_40_values", ["sweep", "--scene", small_view_path, "--frames", "1", "--repeats", "1", "--reference", "every_pixel",
                          "--param", "light_height=" + ",".join(str(v) for v in range(1, 41)), "--out", T("s40.csv")], 0)
+# Tracing against the manifest's shapes, where a sprite has none: refused naming it.
+case("occluders_shapes_without_shapes", ["render", "--size", "4x4", "--tileset",
+     os.path.join(src, "tests/data/foreign_tileset/tileset.json"), "--occluders", "shapes", "--out", T("out.png")], 2,
+     "has no shape")
 must_not_exist = [T("escaped.png"), T("names", "escaped.png"), "/tmp/isolux_bad_absolute.png"]
 
 # Run them all.

@@ -14,6 +14,7 @@
 #include "isolux/image.hpp"
 #include "isolux/light_texture.hpp"
 #include "isolux/light_trace.hpp"
+#include "isolux/occluders.hpp"
 #include "isolux/opacity_correction.hpp"
 #include "isolux/scene.hpp"
 #include "isolux/stage.hpp"
@@ -148,6 +149,7 @@ struct FrameState {
     std::uint64_t obstacles_revision = 0;  // a new value, unique in the process, whenever `obstacles` changes
     std::vector<Mask> opacity;   // each tileset sprite's opacity map, by sprite index
     ObstacleHeights obstacle_heights;  // with rays_over_obstacles: the obstacles' estimated heights
+    OccluderMap occluders;             // with occluders solids or shapes: spans and surface heights
     LightTexture traced;         // the last trace: corrected light texture, world-anchored
     Rect view;                   // what the view shows, world pixels
     Image sprites;               // the view's sprites (cpu_sprites)

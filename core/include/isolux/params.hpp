@@ -44,6 +44,13 @@ enum class LightMix {
     surface,    // the sprite's own colour times the light (lit sprites keep their hue); soft shadows
 };
 
+// What a light's rays are stopped by (not in the paper but its own model first).
+enum class Occluders {
+    footprints,  // the paper's: the obstacle map (where objects meet the ground), then the opacity correction
+    solids,      // solids estimated from each sprite's alpha, the light at its height (solid_estimate.hpp)
+    shapes,      // the manifest's own shapes (art made from 3D models), the light at its height
+};
+
 // Which pixels rays are traced to.
 enum class Rays {
     border,       // every pixel of the area's border (paper 3.2, Algorithm 2)
@@ -67,6 +74,7 @@ struct Params {
     Rays rays = Rays::border;
     double light_height = 32;      // a light's height above the ground, pixels, when it gives none (not in the paper)
     bool rays_over_obstacles = false;  // rays pass over obstacles lower than the ray (height_rays.hpp; not in the paper)
+    Occluders occluders = Occluders::footprints;  // what stops the rays (occluders.hpp; not in the paper)
     Footprint footprint = Footprint::automatic;  // sprites without their own footprint (not in the paper)
     FalloffShape falloff_shape = FalloffShape::chebyshev;
     bool edge_fade = false;         // intensity falls to 0 at the area's border (not in the paper)

@@ -32,7 +32,10 @@ struct Surface {
     std::vector<std::int32_t> instance;  // the overlay's index in PlacedMap::instances; -1: ground
     std::vector<float> height;           // pixels above the ground
 };
-Surface build_surface(const World& world, Rect rect, double opacity_threshold);
+// `heights`, when given, holds per sprite (by index) the height of each of its
+// pixels, in place of its height map or shape (an estimate's).
+Surface build_surface(const World& world, Rect rect, double opacity_threshold,
+                      const std::vector<std::vector<float>>* heights = nullptr);
 
 // The overlay solids whose sprites meet `region`, in the world's ground frame
 // (each sprite's shape moved to its anchor). Throws Error naming the tileset

@@ -1,0 +1,206 @@
+// Tracing against solids with height (core/src/occluders.cpp): shadows of
+// spans worked out by hand, and the model measured against the 3D reference.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "isolux/accuracy.hpp"
+#include "isolux/error.hpp"
+#include "isolux/hash.hpp"
+#include "isolux/frame.hpp"
+#include "isolux/occluders.hpp"
+#include "test_util.hpp"
+
+using namespace isolux;
+
+namespace {
+
+// Bare ground over `r`, with the span [lo, hi) over the pixels of `where`.
+OccluderMap ground_with(Rect r, Rect where, float lo, float hi) {
+    OccluderMap m;
+    m.rect = r;
+    m.low.assign(std::size_t(r.w) * r.h, 0.f);
+    m.high.assign(m.low.size(), 0.f);
+    for (int y = where.y; y < where.y + where.h; ++y)
+        for (int x = where.x; x < where.x + where.w; ++x) {
+            m.low[std::size_t(y - r.y) * r.w + (x - r.x)] = lo;
+            m.high[std::size_t(y - r.y) * r.w + (x - r.x)] = hi;
+        }
+    m.surface.rect = r;
+    m.surface.instance.assign(m.low.size(), -1);
+    m.surface.height.assign(m.low.size(), 0.f);
+    return m;
+}
+
+bool lit(const LightMask& m, int x, int y) { return m.value[std::size_t(y - m.clip.y) * m.clip.w + (x - m.clip.x)] != 0; }
+
+Params wide() {
+    Params p;
+    p.falloff_scale = 1e6;  // no pixel of the area falls to 0 by distance
+    return p;
+}
+
+const Rect area{-150, -10, 301, 21};
+
+}  // namespace
+
+// A canopy [20, 40) px high, 28 to 32 px out, under a light 60 px high: the
+// ground beneath it is lit (the rays pass under it), its shadow falls from
+// 28 * 60 / 40 = 42 to 32 * 60 / 20 = 96 px, and beyond it is lit again.
+TEST(Occluders, aCanopyShadesTheGroundBetweenItsTwoProjections) {
+    const OccluderMap m = ground_with(area, Rect{28, -4, 5, 9}, 20, 40);
+    const LightMask l = trace_light_solids(m, 0, 0, 150, 10, 60, wide(), area);
+    for (int x : {10, 30, 40, 100, 120, 149}) EXPECT_TRUE(lit(l, x, 0)) << x;
+    for (int x : {45, 60, 80, 95}) EXPECT_FALSE(lit(l, x, 0)) << x;
+    // On the other side of the light nothing is shaded.
+    for (int x : {-30, -60, -90}) EXPECT_TRUE(lit(l, x, 0)) << x;
+}
+
+// A trunk standing on the ground: its shadow ends at s H / (H - top), shorter
+// for a higher light; one as tall as the light shades to the area's border.
+TEST(Occluders, aHigherLightCastsAShorterShadowAndATallSolidShadesToTheBorder) {
+    const OccluderMap trunk = ground_with(area, Rect{28, -4, 5, 9}, 0, 20);
+    const LightMask low = trace_light_solids(trunk, 0, 0, 150, 10, 40, wide(), area);   // to 30 * 40 / 20 = 60
+    const LightMask high = trace_light_solids(trunk, 0, 0, 150, 10, 80, wide(), area);  // to 30 * 80 / 60 = 40
+    EXPECT_FALSE(lit(low, 30, 0));  // the trunk's own ground
+    EXPECT_FALSE(lit(low, 50, 0));
+    EXPECT_TRUE(lit(high, 50, 0));
+    EXPECT_FALSE(lit(high, 36, 0));
+    EXPECT_TRUE(lit(low, 70, 0));
+    const OccluderMap wall = ground_with(area, Rect{28, -4, 5, 9}, 0, 80);
+    const LightMask under = trace_light_solids(wall, 0, 0, 150, 10, 60, wide(), area);
+    for (int x : {40, 90, 149}) EXPECT_FALSE(lit(under, x, 0)) << x;
+}
+
+// A sprite pixel shows a point 20 px up over the ground 60 px out, behind a
+// wall 30 px high 30 px out: a light 25 px high is hidden from it (the
+// segment passes the wall at 22.5 px), one 100 px high is not (at 60 px).
+TEST(Occluders, aSpritePixelIsLitByThePointItShows) {
+    const Rect r{-150, -30, 301, 41};
+    OccluderMap m = ground_with(r, Rect{28, -4, 5, 9}, 0, 30);
+    // Screen pixel (60, -20) shows a sprite's point 20 px up: its ground point is (60, 0).
+    const std::size_t sprite = std::size_t(-20 - r.y) * r.w + (60 - r.x);
+    m.surface.instance[sprite] = 0;
+    m.surface.height[sprite] = 20;
+    LightMask low = trace_light_solids(m, 0, 0, 150, 30, 25, wide(), r);
+    LightMask high = trace_light_solids(m, 0, 0, 150, 30, 100, wide(), r);
+    EXPECT_TRUE(lit(high, 60, -20));  // the ground pass takes every pixel for ground
+    light_sprite_points(low, m, 25, wide());
+    light_sprite_points(high, m, 100, wide());
+    EXPECT_FALSE(lit(low, 60, -20));
+    EXPECT_TRUE(lit(high, 60, -20));
+    // The ground at (60, 0): in the wall's shadow under the low light (a wall
+    // as tall as the light shades to the border), lit under the high one
+    // (its shadow ends at 30 * 100 / 70 = 43 px).
+    EXPECT_FALSE(lit(low, 60, 0));
+    EXPECT_TRUE(lit(high, 60, 0));
+    // In shadow mode every pixel of the area is reached.
+    Params shadow = wide();
+    shadow.mode = Mode::shadow;
+    LightMask s = trace_light_solids(m, 0, 0, 150, 30, 25, shadow, r);
+    light_sprite_points(s, m, 25, shadow);
+    ASSERT_EQ(s.reached.size(), s.value.size());
+    EXPECT_EQ(std::count(s.reached.begin(), s.reached.end(), 1), long(s.value.size()));
+    EXPECT_EQ(s.value, low.value);
+}
+
+// A tileset without shapes cannot be traced by its shapes: refused naming the sprite.
+TEST(Occluders, shapesAreRefusedByNameWhereASpriteHasNone) {
+    Tileset ts = test::default_tileset();
+    for (Sprite& s : ts.sprites)
+        if (s.name == "oak") s.shape.clear();
+    Scene sc;
+    sc.width = sc.height = 6;
+    const World w = make_world(ts, sc);
+    Params p;
+    p.occluders = Occluders::shapes;
+    try {
+        build_occluders(w, p, w.placed.bounds);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("oak"), std::string::npos) << e.what();
+    }
+    p.occluders = Occluders::solids;
+    const OccluderMap m = build_occluders(w, p, w.placed.bounds);
+    EXPECT_GT(std::count_if(m.high.begin(), m.high.end(), [](float h) { return h > 0; }), 100);
+}
+
+// Against the 3D reference, on the default seed's map and on drawn seeds and
+// lights. The ground: solids estimated from the sprites mislight under half
+// the ground pixels the paper's footprints do on the default seed, and never
+// a point more on the drawn ones; the manifest's shapes through the same
+// tracer never more than the footprints (the tracer's own error is small).
+// The sprites: not asserted, as solids mislight more of them than
+// footprints on some drawn scenes (docs/accuracy.md has the figures).
+TEST(Occluders, solidsMislightLessGroundThanFootprintsAgainst3d) {
+    for (std::uint64_t seed = 0; seed < 3; ++seed) {
+        Scene s;
+        s.width = s.height = 8;
+        s.seed = seed == 0 ? "isolux" : "drawn-" + std::to_string(seed);
+        s.params.area_a = s.params.area_b = 128;
+        s.params.falloff_scale = 8;
+        Pcg32 rng(seed + 11);
+        const World w = make_world(test::default_tileset(), s);
+        const Rect b = w.placed.bounds;
+        for (int i = 0; i < 2; ++i)
+            s.lights.push_back(Light{double(b.x + 100 + int(rng.below(std::uint32_t(b.w - 200)))) + 0.5,
+                                     double(b.y + 80 + int(rng.below(std::uint32_t(b.h - 160)))) + 0.5});
+        s.camera = {double(b.x), double(b.y), b.w, b.h};
+        SweepOptions o;
+        o.frames = 1;
+        o.repeats = 1;
+        o.carry_light = false;
+        o.references = {Reference::three_d};
+        const auto points =
+            run_sweep(w, s, {{"occluders", {"footprints", "solids", "shapes"}}, {"light_height", {"16", "32", "64"}}}, o);
+        ASSERT_EQ(points.size(), 9u);
+        for (int h = 0; h < 3; ++h) {
+            const SweepPoint &paper = points[std::size_t(h)], &solids = points[std::size_t(3 + h)],
+                             &shapes = points[std::size_t(6 + h)];
+            const std::string where = "seed " + s.seed + ", light height " + paper.values[1];
+            if (seed == 0) {
+                EXPECT_LT(solids.floor.lit_mismatch, paper.floor.lit_mismatch / 2) << where;
+                EXPECT_LT(shapes.floor.lit_mismatch, paper.floor.lit_mismatch / 4) << where;
+            }
+            EXPECT_LE(solids.floor.lit_mismatch, paper.floor.lit_mismatch + 0.01) << where;
+            EXPECT_LE(shapes.floor.lit_mismatch, paper.floor.lit_mismatch) << where;
+        }
+    }
+}
+
+// Every mode, ray skip and l frames run with solids: flat mode is the same
+// frame as with footprints (no interaction), light and shadow modes light
+// something and differ from footprints' frame.
+TEST(Occluders, everyModeRaySkipAndLFramesRunWithSolids) {
+    Scene s;
+    s.width = s.height = 6;
+    s.params.falloff_scale = 8;
+    const World w = make_world(test::default_tileset(), s);
+    const Rect b = w.placed.bounds;
+    s.lights = {Light{b.x + b.w / 2.0 + 0.5, b.y + b.h / 2.0 + 0.5}};
+    for (Mode mode : {Mode::light, Mode::shadow, Mode::flat})
+        for (int skip : {1, 4})
+            for (int every : {1, 3}) {
+                Scene fp = s, so = s;
+                for (Scene* sc : {&fp, &so}) {
+                    sc->params.mode = mode;
+                    sc->params.ray_skip = skip;
+                    sc->params.trace_every = every;
+                }
+                so.params.occluders = Occluders::solids;
+                FrameState a, c;
+                for (long f = 0; f < 4; ++f) {
+                    const Camera cam{b.x + 8.0 * f, double(b.y), b.w - 40, b.h};
+                    render_frame(a, w, fp, cam, f);
+                    render_frame(c, w, so, cam, f);
+                }
+                const auto lit = std::count_if(c.light.texels.begin(), c.light.texels.end(), [](std::uint8_t v) { return v > 0; });
+                EXPECT_GT(lit, 1000) << int(mode) << " skip " << skip << " l " << every;
+                if (mode == Mode::flat)
+                    EXPECT_EQ(a.light.texels, c.light.texels) << "skip " << skip << " l " << every;
+                else
+                    EXPECT_NE(a.light.texels, c.light.texels) << int(mode) << " skip " << skip << " l " << every;
+            }
+}
