@@ -63,6 +63,26 @@ TEST(SolidEstimate, aTreeGetsATrunkAndACanopyStandingOffTheGround) {
     EXPECT_GT(volume_overlap(objects, ax, ay, {trunk, canopy}), 0.75);
 }
 
+// A bush whose footprint Algorithm 1 puts at its widest row (its equator,
+// 10 px above where it stands): the foot moves down to where the bush meets
+// the ground, so the solid is a dome on the ground, not a pancake at the
+// equator.
+TEST(SolidEstimate, aBushsFootMovesDownFromItsEquatorToWhereItStands) {
+    const int w = 120, h = 120, ax = 60, ay = 100;
+    const std::vector<Solid> bush{{SolidKind::ellipsoid, {0, 0, 10}, {17, 17, 13}}};
+    const Mask object = drawn(bush, w, h, ax, ay);
+    const auto at_equator = estimate_objects(object, foot(w, h, ax, ay - 10));
+    ASSERT_EQ(at_equator.size(), 1u);
+    EXPECT_NEAR(at_equator[0].center_y, ay, 3);
+    EXPECT_GT(at_equator[0].height(), 12);  // a dome (its top a few pixels low, as a canopy's)
+    EXPECT_LE(at_equator[0].height(), 10 + 13 + 2);
+    EXPECT_GT(volume_overlap(at_equator, ax, ay, bush), 0.6);
+    // A footprint already where it stands stays there.
+    const auto at_foot = estimate_objects(object, foot(w, h, ax, ay));
+    ASSERT_EQ(at_foot.size(), 1u);
+    EXPECT_NEAR(at_foot[0].center_y, ay, 3);
+}
+
 // A box standing on its footprint, and an empty footprint or sprite.
 TEST(SolidEstimate, aCylinderIsItselfAndEmptyInputsGiveNoObject) {
     const int w = 120, h = 120, ax = 60, ay = 100;

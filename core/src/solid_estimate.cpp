@@ -79,44 +79,91 @@ bool EstimatedObject::contains(Vec3 p) const {
     return r > 0 && std::hypot(p.x, p.y) <= r;
 }
 
+namespace {
+
+// The object's top row: nothing of it stands above (y0 + height when empty).
+int top_row(const Mask& object) {
+    for (int j = 0; j < object.height; ++j)
+        for (int i = 0; i < object.width; ++i)
+            if (object.bits[std::size_t(j) * object.width + i]) return object.y0 + j;
+    return object.y0 + object.height;
+}
+
+// The discs of a solid whose axis meets the ground at screen (fx, fy): one
+// per pixel of height, from the ground up, each the largest that fits (a
+// bisection: a smaller disc of the same centre fits wherever a larger one
+// does), until the discs' ellipses reach the top row: a flat top seen from
+// above is one disc's ellipse, not a dome of small discs.
+std::vector<double> fit_discs(const RunsThrough& runs, double fx, double fy, int top, double widest) {
+    std::vector<double> radius;
+    double reached = fy;  // the highest screen row the discs' ellipses reach
+    for (int z = 0;; ++z) {
+        const double yc = fy - (z + 0.5);
+        if (yc < top || reached <= top + 0.5) break;
+        double r = 0;
+        if (disc_fits(runs, fx, yc, 0.5)) {
+            double lo = 0.5, hi = widest;
+            for (int k = 0; k < 16; ++k) {
+                const double mid = (lo + hi) / 2;
+                (disc_fits(runs, fx, yc, mid) ? lo : hi) = mid;
+            }
+            r = lo;
+        }
+        radius.push_back(r);
+        if (r > 0) reached = std::min(reached, yc - r / sqrt2);
+    }
+    while (!radius.empty() && radius.back() == 0) radius.pop_back();
+    return radius;
+}
+
+// How many of the object's pixels the discs' ellipses cover.
+long covered(const Mask& object, const EstimatedObject& o) {
+    const Mask drawn = solid_silhouette({o}, object.x0 + object.width, object.y0 + object.height);
+    long n = 0;
+    for (int j = 0; j < object.height; ++j)
+        for (int i = 0; i < object.width; ++i)
+            n += object.bits[std::size_t(j) * object.width + i] && drawn.get(object.x0 + i, object.y0 + j);
+    return n;
+}
+
+}  // namespace
+
 std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint) {
     EstimatedObject o;
     if (!mask_centre(footprint, o.center_x, o.center_y, o.rect) || object.count() == 0) return {};
     const int c = int(std::floor(o.center_x));
     const RunsThrough runs = runs_through(object, c);
-    // The object's top row: nothing of it stands above.
-    int top = object.y0 + object.height;
-    for (int j = 0; j < object.height && top == object.y0 + object.height; ++j)
-        for (int i = 0; i < object.width; ++i)
-            if (object.bits[std::size_t(j) * object.width + i]) {
-                top = object.y0 + j;
-                break;
-            }
+    const int top = top_row(object);
     const double widest = object.width / sqrt2 + 1;
-    // One disc per pixel of height, from the ground up, each the largest that
-    // fits (a bisection: a smaller disc of the same centre fits wherever a
-    // larger one does), until the discs' ellipses reach the top row: a flat
-    // top seen from above is one disc's ellipse, not a dome of small discs.
-    double reached = o.center_y;  // the highest screen row the discs' ellipses reach
-    for (int z = 0;; ++z) {
-        const double yc = o.center_y - (z + 0.5);
-        if (yc < top || reached <= top + 0.5) break;
-        double lo = 0, hi = widest;
-        if (!disc_fits(runs, o.center_x, yc, 0.5)) {
-            hi = 0;
-        } else {
-            lo = 0.5;
-            for (int k = 0; k < 16; ++k) {
-                const double mid = (lo + hi) / 2;
-                (disc_fits(runs, o.center_x, yc, mid) ? lo : hi) = mid;
-            }
-        }
-        const double r = hi == 0 ? 0 : lo;
-        o.radius.push_back(r);
-        if (r > 0) reached = std::min(reached, yc - r / sqrt2);
+    // Where the axis meets the ground. Algorithm 1's footprint centre is a
+    // trunk's base, but a bush's or a rock's widest row: its equator, not
+    // where it stands. So the foot may move down, to the object's lowest
+    // row at most, to the row whose solid covers most of the object's pixels
+    // (the nearest to the footprint among equals: moving a solid down only
+    // lifts it off the ground without covering more), when that covers at
+    // least 2 % more of them.
+    int bottom = int(std::floor(o.center_y));
+    for (int j = 0; j < int(runs.first.size()); ++j)
+        if (runs.first[std::size_t(j)] <= runs.last[std::size_t(j)]) bottom = std::max(bottom, runs.y0 + j);
+    EstimatedObject best = o;
+    best.radius = fit_discs(runs, o.center_x, o.center_y, top, widest);
+    const long at_footprint = covered(object, best);
+    long best_covered = at_footprint;
+    for (double fy = o.center_y + 1; fy <= bottom + 1; fy += 1) {
+        EstimatedObject t = o;
+        t.center_y = fy;
+        t.radius = fit_discs(runs, o.center_x, fy, top, widest);
+        const long n = covered(object, t);
+        if (n > best_covered) best = std::move(t), best_covered = n;
     }
-    while (!o.radius.empty() && o.radius.back() == 0) o.radius.pop_back();
-    return {o};
+    // A pixel row's worth of gain is an outline's rounding, not a better foot.
+    if (best_covered <= at_footprint + object.count() / 50) {
+        best = o;
+        best.radius = fit_discs(runs, o.center_x, o.center_y, top, widest);
+    }
+    best.rect.y += int(std::lround(best.center_y - o.center_y));  // the footprint, moved with the foot
+    if (best.radius.empty()) return {};
+    return {best};
 }
 
 std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite& s, const Params& p) {
