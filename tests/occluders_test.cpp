@@ -84,6 +84,7 @@ TEST(Occluders, aSpritePixelIsLitByThePointItShows) {
     const std::size_t sprite = std::size_t(-20 - r.y) * r.w + (60 - r.x);
     m.surface.instance[sprite] = 0;
     m.surface.height[sprite] = 20;
+    index_shown(m);
     LightMask low = trace_light_solids(m, 0, 0, 150, 30, 25, wide(), r);
     LightMask high = trace_light_solids(m, 0, 0, 150, 30, 100, wide(), r);
     EXPECT_TRUE(lit(high, 60, -20));  // the ground pass takes every pixel for ground
@@ -203,4 +204,38 @@ TEST(Occluders, everyModeRaySkipAndLFramesRunWithSolids) {
                 else
                     EXPECT_NE(a.light.texels, c.light.texels) << int(mode) << " skip " << skip << " l " << every;
             }
+}
+
+// Each sprite's solids are estimated once and kept: a map built with a warm
+// cache (over another region first) holds the same spans, surface and sprite
+// index as one built from nothing, and a state that traced a walking light
+// for several frames draws what a fresh state draws at the last one.
+TEST(Occluders, keptSolidsBuildTheSameMapAndFrameAsFreshOnes) {
+    Scene s;
+    s.width = s.height = 8;
+    s.params.falloff_scale = 8;
+    s.params.occluders = Occluders::solids;
+    const World w = make_world(test::default_tileset(), s);
+    const Rect b = w.placed.bounds;
+    SolidsCache cache;
+    build_occluders(w, s.params, Rect{b.x, b.y, b.w / 2, b.h / 2}, &cache);
+    EXPECT_GT(std::count(cache.made.begin(), cache.made.end(), 1), 0);
+    const OccluderMap warm = build_occluders(w, s.params, b, &cache), fresh = build_occluders(w, s.params, b);
+    EXPECT_EQ(warm.low, fresh.low);
+    EXPECT_EQ(warm.high, fresh.high);
+    EXPECT_EQ(warm.surface.instance, fresh.surface.instance);
+    EXPECT_EQ(warm.surface.height, fresh.surface.height);
+    EXPECT_EQ(warm.shown_start, fresh.shown_start);
+    EXPECT_EQ(warm.shown, fresh.shown);
+
+    FrameState walked;
+    const Camera cam{double(b.x), double(b.y), b.w, b.h};
+    Scene at = s;
+    for (long f = 0; f < 5; ++f) {
+        at.lights = {Light{b.x + b.w / 3.0 + 17.0 * f + 0.5, b.y + b.h / 2.0 + 0.5}};
+        render_frame(walked, w, at, cam, f);
+    }
+    FrameState fresh_state;
+    render_frame(fresh_state, w, at, cam, 0);
+    EXPECT_EQ(walked.light.texels, fresh_state.light.texels);
 }

@@ -200,7 +200,8 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
                                                (ch.part.x - st.obstacles.x0)]);
             if (p.rays_over_obstacles)
                 st.obstacle_heights = build_obstacle_heights(world.tileset, world.placed, p, st.obstacles);
-            if (p.occluders != Occluders::footprints) st.occluders = build_occluders(world, p, c.obstacle_region);
+            if (p.occluders != Occluders::footprints)
+                st.occluders = build_occluders(world, p, c.obstacle_region, &c.solids);
             repaint_ground_lines(c.ground, world.placed, st.opacity, ch.part);
             st.obstacles_revision = next_obstacles_revision();
         }
@@ -217,6 +218,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     if (params_changed || c.sprites_built != world.built_revision || world.built_revision == 0 ||
         c.footprints.size() != world.tileset.sprites.size()) {
         c.footprints.clear();
+        c.solids.clear();
         st.opacity.clear();
         for (const Sprite& s : world.tileset.sprites) {
             if (s.kind != SpriteKind::overlay) {  // floors are never obstacles
@@ -236,7 +238,8 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
     // Beyond the paper: solids with height stop the rays (occluders.hpp).
-    st.occluders = p.occluders != Occluders::footprints ? build_occluders(world, p, c.obstacle_region) : OccluderMap{};
+    st.occluders =
+        p.occluders != Occluders::footprints ? build_occluders(world, p, c.obstacle_region, &c.solids) : OccluderMap{};
     c.ground = ground_lines(world.placed, st.opacity, c.obstacle_region);
     st.obstacles_revision = next_obstacles_revision();
     c.obstacle_params = p;

@@ -2,9 +2,12 @@
 #include "isolux/occluders.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
+#include <string>
 
+#include "isolux/error.hpp"
 #include "isolux/footprint.hpp"
 #include "isolux/solid_estimate.hpp"
 
@@ -58,57 +61,21 @@ bool vertical_span(const Solid& s, double X, double Y, double& lo, double& hi) {
     return false;
 }
 
-// Each overlay's estimated objects, their spans by ground distance (a
-// quarter-pixel table, rounded outwards so a span is never wider than the
-// solid's), and the height of each sprite pixel's point.
-struct SpriteSolids {
-    std::vector<EstimatedObject> objects;
-    std::vector<std::vector<std::pair<float, float>>> spans;  // per object, per quarter pixel of distance
-    std::vector<float> heights;                               // per sprite pixel
-};
-
-SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) {
-    SpriteSolids out;
-    out.objects = sprite_objects(ts, s, p);
-    for (const EstimatedObject& o : out.objects) {
-        double widest = 0;
-        for (double r : o.radius) widest = std::max(widest, r);
-        std::vector<std::pair<float, float>> table(std::size_t(std::ceil(widest * 4)) + 2, {0.f, 0.f});
-        for (std::size_t k = 0; k < table.size(); ++k) {
-            double lo = 0, hi = 0;
-            if (o.span_at(double(k) / 4, lo, hi)) table[k] = {float(lo), float(hi)};
-        }
-        out.spans.push_back(std::move(table));
-    }
-    // The point a pixel shows: the topmost point of a solid on its view line
-    // (the first the viewer meets), else its row's height above the footprint.
-    out.heights.assign(std::size_t(s.image.width) * s.image.height, 0.f);
-    for (int y = 0; y < s.image.height; ++y)
-        for (int x = 0; x < s.image.width; ++x) {
-            float best = -1;
-            for (const EstimatedObject& o : out.objects) {
-                for (double z = o.height(); z >= 0 && best < 0; z -= 0.5)
-                    if (o.contains(ground_frame(x + 0.5 - o.center_x, y + 0.5 - o.center_y, z))) best = float(z);
-                if (best < 0) best = float(std::max(0.0, o.center_y - (y + 0.5)));
-            }
-            out.heights[std::size_t(y) * s.image.width + x] = std::max(best, 0.f);
-        }
-    return out;
-}
-
 void fill_estimated(OccluderMap& m, const World& world, const Params& p, const std::vector<std::uint32_t>& near,
-                    std::vector<std::vector<float>>& heights) {
-    std::vector<SpriteSolids> per_sprite(world.tileset.sprites.size());
-    std::vector<char> made(per_sprite.size(), 0);
+                    SolidsCache& cache, std::vector<std::vector<float>>& heights) {
+    if (cache.made.size() != world.tileset.sprites.size()) {
+        cache.sprites.assign(world.tileset.sprites.size(), SpriteSolids{});
+        cache.made.assign(world.tileset.sprites.size(), 0);
+    }
     for (std::uint32_t k : near) {
         const SpriteInstance& in = world.placed.instances[k];
         const std::size_t si = std::size_t(in.sprite);
-        if (!made[si]) {
-            per_sprite[si] = sprite_solids(world.tileset, world.tileset.sprites[si], p);
-            heights[si] = per_sprite[si].heights;
-            made[si] = 1;
+        if (!cache.made[si]) {
+            cache.sprites[si] = sprite_solids(world.tileset, world.tileset.sprites[si], p);
+            cache.made[si] = 1;
         }
-        const SpriteSolids& ss = per_sprite[si];
+        const SpriteSolids& ss = cache.sprites[si];
+        if (heights[si].empty()) heights[si] = ss.heights;
         for (std::size_t j = 0; j < ss.objects.size(); ++j) {
             const EstimatedObject& o = ss.objects[j];
             const auto& table = ss.spans[j];
@@ -148,7 +115,101 @@ void fill_shapes(OccluderMap& m, const World& world, Rect region) {
 
 }  // namespace
 
-OccluderMap build_occluders(const World& world, const Params& p, Rect region) {
+
+SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) {
+    SpriteSolids out;
+    out.objects = sprite_objects(ts, s, p);
+    for (const EstimatedObject& o : out.objects) {
+        double widest = 0;
+        for (double r : o.radius) widest = std::max(widest, r);
+        std::vector<std::pair<float, float>> table(std::size_t(std::ceil(widest * 4)) + 2, {0.f, 0.f});
+        for (std::size_t k = 0; k < table.size(); ++k) {
+            double lo = 0, hi = 0;
+            if (o.span_at(double(k) / 4, lo, hi)) table[k] = {float(lo), float(hi)};
+        }
+        out.spans.push_back(std::move(table));
+    }
+    // The point a pixel shows: the topmost point of a solid on its view line
+    // (the first the viewer meets), else its row's height above the
+    // footprint. On the view line through sprite pixel (sx, sy) relative to
+    // an axis's foot, the point z high lies 2 (sy + z)^2 + sx^2 / 2 squared
+    // ground pixels from the axis (screen x = X - Y, y = (X + Y) / 2 - z).
+    out.heights.assign(std::size_t(s.image.width) * s.image.height, 0.f);
+    for (int y = 0; y < s.image.height; ++y)
+        for (int x = 0; x < s.image.width; ++x) {
+            float best = -1;
+            for (const EstimatedObject& o : out.objects) {
+                const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y;
+                for (double z = o.height(); z >= 0 && best < 0; z -= 0.5) {
+                    if (z >= o.height()) continue;
+                    const double r = o.radius[std::size_t(z)];
+                    const double d2 = 2 * (sy + z) * (sy + z) + sx * sx / 2;
+                    if (r > 0 && d2 <= r * r) best = float(z);
+                }
+                if (best < 0) best = float(std::max(0.0, o.center_y - (y + 0.5)));
+            }
+            out.heights[std::size_t(y) * s.image.width + x] = std::max(best, 0.f);
+        }
+    return out;
+}
+
+void index_shown(OccluderMap& m) {
+    const Surface& s = m.surface;
+    const std::size_t n = s.instance.size();
+    if (n >= std::numeric_limits<std::uint32_t>::max())
+        throw Error("occluders: the region of " + std::to_string(n) + " pixels is too large to trace against solids");
+    m.shown_start.assign(n + 1, 0);
+    auto ground_of = [&](std::size_t i, std::size_t& g) {
+        if (s.instance[i] < 0) return false;
+        const std::int64_t x = std::int64_t(i % std::size_t(s.rect.w)), y = std::int64_t(i / std::size_t(s.rect.w));
+        const std::int64_t gy = y + std::llround(s.height[i]);
+        if (gy >= s.rect.h) return false;
+        g = std::size_t(gy) * std::size_t(s.rect.w) + std::size_t(x);
+        return true;
+    };
+    std::size_t g = 0;
+    for (std::size_t i = 0; i < n; ++i)
+        if (ground_of(i, g)) ++m.shown_start[g + 1];
+    for (std::size_t i = 0; i < n; ++i) m.shown_start[i + 1] += m.shown_start[i];
+    m.shown.assign(m.shown_start[n], 0);
+    std::vector<std::uint32_t> next(m.shown_start.begin(), m.shown_start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i)
+        if (ground_of(i, g)) m.shown[next[g]++] = std::uint32_t(i);
+}
+
+namespace {
+
+// The descents u = (H - z) / s (per step of a ray) that the spans a ray has
+// passed block, as disjoint intervals (from, to], sorted: a segment from the
+// light down to a point h high d steps out descends (H - h) / d per step, and
+// a span [lo, hi) s steps out blocks it when lo <= H - u s < hi.
+class BlockedDescents {
+public:
+    void clear() { iv_.clear(); }
+    void add(double from, double to) {
+        auto it = std::lower_bound(iv_.begin(), iv_.end(), from, [](const Iv& v, double x) { return v.to < x; });
+        auto end = it;
+        while (end != iv_.end() && end->from <= to) {
+            from = std::min(from, end->from);
+            to = std::max(to, end->to);
+            ++end;
+        }
+        it = iv_.erase(it, end);
+        iv_.insert(it, Iv{from, to});
+    }
+    bool blocks(double u) const {
+        auto it = std::lower_bound(iv_.begin(), iv_.end(), u, [](const Iv& v, double x) { return v.to < x; });
+        return it != iv_.end() && it->from < u;
+    }
+
+private:
+    struct Iv { double from, to; };
+    std::vector<Iv> iv_;
+};
+
+}  // namespace
+
+OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache) {
     OccluderMap m;
     m.rect = region;
     const std::size_t n = std::size_t(std::max(0, region.w)) * std::max(0, region.h);
@@ -156,6 +217,7 @@ OccluderMap build_occluders(const World& world, const Params& p, Rect region) {
     m.high.assign(n, 0.f);
     if (region.empty() || p.occluders == Occluders::footprints) {
         m.surface = build_surface(world, region, p.opacity_threshold);
+        index_shown(m);
         return m;
     }
     std::vector<std::uint32_t> near;
@@ -165,9 +227,11 @@ OccluderMap build_occluders(const World& world, const Params& p, Rect region) {
         m.surface = build_surface(world, region, p.opacity_threshold);
     } else {
         std::vector<std::vector<float>> heights(world.tileset.sprites.size());
-        fill_estimated(m, world, p, near, heights);
+        SolidsCache own;
+        fill_estimated(m, world, p, near, cache ? *cache : own, heights);
         m.surface = build_surface(world, region, p.opacity_threshold, &heights);
     }
+    index_shown(m);
     return m;
 }
 
@@ -212,21 +276,32 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
 
 void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
     if (m.clip.empty()) return;
+    assert(occ.shown_start.size() == occ.surface.instance.size() + 1);  // index_shown
     const double H = std::max(height, 0.0);
     const Surface& surface = occ.surface;
     const std::int64_t cx = m.cx, cy = m.cy;
-    auto index = [&](std::int64_t x, std::int64_t y) { return std::size_t(y - m.clip.y) * m.clip.w + std::size_t(x - m.clip.x); };
-    auto shows_sprite = [&](std::int64_t x, std::int64_t y) {
-        return surface.rect.contains(int(x), int(y)) &&
-               surface.instance[std::size_t(y - surface.rect.y) * surface.rect.w + std::size_t(x - surface.rect.x)] >= 0;
-    };
-    // The point each sprite pixel shows, against the spans on its own line.
     const Rect area = intersect(Rect{int(cx) - m.a, int(cy) - m.b, 2 * m.a + 1, 2 * m.b + 1}, m.clip);
+    auto index = [&](std::int64_t x, std::int64_t y) { return std::size_t(y - m.clip.y) * m.clip.w + std::size_t(x - m.clip.x); };
+    auto at = [&](std::int64_t x, std::int64_t y) {
+        return std::size_t(y - surface.rect.y) * surface.rect.w + std::size_t(x - surface.rect.x);
+    };
+    auto shows_sprite = [&](std::int64_t x, std::int64_t y) {
+        return surface.rect.contains(int(x), int(y)) && surface.instance[at(x, y)] >= 0;
+    };
+    auto intensity = [&](std::int64_t x, std::int64_t y) {
+        return falloff(std::max(std::llabs(x - cx), std::llabs(y - cy)), p.falloff_scale);
+    };
+    const Rect whole_area{int(cx) - m.a, int(cy) - m.b, 2 * m.a + 1, 2 * m.b + 1};
+    // Every sprite pixel starts unlit; a ray that reaches its ground point
+    // unblocked lights it. One whose ground point no ray walks (outside the
+    // area or the map) is tested along its own line.
     for (int y = area.y; y < area.y + area.h; ++y)
         for (int x = area.x; x < area.x + area.w; ++x) {
             if (!shows_sprite(x, y)) continue;
-            const double h = surface.height[std::size_t(y - surface.rect.y) * surface.rect.w + std::size_t(x - surface.rect.x)];
+            m.value[index(x, y)] = 0;
+            const double h = surface.height[at(x, y)];
             const std::int64_t gx = x, gy = y + std::llround(h);
+            if (whole_area.contains(int(gx), int(gy)) && surface.rect.contains(int(gx), int(gy))) continue;
             const std::int64_t steps = std::max(std::llabs(gx - cx), std::llabs(gy - cy));
             bool lit = true;
             for (BresenhamRay r(cx, cy, gx, gy); lit && !r.done() && r.i <= steps - own_steps; r.step()) {
@@ -235,8 +310,44 @@ void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, co
                 const double z = H + (h - H) * double(r.i) / double(steps);
                 lit = !(z >= lo && z < hi);
             }
-            m.value[index(x, y)] = lit ? falloff(std::max(std::llabs(x - cx), std::llabs(y - cy)), p.falloff_scale) : 0;
+            if (lit) m.value[index(x, y)] = intensity(x, y);
         }
+    // Along each ray: the descents blocked by the spans passed at least
+    // own_steps before (the last steps hold the point's own solid at about
+    // its height), then the points over this step's ground pixel.
+    BlockedDescents blocked;
+    std::vector<std::pair<float, float>> passed;  // per step: the span there (none: hi <= lo)
+    const double inf = std::numeric_limits<double>::infinity();
+    for_each_ray_target(cx, cy, m.a, m.b, p, [&](std::int64_t tx, std::int64_t ty) {
+        blocked.clear();
+        passed.clear();
+        for (BresenhamRay r(cx, cy, tx, ty); !r.done(); r.step()) {
+            float lo = 0, hi = 0;
+            if (!occ.span(r.x, r.y, lo, hi)) lo = hi = 0;
+            passed.push_back({lo, hi});
+            const std::int64_t s = r.i - own_steps;
+            if (s >= 0 && passed[std::size_t(s)].second > passed[std::size_t(s)].first) {
+                const double slo = passed[std::size_t(s)].first, shi = passed[std::size_t(s)].second;
+                if (s == 0) {  // the light's own pixel: a light inside a solid is hidden from all
+                    if (slo <= H && H < shi) blocked.add(-inf, inf);
+                } else {
+                    blocked.add((H - shi) / double(s), (H - slo) / double(s));
+                }
+            }
+            if (!surface.rect.contains(int(r.x), int(r.y))) continue;
+            const std::size_t g = at(r.x, r.y);
+            for (std::uint32_t k = occ.shown_start[g]; k < occ.shown_start[g + 1]; ++k) {
+                const std::size_t q = occ.shown[k];
+                const std::int64_t x = surface.rect.x + std::int64_t(q % std::size_t(surface.rect.w));
+                const std::int64_t y = surface.rect.y + std::int64_t(q / std::size_t(surface.rect.w));
+                if (!area.contains(int(x), int(y))) continue;
+                std::uint8_t& v = m.value[index(x, y)];
+                if (v) continue;
+                const double u = r.i > 0 ? (H - double(surface.height[q])) / double(r.i) : 0;
+                if (r.i <= own_steps || !blocked.blocks(u)) v = intensity(x, y);
+            }
+        }
+    });
 }
 
 }  // namespace isolux

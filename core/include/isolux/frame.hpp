@@ -99,6 +99,7 @@ struct FrameCache {
     std::uint64_t world_revision = ~0ull;
     Params obstacle_params;
     Rect obstacle_region;
+    SolidsCache solids;  // with occluders solids: each sprite's, estimated once
 
     // Each light's traced and corrected pixels, kept while the obstacle map,
     // the tracing parameters and the light's centre, area and clip are the

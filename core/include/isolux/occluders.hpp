@@ -9,9 +9,11 @@
 // area's border where z_high >= H; nothing where z_low >= H), so one pass per
 // ray suffices. A sprite pixel showing a point at height h over ground pixel g
 // (h pixels below it on screen) is lit when the segment from the light to
-// that point clears the spans along g's own line from the light's centre.
-// That replaces the opacity correction (light_sprite_points, timed as that
-// stage), which only guesses which sprite pixels stand above a light.
+// that point clears the spans along a ray that reaches g: walking a ray, the
+// spans passed so far block a set of descents (H - h) / d that only grows, so
+// each point is tested where the ray meets its ground pixel, one pass per ray
+// again. That replaces the opacity correction (light_sprite_points, timed as
+// that stage), which only guesses which sprite pixels stand above a light.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -19,6 +21,7 @@
 #include "isolux/image.hpp"
 #include "isolux/light_trace.hpp"
 #include "isolux/params.hpp"
+#include "isolux/solid_estimate.hpp"
 #include "isolux/truth.hpp"
 #include "isolux/world.hpp"
 
@@ -28,6 +31,10 @@ struct OccluderMap {
     Rect rect;                       // world pixels, as the obstacle map's
     std::vector<float> low, high;    // per ground pixel: the span filled; high <= low: none
     Surface surface;                 // per pixel: what it shows (ground or an overlay) and its height
+    // Per ground pixel g, the sprite pixels whose point stands over it (h
+    // rows above g): shown[shown_start[g] .. shown_start[g + 1]), each a
+    // pixel's index in `rect`. The sprite pass tests them where a ray meets g.
+    std::vector<std::uint32_t> shown_start, shown;
 
     bool span(std::int64_t x, std::int64_t y, float& z_low, float& z_high) const {
         if (!rect.contains(int(x), int(y))) return false;
@@ -38,10 +45,34 @@ struct OccluderMap {
     }
 };
 
+// One sprite's estimated objects, their spans by ground distance (a
+// quarter-pixel table per object, rounded outwards so a span is never wider
+// than the solid's), and the height of the point each sprite pixel shows.
+struct SpriteSolids {
+    std::vector<EstimatedObject> objects;
+    std::vector<std::vector<std::pair<float, float>>> spans;
+    std::vector<float> heights;
+};
+SpriteSolids sprite_solids(const Tileset& tileset, const Sprite& s, const Params& p);
+
+// Each sprite's solids, estimated once (they depend on the sprite and the
+// parameters only): build_occluders fills it as sprites come into view. The
+// owner empties it when the tileset or the obstacle map's parameters change.
+struct SolidsCache {
+    std::vector<SpriteSolids> sprites;
+    std::vector<char> made;
+    void clear() { sprites.clear(), made.clear(); }
+};
+
 // The occluders of every overlay meeting `region` (and those standing near
-// it), by `p.occluders`: solids estimated from the sprites, or the manifest's
-// shapes (Error naming the tileset and the sprite when an overlay has none).
-OccluderMap build_occluders(const World& world, const Params& p, Rect region);
+// it), by `p.occluders`: solids estimated from the sprites (kept in `cache`
+// when given), or the manifest's shapes (Error naming the tileset and the
+// sprite when an overlay has none).
+OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache = nullptr);
+
+// Fills `m.shown` from its surface (build_occluders does; a map made by hand
+// calls it once its surface is set). Error when the region has 2^32 pixels or more.
+void index_shown(OccluderMap& m);
 
 // One light at (cx, cy), half-extents a, b, at `height` above the ground,
 // traced against `occ` as ground everywhere: value = falloff(max(|dx|, |dy|))
@@ -52,7 +83,10 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
                              const Params& p, Rect clip);
 
 // Then every pixel of the mask that shows a sprite, lit (or not) by the 3D
-// point it shows: in place of the opacity correction, and timed as it.
+// point it shows, tested along the same rays as the ground (ray skip, or
+// every pixel): in place of the opacity correction, and timed as it. A pixel
+// whose ground point lies outside the area (or the map) is tested along its
+// own line from the light's centre.
 void light_sprite_points(LightMask& mask, const OccluderMap& occ, double height, const Params& p);
 
 }  // namespace isolux
