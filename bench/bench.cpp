@@ -137,6 +137,33 @@ void register_tracers() {
         }
 }
 
+// Beyond the paper: one light traced against solids estimated from the
+// sprites on the default map, at 32 px: its ground pass and its sprite pass.
+void register_solids() {
+    for (int a : {64, 128}) {
+        const std::string suffix = "/default/" + std::to_string(2 * a + 1);
+        for (bool sprites : {false, true})
+            benchmark::RegisterBenchmark((std::string(sprites ? "trace/solids_sprites" : "trace/solids_ground") + suffix).c_str(),
+                                         [a, sprites](benchmark::State& st) {
+                                             const World& w = bench::world("default", 24);
+                                             Params p;
+                                             p.occluders = Occluders::solids;
+                                             static const OccluderMap occ = build_occluders(w, p, w.placed.bounds);
+                                             const std::int64_t cx = w.placed.bounds.x + w.placed.bounds.w / 2,
+                                                                cy = w.placed.bounds.y + w.placed.bounds.h / 2;
+                                             const Rect area{int(cx) - a, int(cy) - a, 2 * a + 1, 2 * a + 1};
+                                             LightMask m = trace_light_solids(occ, cx, cy, a, a, 32, p, area);
+                                             for (auto _ : st) {
+                                                 if (sprites)
+                                                     light_sprite_points(m, occ, 32, p);
+                                                 else
+                                                     m = trace_light_solids(occ, cx, cy, a, a, 32, p, area);
+                                                 benchmark::DoNotOptimize(m.value.data());
+                                             }
+                                         });
+    }
+}
+
 // ------------------------------------------------------------------ frames
 
 Scene lights_scene(const World& w, int n, std::uint64_t seed, int a = 128) {
@@ -456,6 +483,7 @@ int ratios() {
 
 int main(int argc, char** argv) {
     register_tracers();
+    register_solids();
     register_frames();
     register_truth();
     bench::register_edits();

@@ -45,8 +45,34 @@ void print_gpu_figures() {
                     ++compared;
                 }
     }
-    std::printf("gpu_trace_identical %d (%d traces: 4 scenes, 3 areas, k = 1 and 4, light and shadow; on %s)\n",
-                identical ? 1 : 0, compared, tracer.renderer.c_str());
+    // Against solids with height: estimated and the manifest's shapes, on the default map.
+    const World& w = world("default", 24);
+    int against_solids = 0;
+    for (Occluders kind : {Occluders::solids, Occluders::shapes}) {
+        Params base;
+        base.occluders = kind;
+        const OccluderMap occ = build_occluders(w, base, w.placed.bounds);
+        ++revision;
+        const std::int64_t cx = w.placed.bounds.x + w.placed.bounds.w / 2, cy = w.placed.bounds.y + w.placed.bounds.h / 2;
+        for (int a : {64, 128})
+            for (int k : {1, 4})
+                for (Mode mode : {Mode::light, Mode::shadow}) {
+                    Params p = base;
+                    p.ray_skip = k;
+                    p.mode = mode;
+                    const Rect area{int(cx) - a, int(cy) - a, 2 * a + 1, 2 * a + 1};
+                    const LightMask want = trace_light_solids(occ, cx, cy, a, a, 32, p, area);
+                    LightMask got;
+                    start_mask(got, cx, cy, a, a, p, area, mode == Mode::shadow);
+                    std::vector<LightMask*> masks{&got};
+                    identical = identical && app::gpu_trace_solids(tracer, occ, revision, masks, {32.0}, p) &&
+                                got.value == want.value && got.reached == want.reached;
+                    ++against_solids;
+                }
+    }
+    std::printf("gpu_trace_identical %d (%d traces: 4 scenes, 3 areas, k = 1 and 4, light and shadow; and %d against "
+                "solids and shapes, 2 areas, k = 1 and 4, light and shadow; on %s)\n",
+                identical ? 1 : 0, compared, against_solids, tracer.renderer.c_str());
     // One 257^2 light on the default map, the GPU (upload, dispatch, read back) over the CPU.
     const TraceScene& s = trace_scene("default");
     Params p;

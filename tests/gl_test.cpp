@@ -5,6 +5,8 @@
 
 #include <GLFW/glfw3.h>
 
+#include <array>
+
 #include "gui/gpu_tracer.hpp"
 #include "gui/renderer.hpp"
 #include "gui/window.hpp"
@@ -12,6 +14,7 @@
 #include "isolux/frame.hpp"
 #include "isolux/hash.hpp"
 #include "isolux/obstacle_map.hpp"
+#include "isolux/occluders.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -241,8 +244,9 @@ TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
     Scene s;
     s.lights = {Light{120.5, 90.5}, Light{300.5, 160.5, 60, 40}};
     FrameState cpu, gpu;
-    gpu.options.tracer = [&](const Mask& ob, std::uint64_t rev, const std::vector<LightMask*>& masks, const Params& p) {
-        return gpu_trace(tracer, ob, rev, masks, p) ? std::string_view("gpu") : std::string_view();
+    gpu.options.tracer = [&](const Mask& ob, std::uint64_t rev, const OccluderMap* occ, const std::vector<LightMask*>& masks,
+                             const std::vector<double>& heights, const Params& p) {
+        return gpu_trace_frame(tracer, ob, rev, occ, masks, heights, p);
     };
     for (long f = 0; f < 3; ++f) {
         s.lights[0].x += 9;
@@ -265,5 +269,83 @@ TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
     const FrameReport r2 = render_frame(gpu2, w2, s, Camera{}, 0);
     EXPECT_EQ(r2.tracer, "gpu");
     EXPECT_EQ(gpu2.traced.texels, cpu2.traced.texels) << "a second frame state";
+    gpu_tracer_free(tracer);
+}
+
+// Beyond the paper: the ground pass against solids with height on the GPU
+// (shaders/trace_solids.comp) gives trace_light_solids's bytes, estimated
+// solids and the manifest's shapes, light and shadow modes, ray skips, every
+// pixel, light heights from the ground to above every solid, clipped views
+// and centres near and past the map's edge; and whole frames (the sprite
+// pass on the CPU) equal the CPU's.
+TEST(Gl, theGpuTracesAgainstSolidsAsTheCpuDoes) {
+    ASSERT_NE(gl().window, nullptr) << "no GL context (run under xvfb-run): " << gl().error;
+    GpuTracer tracer;
+    std::string error;
+    ASSERT_TRUE(gpu_tracer_init(tracer, error)) << error;
+    const World& w = world();
+    const Rect b = w.placed.bounds;
+    int compared = 0, lit_pixels = 0, shaded_pixels = 0;
+    std::uint64_t revision = 1000;
+    for (Occluders kind : {Occluders::solids, Occluders::shapes}) {
+        Params base;
+        base.occluders = kind;
+        const OccluderMap occ = build_occluders(w, base, b);
+        ++revision;
+        Pcg32 rng(7);
+        for (Mode mode : {Mode::light, Mode::shadow})
+            for (int variant = 0; variant < 6; ++variant) {
+                Params p = base;
+                p.mode = mode;
+                p.falloff_scale = 8;
+                p.ray_skip = variant % 3 == 0 ? 1 : variant % 3 == 1 ? 2 : 5;
+                if (variant == 5) p.rays = Rays::every_pixel;
+                const int a = variant == 5 ? 20 + int(rng.below(30)) : 40 + int(rng.below(140));
+                const int bb = variant == 5 ? 20 + int(rng.below(30)) : 40 + int(rng.below(140));
+                const double height = std::array<double, 6>{0, 4, 16, 32, 64, 200}[std::size_t(variant)];
+                const std::int64_t cx = b.x - 20 + std::int64_t(rng.below(std::uint32_t(b.w + 40)));
+                const std::int64_t cy = b.y - 20 + std::int64_t(rng.below(std::uint32_t(b.h + 40)));
+                Rect clip{int(cx) - a, int(cy) - bb, 2 * a + 1, 2 * bb + 1};
+                if (variant == 3) clip = intersect(clip, {int(cx) - a / 3, int(cy) - bb, a, 2 * bb});  // a view cuts it
+                const LightMask want = trace_light_solids(occ, cx, cy, a, bb, height, p, clip);
+                LightMask got;
+                start_mask(got, cx, cy, a, bb, p, clip, mode == Mode::shadow);
+                std::vector<LightMask*> masks{&got};
+                ASSERT_TRUE(gpu_trace_solids(tracer, occ, revision, masks, {height}, p)) << to_string(mode) << " " << variant;
+                const std::string where = std::string(kind == Occluders::solids ? "solids " : "shapes ") + std::string(to_string(mode)) +
+                                          " variant " + std::to_string(variant);
+                EXPECT_EQ(got.value, want.value) << where;
+                EXPECT_EQ(got.reached, want.reached) << where;
+                // What the ground pass would light with nothing in the way: some of it is shaded.
+                const LightMask open = trace_light_solids(OccluderMap{}, cx, cy, a, bb, height, p, clip);
+                for (std::size_t i = 0; i < want.value.size(); ++i) {
+                    lit_pixels += want.value[i] != 0;
+                    shaded_pixels += open.value[i] != 0 && want.value[i] == 0;
+                }
+                ++compared;
+            }
+    }
+    EXPECT_EQ(compared, 24);
+    EXPECT_GT(lit_pixels, 100000) << "the cases must light something";
+    EXPECT_GT(shaded_pixels, 5000) << "and solids must shade some of it";
+
+    Scene s;
+    s.params.occluders = Occluders::solids;
+    s.params.falloff_scale = 8;
+    s.lights = {Light{b.x + b.w / 3.0 + 0.5, b.y + b.h / 2.0 + 0.5}, Light{b.x + 2 * b.w / 3.0 + 0.5, b.y + b.h / 3.0 + 0.5}};
+    FrameState cpu, gpu;
+    gpu.options.tracer = [&](const Mask& ob, std::uint64_t rev, const OccluderMap* occ, const std::vector<LightMask*>& masks,
+                             const std::vector<double>& heights, const Params& p) {
+        return gpu_trace_frame(tracer, ob, rev, occ, masks, heights, p);
+    };
+    for (long f = 0; f < 3; ++f) {
+        s.lights[0].x += 9;
+        const FrameReport rc = render_frame(cpu, w, s, Camera{}, f);
+        const FrameReport rg = render_frame(gpu, w, s, Camera{}, f);
+        EXPECT_EQ(rc.tracer, "cpu");
+        EXPECT_EQ(rg.tracer, "gpu");
+        EXPECT_EQ(gpu.traced.texels, cpu.traced.texels) << "frame " << f;
+        EXPECT_EQ(gpu.final.rgba, cpu.final.rgba) << "frame " << f;
+    }
     gpu_tracer_free(tracer);
 }

@@ -27,8 +27,9 @@ namespace {
 
 LightTracer chosen_tracer(App& app) {
     if (!gpu_tracer_chosen(app)) return {};
-    return [&app](const Mask& obstacles, std::uint64_t revision, const std::vector<LightMask*>& masks, const Params& p) {
-        return gpu_trace(app.gpu_tracer, obstacles, revision, masks, p) ? std::string_view("gpu") : std::string_view();
+    return [&app](const Mask& obstacles, std::uint64_t revision, const OccluderMap* occluders,
+                  const std::vector<LightMask*>& masks, const std::vector<double>& heights, const Params& p) {
+        return gpu_trace_frame(app.gpu_tracer, obstacles, revision, occluders, masks, heights, p);
     };
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstdio>
 
 #include "gui/shader_sources.hpp"
 
@@ -33,6 +34,49 @@ void replace_texture(GLuint& tex, int w, int h, const void* data) {
     tex = r8ui_texture(w, h, data);
 }
 
+// The rays' targets as offsets from the centre, in the CPU tracers' order,
+// and the falloff by distance, into storage buffers 0 and 1. Returns the
+// number of rays.
+GLint upload_rays(GpuTracer& t, const LightMask& m, const Params& p) {
+    std::vector<GLint> targets;
+    for_each_ray_target(m.cx, m.cy, m.a, m.b, p, [&](std::int64_t x, std::int64_t y) {
+        targets.push_back(GLint(x - m.cx));
+        targets.push_back(GLint(y - m.cy));
+    });
+    std::vector<GLuint> table(std::size_t(std::max(m.a, m.b)) + 1);
+    for (std::size_t d = 0; d < table.size(); ++d) table[d] = falloff(std::int64_t(d), p.falloff_scale);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, t.targets);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(targets.size() * sizeof(GLint)), targets.data(), GL_STREAM_DRAW);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, t.targets);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, t.falloff);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(table.size() * sizeof(GLuint)), table.data(), GL_STREAM_DRAW);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, t.falloff);
+    return GLint(targets.size() / 2);
+}
+
+// Output images the clip's size, cleared to 0 (unlit, unreached).
+void ready_outputs(GpuTracer& t, const LightMask& m) {
+    if (t.lit_w != m.clip.w || t.lit_h != m.clip.h || !t.lit) {
+        replace_texture(t.lit, m.clip.w, m.clip.h, nullptr);
+        replace_texture(t.reached, m.clip.w, m.clip.h, nullptr);
+        t.lit_w = m.clip.w;
+        t.lit_h = m.clip.h;
+    }
+    const GLubyte zero = 0;
+    glClearTexImage(t.lit, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+    glClearTexImage(t.reached, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+}
+
+// Whether the frame's masks fit what the shaders take: int centres, clips
+// within the largest texture.
+bool masks_fit(const GpuTracer& t, const std::vector<LightMask*>& masks) {
+    for (const LightMask* m : masks)
+        if (std::llabs(m->cx) >= 1000000000 || std::llabs(m->cy) >= 1000000000 || m->clip.w > t.max_texture ||
+            m->clip.h > t.max_texture)
+            return false;
+    return true;
+}
+
 }  // namespace
 
 bool gpu_tracer_init(GpuTracer& t, std::string& error) {
@@ -42,19 +86,22 @@ bool gpu_tracer_init(GpuTracer& t, std::string& error) {
     }
     t.program = build_program(shader_folder(), {{GL_COMPUTE_SHADER, "trace.comp"}}, error);
     if (!t.program) return false;
-    glGenBuffers(1, &t.targets);
-    glGenBuffers(1, &t.falloff);
+    t.solids_program = build_program(shader_folder(), {{GL_COMPUTE_SHADER, "trace_solids.comp"}}, error);
+    if (!t.solids_program) return false;
+    for (GLuint* buf : {&t.targets, &t.falloff, &t.spans, &t.overflow}) glGenBuffers(1, buf);
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &t.max_texture);
+    glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &t.max_storage);
     const GLubyte* name = glGetString(GL_RENDERER);
     t.renderer = name ? reinterpret_cast<const char*>(name) : "";
     return true;
 }
 
 void gpu_tracer_free(GpuTracer& t) {
-    if (t.program) glDeleteProgram(t.program);
+    for (GLuint prog : {t.program, t.solids_program})
+        if (prog) glDeleteProgram(prog);
     for (GLuint* tex : {&t.obstacles, &t.lit, &t.reached})
         if (*tex) glDeleteTextures(1, tex);
-    for (GLuint* buf : {&t.targets, &t.falloff})
+    for (GLuint* buf : {&t.targets, &t.falloff, &t.spans, &t.overflow})
         if (*buf) glDeleteBuffers(1, buf);
     t = GpuTracer{};
 }
@@ -70,11 +117,7 @@ bool gpu_trace(GpuTracer& t, const Mask& obstacles, std::uint64_t obstacles_revi
     if (!t.program || p.rays_over_obstacles || p.occluders != Occluders::footprints) return false;  // the CPU traces these
     while (glGetError() != GL_NO_ERROR) {
     }  // earlier errors are not ours
-    if (obstacles.width > t.max_texture || obstacles.height > t.max_texture) return false;
-    for (const LightMask* m : masks)
-        if (std::llabs(m->cx) >= 1000000000 || std::llabs(m->cy) >= 1000000000 || m->clip.w > t.max_texture ||
-            m->clip.h > t.max_texture)
-            return false;
+    if (obstacles.width > t.max_texture || obstacles.height > t.max_texture || !masks_fit(t, masks)) return false;
     // The obstacle map, uploaded when it changed (a 1x1 empty one for none).
     if (t.obstacles_revision != obstacles_revision || !t.obstacles) {
         static const std::uint8_t none = 0;
@@ -92,41 +135,16 @@ bool gpu_trace(GpuTracer& t, const Mask& obstacles, std::uint64_t obstacles_revi
     glUniform2i(glGetUniformLocation(t.program, "obstacle_size"), t.obstacles_rect.w, t.obstacles_rect.h);
     glUniform1i(glGetUniformLocation(t.program, "mode"), p.mode == Mode::light ? 0 : p.mode == Mode::shadow ? 1 : 2);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    std::vector<GLint> targets;
-    std::vector<GLuint> table;
     for (LightMask* m : masks) {
         if (m->clip.empty()) continue;
-        // The rays' targets as offsets from the centre, in trace_light's order.
-        targets.clear();
-        for_each_ray_target(m->cx, m->cy, m->a, m->b, p, [&](std::int64_t x, std::int64_t y) {
-            targets.push_back(GLint(x - m->cx));
-            targets.push_back(GLint(y - m->cy));
-        });
-        table.resize(std::size_t(std::max(m->a, m->b)) + 1);
-        for (std::size_t d = 0; d < table.size(); ++d) table[d] = falloff(std::int64_t(d), p.falloff_scale);
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, t.targets);
-        glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(targets.size() * sizeof(GLint)), targets.data(), GL_STREAM_DRAW);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, t.targets);
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, t.falloff);
-        glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(table.size() * sizeof(GLuint)), table.data(), GL_STREAM_DRAW);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, t.falloff);
-        // Output images the clip's size, cleared to 0 (unlit, unreached).
-        if (t.lit_w != m->clip.w || t.lit_h != m->clip.h || !t.lit) {
-            replace_texture(t.lit, m->clip.w, m->clip.h, nullptr);
-            replace_texture(t.reached, m->clip.w, m->clip.h, nullptr);
-            t.lit_w = m->clip.w;
-            t.lit_h = m->clip.h;
-        }
-        const GLubyte zero = 0;
-        glClearTexImage(t.lit, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
-        glClearTexImage(t.reached, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+        const GLint rays = upload_rays(t, *m, p);
+        ready_outputs(t, *m);
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_2D, t.obstacles);  // (creating the outputs bound them here)
         glBindImageTexture(0, t.lit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8UI);
         glBindImageTexture(1, t.reached, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8UI);
         glUniform2i(glGetUniformLocation(t.program, "centre"), GLint(m->cx), GLint(m->cy));
         glUniform4i(glGetUniformLocation(t.program, "clip"), m->clip.x, m->clip.y, m->clip.w, m->clip.h);
-        const GLint rays = GLint(targets.size() / 2);
         glUniform1i(glGetUniformLocation(t.program, "ray_count"), rays);
         glDispatchCompute(GLuint((rays + 63) / 64), 1, 1);
         glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -139,6 +157,65 @@ bool gpu_trace(GpuTracer& t, const Mask& obstacles, std::uint64_t obstacles_revi
     }
     glUseProgram(0);
     return glGetError() == GL_NO_ERROR;
+}
+
+bool gpu_trace_solids(GpuTracer& t, const OccluderMap& occ, std::uint64_t occluders_revision,
+                      const std::vector<LightMask*>& masks, const std::vector<double>& heights, const Params& p) {
+    if (!t.solids_program || p.mode == Mode::flat || heights.size() != masks.size() || !masks_fit(t, masks)) return false;
+    while (glGetError() != GL_NO_ERROR) {
+    }  // earlier errors are not ours
+    // The spans, uploaded when they changed (one empty pixel for none).
+    const std::size_t pixels = occ.low.size();
+    if (std::uint64_t(std::max<std::size_t>(pixels, 1)) * 2 * sizeof(float) > std::uint64_t(std::max(t.max_storage, 0)))
+        return false;
+    if (t.spans_revision != occluders_revision) {
+        std::vector<float> spans(std::max<std::size_t>(pixels, 1) * 2, 0.f);
+        for (std::size_t i = 0; i < pixels; ++i) spans[2 * i] = occ.low[i], spans[2 * i + 1] = occ.high[i];
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, t.spans);
+        glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(spans.size() * sizeof(float)), spans.data(), GL_STATIC_DRAW);
+        t.spans_rect = pixels ? occ.rect : Rect{0, 0, 0, 0};
+        t.spans_revision = occluders_revision;
+    }
+    glUseProgram(t.solids_program);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, t.spans);
+    glUniform2i(glGetUniformLocation(t.solids_program, "span_origin"), t.spans_rect.x, t.spans_rect.y);
+    glUniform2i(glGetUniformLocation(t.solids_program, "span_size"), t.spans_rect.w, t.spans_rect.h);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    bool whole = true;
+    for (std::size_t k = 0; k < masks.size() && whole; ++k) {
+        LightMask* m = masks[k];
+        if (m->clip.empty()) continue;
+        const GLint rays = upload_rays(t, *m, p);
+        ready_outputs(t, *m);
+        const GLuint no = 0;
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, t.overflow);
+        glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof(GLuint), &no, GL_STREAM_READ);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, t.overflow);
+        glBindImageTexture(0, t.lit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8UI);
+        glUniform2i(glGetUniformLocation(t.solids_program, "centre"), GLint(m->cx), GLint(m->cy));
+        glUniform4i(glGetUniformLocation(t.solids_program, "clip"), m->clip.x, m->clip.y, m->clip.w, m->clip.h);
+        glUniform1i(glGetUniformLocation(t.solids_program, "ray_count"), rays);
+        glUniform1d(glGetUniformLocation(t.solids_program, "light_height"), std::max(heights[k], 0.0));
+        glDispatchCompute(GLuint((rays + 63) / 64), 1, 1);
+        glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        GLuint overflowed = 0;
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(GLuint), &overflowed);
+        whole = overflowed == 0;
+        glBindTexture(GL_TEXTURE_2D, t.lit);
+        glGetTexImage(GL_TEXTURE_2D, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, m->value.data());
+        // Shadow mode reaches every pixel of the area, as the CPU's.
+        if (p.mode == Mode::shadow) std::fill(m->reached.begin(), m->reached.end(), std::uint8_t(1));
+    }
+    glUseProgram(0);
+    return whole && glGetError() == GL_NO_ERROR;
+}
+
+std::string_view gpu_trace_frame(GpuTracer& t, const Mask& obstacles, std::uint64_t obstacles_revision,
+                                 const OccluderMap* occluders, const std::vector<LightMask*>& masks,
+                                 const std::vector<double>& heights, const Params& p) {
+    const bool traced = occluders ? gpu_trace_solids(t, *occluders, obstacles_revision, masks, heights, p)
+                                  : gpu_trace(t, obstacles, obstacles_revision, masks, p);
+    return traced ? std::string_view("gpu") : std::string_view();
 }
 
 }  // namespace isolux::app

@@ -1,6 +1,8 @@
 // Paper Algorithm 2 as an OpenGL 4.3 compute shader (shaders/trace.comp):
-// the same bytes as core's trace_light, held to it by tests/gl_test.cpp. The
-// app lets the frame call it through FrameOptions::tracer.
+// the same bytes as core's trace_light, held to it by tests/gl_test.cpp; and
+// the ground pass against solids with height (shaders/trace_solids.comp), the
+// same bytes as core's trace_light_solids. The app lets the frame call them
+// through FrameOptions::tracer.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -9,6 +11,7 @@
 
 #include "gui/gl.hpp"
 #include "isolux/light_trace.hpp"
+#include "isolux/occluders.hpp"
 
 namespace isolux::app {
 
@@ -16,6 +19,10 @@ struct GpuTracer {
     GLuint program = 0, obstacles = 0, lit = 0, reached = 0, targets = 0, falloff = 0;
     std::uint64_t obstacles_revision = ~0ull;  // what `obstacles` holds
     Rect obstacles_rect;
+    GLuint solids_program = 0, spans = 0, overflow = 0;
+    std::uint64_t spans_revision = ~0ull;  // what `spans` holds
+    Rect spans_rect;
+    GLint max_storage = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
     int lit_w = 0, lit_h = 0;
     GLint max_texture = 0;
     std::string renderer;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
@@ -36,5 +43,22 @@ bool gpu_tracer_is_software(const GpuTracer& t);
 // range, or textures larger than the GPU allows.
 bool gpu_trace(GpuTracer& t, const Mask& obstacles, std::uint64_t obstacles_revision,
                const std::vector<LightMask*>& masks, const Params& p);
+
+// Traces the ground pass against solids with height (occluders solids or
+// shapes; light and shadow modes) into every mask, each light at its
+// `heights` entry: trace_light_solids's bytes, `occluders_revision` changing
+// whenever the occluder map does. False, leaving the masks to the CPU, for
+// what it does not do: centres beyond int range, a span map larger than a
+// storage buffer, or a ray with more live shades than the shader holds.
+// (The sprite pass, light_sprite_points, stays on the CPU, as the opacity
+// correction does.)
+bool gpu_trace_solids(GpuTracer& t, const OccluderMap& occluders, std::uint64_t occluders_revision,
+                      const std::vector<LightMask*>& masks, const std::vector<double>& heights, const Params& p);
+
+// What FrameOptions::tracer calls: gpu_trace_solids with occluders,
+// gpu_trace without; "gpu" when it traced them, "" to leave them to the CPU.
+std::string_view gpu_trace_frame(GpuTracer& t, const Mask& obstacles, std::uint64_t obstacles_revision,
+                                 const OccluderMap* occluders, const std::vector<LightMask*>& masks,
+                                 const std::vector<double>& heights, const Params& p);
 
 }  // namespace isolux::app

@@ -391,15 +391,18 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
 
     // Another tracer (the app's GPU) first, on this thread, when one is set.
     bool traced_elsewhere = false;
-    if (st.options.tracer && !over && !solids && n > 0) {
+    if (st.options.tracer && !over && n > 0) {
         const auto t0 = Clock::now();
         std::vector<LightMask*> masks;
+        std::vector<double> heights;
         for (std::size_t k : plan.todo) {
             TracedLight& tl = plan.traced[k];
             start_mask(tl.mask, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip, p.mode == Mode::shadow);
             masks.push_back(&tl.mask);
+            heights.push_back(tl.height);
         }
-        rep.tracer = st.options.tracer(st.obstacles, st.obstacles_revision, masks, p);
+        rep.tracer = st.options.tracer(st.obstacles, st.obstacles_revision, solids ? &st.occluders : nullptr, masks,
+                                       heights, p);
         traced_elsewhere = !rep.tracer.empty();
         if (traced_elsewhere) rep.ms[int(Stage::trace)] += ms_between(t0, Clock::now());
     }
@@ -418,7 +421,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
                 trace_light_into(tl.mask, st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
                                  area_is_clear(st.obstacles, area), ctl);
             } else {
-                if (solids)
+                if (solids && !traced_elsewhere)  // beyond the paper: solids with height
                     tl.mask = trace_light_solids(st.occluders, tl.cx, tl.cy, tl.a, tl.b, tl.height, p, tl.mask.clip);
                 else if (over)  // beyond the paper: rays over low obstacles
                     tl.mask = trace_light_over(st.obstacles, st.obstacle_heights, tl.cx, tl.cy, tl.a, tl.b, tl.height,

@@ -246,18 +246,31 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
         return falloff(std::max(std::llabs(x - cx), std::llabs(y - cy)), p.falloff_scale);
     };
     // Ground pixels: one pass per ray, each span before a pixel shading a
-    // stretch of the ray beyond it (its own pixel too when it stands on the ground).
+    // stretch of the ray beyond it (its own pixel too when it stands on the
+    // ground). Stretches that run to the border are one: from the nearest
+    // start; one that overlaps the last kept joins it (the same union, so
+    // the same pixels, from a handful of stretches a ray).
+    // (shaders/trace_solids.comp is this loop on the GPU.)
     struct Shade { double from, to; };
     std::vector<Shade> shades;
     const double inf = std::numeric_limits<double>::infinity();
     for_each_ray_target(cx, cy, a, b, p, [&](std::int64_t tx, std::int64_t ty) {
         shades.clear();
+        double endless_from = inf;
         for (BresenhamRay r(cx, cy, tx, ty); !r.done(); r.step()) {
             const double k = double(r.i);
             float lo = 0, hi = 0;
-            if (occ.span(r.x, r.y, lo, hi) && lo < H)
-                shades.push_back({lo <= 0 ? k : k * H / (H - lo), hi >= H ? inf : k * H / (H - hi)});
-            bool shaded = false;
+            if (occ.span(r.x, r.y, lo, hi) && lo < H) {
+                const double from = lo <= 0 ? k : k * H / (H - lo);
+                const double to = k * H / (H - hi);
+                if (hi >= H)
+                    endless_from = std::min(endless_from, from);
+                else if (!shades.empty() && from <= shades.back().to && shades.back().from <= to)
+                    shades.back() = {std::min(shades.back().from, from), std::max(shades.back().to, to)};
+                else
+                    shades.push_back({from, to});
+            }
+            bool shaded = endless_from <= k;
             for (std::size_t s = 0; s < shades.size();) {
                 if (shades[s].to <= k) {  // behind the ray's front: done with
                     shades[s] = shades.back();
