@@ -31,6 +31,7 @@ OccluderMap ground_with(Rect r, Rect where, float lo, float hi) {
     m.surface.rect = r;
     m.surface.instance.assign(m.low.size(), -1);
     m.surface.height.assign(m.low.size(), 0.f);
+    index_occluders(m);
     return m;
 }
 
@@ -84,7 +85,7 @@ TEST(Occluders, aSpritePixelIsLitByThePointItShows) {
     const std::size_t sprite = std::size_t(-20 - r.y) * r.w + (60 - r.x);
     m.surface.instance[sprite] = 0;
     m.surface.height[sprite] = 20;
-    index_shown(m);
+    index_occluders(m);
     LightMask low = trace_light_solids(m, 0, 0, 150, 30, 25, wide(), r);
     LightMask high = trace_light_solids(m, 0, 0, 150, 30, 100, wide(), r);
     EXPECT_TRUE(lit(high, 60, -20));  // the ground pass takes every pixel for ground
@@ -227,6 +228,7 @@ TEST(Occluders, keptSolidsBuildTheSameMapAndFrameAsFreshOnes) {
     EXPECT_EQ(warm.surface.height, fresh.surface.height);
     EXPECT_EQ(warm.shown_start, fresh.shown_start);
     EXPECT_EQ(warm.shown, fresh.shown);
+    EXPECT_EQ(warm.flags, fresh.flags);
 
     FrameState walked;
     const Camera cam{double(b.x), double(b.y), b.w, b.h};

@@ -2,6 +2,7 @@
 #include "isolux/occluders.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -153,28 +154,35 @@ SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) 
     return out;
 }
 
-void index_shown(OccluderMap& m) {
+void index_occluders(OccluderMap& m) {
     const Surface& s = m.surface;
     const std::size_t n = s.instance.size();
     if (n >= std::numeric_limits<std::uint32_t>::max())
         throw Error("occluders: the region of " + std::to_string(n) + " pixels is too large to trace against solids");
     m.shown_start.assign(n + 1, 0);
-    auto ground_of = [&](std::size_t i, std::size_t& g) {
+    const std::size_t w = std::size_t(s.rect.w);
+    // The ground pixel under sprite pixel i, h rows below it; false where it
+    // shows the ground or its ground pixel lies below the map.
+    auto ground_of = [&](std::size_t i, std::size_t& g, std::uint32_t& rows) {
         if (s.instance[i] < 0) return false;
-        const std::int64_t x = std::int64_t(i % std::size_t(s.rect.w)), y = std::int64_t(i / std::size_t(s.rect.w));
-        const std::int64_t gy = y + std::llround(s.height[i]);
-        if (gy >= s.rect.h) return false;
-        g = std::size_t(gy) * std::size_t(s.rect.w) + std::size_t(x);
+        rows = std::uint32_t(std::llround(s.height[i]));
+        if (i / w + rows >= std::size_t(s.rect.h)) return false;
+        g = i + rows * w;
         return true;
     };
     std::size_t g = 0;
+    std::uint32_t rows = 0;
     for (std::size_t i = 0; i < n; ++i)
-        if (ground_of(i, g)) ++m.shown_start[g + 1];
+        if (ground_of(i, g, rows)) ++m.shown_start[g + 1];
     for (std::size_t i = 0; i < n; ++i) m.shown_start[i + 1] += m.shown_start[i];
     m.shown.assign(m.shown_start[n], 0);
     std::vector<std::uint32_t> next(m.shown_start.begin(), m.shown_start.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
-        if (ground_of(i, g)) m.shown[next[g]++] = std::uint32_t(i);
+        if (ground_of(i, g, rows)) m.shown[next[g]++] = rows;
+    m.flags.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        m.flags[i] = std::uint8_t((m.high[i] > m.low[i] ? OccluderMap::has_span : 0) |
+                                  (m.shown_start[i + 1] > m.shown_start[i] ? OccluderMap::has_shown : 0));
 }
 
 namespace {
@@ -207,6 +215,46 @@ private:
     std::vector<Iv> iv_;
 };
 
+// Walks the Bresenham ray from (cx, cy) to (tx, ty), calling
+// body(i, x, y, g, v) at each step: g the step's index in `grid` (-1 off
+// it), v its index in `clip` (-1 outside). A ray whose ends both lie in
+// both (its box does, so every step does) steps the two indices by offsets,
+// with no test per step: the common case, a light inside the map and the view.
+template <class Body>
+void walk_ray(std::int64_t cx, std::int64_t cy, std::int64_t tx, std::int64_t ty, Rect grid, Rect clip, Body&& body) {
+    BresenhamRay r(cx, cy, tx, ty);
+    auto in = [](Rect q, std::int64_t x, std::int64_t y) { return q.contains(int(x), int(y)); };
+    if (!(in(grid, cx, cy) && in(grid, tx, ty) && in(clip, cx, cy) && in(clip, tx, ty))) {
+        for (; !r.done(); r.step())
+            body(r.i, r.x, r.y,
+                 in(grid, r.x, r.y) ? std::ptrdiff_t(r.y - grid.y) * grid.w + std::ptrdiff_t(r.x - grid.x) : -1,
+                 in(clip, r.x, r.y) ? std::ptrdiff_t(r.y - clip.y) * clip.w + std::ptrdiff_t(r.x - clip.x) : -1);
+        return;
+    }
+    std::ptrdiff_t g = std::ptrdiff_t(cy - grid.y) * grid.w + std::ptrdiff_t(cx - grid.x);
+    std::ptrdiff_t v = std::ptrdiff_t(cy - clip.y) * clip.w + std::ptrdiff_t(cx - clip.x);
+    const std::ptrdiff_t g_diagonal = std::ptrdiff_t(r.dy1) * grid.w + r.dx1, g_straight = std::ptrdiff_t(r.dy2) * grid.w + r.dx2;
+    const std::ptrdiff_t v_diagonal = std::ptrdiff_t(r.dy1) * clip.w + r.dx1, v_straight = std::ptrdiff_t(r.dy2) * clip.w + r.dx2;
+    std::int64_t x = cx, y = cy, numerator = r.numerator;
+    for (std::int64_t i = 0; i <= r.longest; ++i) {
+        body(i, x, y, g, v);
+        numerator += r.shortest;
+        if (!(numerator < r.longest)) {
+            numerator -= r.longest;
+            g += g_diagonal, v += v_diagonal, x += r.dx1, y += r.dy1;
+        } else {
+            g += g_straight, v += v_straight, x += r.dx2, y += r.dy2;
+        }
+    }
+}
+
+// The falloff by distance max(|dx|, |dy|), the step count along a ray.
+std::vector<std::uint8_t> falloff_table(int a, int b, double scale) {
+    std::vector<std::uint8_t> t(std::size_t(std::max(a, b)) + 1);
+    for (std::size_t d = 0; d < t.size(); ++d) t[d] = falloff(std::int64_t(d), scale);
+    return t;
+}
+
 }  // namespace
 
 OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache) {
@@ -217,7 +265,7 @@ OccluderMap build_occluders(const World& world, const Params& p, Rect region, So
     m.high.assign(n, 0.f);
     if (region.empty() || p.occluders == Occluders::footprints) {
         m.surface = build_surface(world, region, p.opacity_threshold);
-        index_shown(m);
+        index_occluders(m);
         return m;
     }
     std::vector<std::uint32_t> near;
@@ -231,7 +279,7 @@ OccluderMap build_occluders(const World& world, const Params& p, Rect region, So
         fill_estimated(m, world, p, near, cache ? *cache : own, heights);
         m.surface = build_surface(world, region, p.opacity_threshold, &heights);
     }
-    index_shown(m);
+    index_occluders(m);
     return m;
 }
 
@@ -240,11 +288,9 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
     LightMask m;
     start_mask(m, cx, cy, a, b, p, clip, p.mode == Mode::shadow);
     if (m.clip.empty()) return m;
+    assert(occ.flags.size() == occ.low.size());  // index_occluders
     const double H = std::max(height, 0.0);
-    auto index = [&](std::int64_t x, std::int64_t y) { return std::size_t(y - m.clip.y) * m.clip.w + std::size_t(x - m.clip.x); };
-    auto intensity = [&](std::int64_t x, std::int64_t y) {
-        return falloff(std::max(std::llabs(x - cx), std::llabs(y - cy)), p.falloff_scale);
-    };
+    const std::vector<std::uint8_t> table = falloff_table(a, b, p.falloff_scale);
     // Ground pixels: one pass per ray, each span before a pixel shading a
     // stretch of the ray beyond it (its own pixel too when it stands on the
     // ground). Stretches that run to the border are one: from the nearest
@@ -254,13 +300,16 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
     struct Shade { double from, to; };
     std::vector<Shade> shades;
     const double inf = std::numeric_limits<double>::infinity();
+    const float* low = occ.low.data();
+    const float* high = occ.high.data();
+    const std::uint8_t* flags = occ.flags.data();
     for_each_ray_target(cx, cy, a, b, p, [&](std::int64_t tx, std::int64_t ty) {
         shades.clear();
         double endless_from = inf;
-        for (BresenhamRay r(cx, cy, tx, ty); !r.done(); r.step()) {
-            const double k = double(r.i);
-            float lo = 0, hi = 0;
-            if (occ.span(r.x, r.y, lo, hi) && lo < H) {
+        walk_ray(cx, cy, tx, ty, occ.rect, m.clip, [&](std::int64_t i, std::int64_t, std::int64_t, std::ptrdiff_t g, std::ptrdiff_t v) {
+            const double k = double(i);
+            if (g >= 0 && (flags[g] & OccluderMap::has_span) && low[g] < H) {
+                const float lo = low[g], hi = high[g];
                 const double from = lo <= 0 ? k : k * H / (H - lo);
                 const double to = k * H / (H - hi);
                 if (hi >= H)
@@ -280,8 +329,8 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
                 shaded = shaded || shades[s].from <= k;
                 ++s;
             }
-            if (!shaded && m.clip.contains(int(r.x), int(r.y))) m.value[index(r.x, r.y)] = intensity(r.x, r.y);
-        }
+            if (!shaded && v >= 0) m.value[std::size_t(v)] = table[std::size_t(i)];
+        });
     });
     if (p.mode == Mode::shadow) std::fill(m.reached.begin(), m.reached.end(), std::uint8_t(1));
     return m;
@@ -289,7 +338,7 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
 
 void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
     if (m.clip.empty()) return;
-    assert(occ.shown_start.size() == occ.surface.instance.size() + 1);  // index_shown
+    assert(occ.flags.size() == occ.surface.instance.size());  // index_occluders
     const double H = std::max(height, 0.0);
     const Surface& surface = occ.surface;
     const std::int64_t cx = m.cx, cy = m.cy;
@@ -328,39 +377,41 @@ void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, co
     // Along each ray: the descents blocked by the spans passed at least
     // own_steps before (the last steps hold the point's own solid at about
     // its height), then the points over this step's ground pixel.
+    const std::vector<std::uint8_t> table = falloff_table(m.a, m.b, p.falloff_scale);
     BlockedDescents blocked;
-    std::vector<std::pair<float, float>> passed;  // per step: the span there (none: hi <= lo)
+    std::array<std::pair<float, float>, own_steps + 1> passed{};  // the spans of the last steps (none: hi <= lo)
     const double inf = std::numeric_limits<double>::infinity();
-    for_each_ray_target(cx, cy, m.a, m.b, p, [&](std::int64_t tx, std::int64_t ty) {
+    const std::ptrdiff_t w = surface.rect.w;
+    auto sprite_ray = [&](std::int64_t tx, std::int64_t ty) {
         blocked.clear();
-        passed.clear();
-        for (BresenhamRay r(cx, cy, tx, ty); !r.done(); r.step()) {
-            float lo = 0, hi = 0;
-            if (!occ.span(r.x, r.y, lo, hi)) lo = hi = 0;
-            passed.push_back({lo, hi});
-            const std::int64_t s = r.i - own_steps;
-            if (s >= 0 && passed[std::size_t(s)].second > passed[std::size_t(s)].first) {
-                const double slo = passed[std::size_t(s)].first, shi = passed[std::size_t(s)].second;
-                if (s == 0) {  // the light's own pixel: a light inside a solid is hidden from all
-                    if (slo <= H && H < shi) blocked.add(-inf, inf);
-                } else {
-                    blocked.add((H - shi) / double(s), (H - slo) / double(s));
+        walk_ray(cx, cy, tx, ty, occ.rect, m.clip, [&](std::int64_t i, std::int64_t x, std::int64_t y, std::ptrdiff_t g, std::ptrdiff_t) {
+            const std::int64_t s = i - own_steps;
+            if (s >= 0) {
+                const auto [slo, shi] = passed[std::size_t(s) % passed.size()];
+                if (shi > slo) {
+                    if (s == 0) {  // the light's own pixel: a light inside a solid is hidden from all
+                        if (slo <= H && H < shi) blocked.add(-inf, inf);
+                    } else {
+                        blocked.add((H - shi) / double(s), (H - slo) / double(s));
+                    }
                 }
             }
-            if (!surface.rect.contains(int(r.x), int(r.y))) continue;
-            const std::size_t g = at(r.x, r.y);
-            for (std::uint32_t k = occ.shown_start[g]; k < occ.shown_start[g + 1]; ++k) {
-                const std::size_t q = occ.shown[k];
-                const std::int64_t x = surface.rect.x + std::int64_t(q % std::size_t(surface.rect.w));
-                const std::int64_t y = surface.rect.y + std::int64_t(q / std::size_t(surface.rect.w));
-                if (!area.contains(int(x), int(y))) continue;
-                std::uint8_t& v = m.value[index(x, y)];
+            const std::uint8_t f = g >= 0 ? occ.flags[std::size_t(g)] : 0;
+            passed[std::size_t(i) % passed.size()] =
+                f & OccluderMap::has_span ? std::pair{occ.low[std::size_t(g)], occ.high[std::size_t(g)]} : std::pair{0.f, 0.f};
+            if (!(f & OccluderMap::has_shown)) return;
+            for (std::uint32_t k = occ.shown_start[std::size_t(g)]; k < occ.shown_start[std::size_t(g) + 1]; ++k) {
+                const std::uint32_t rows = occ.shown[k];
+                if (!area.contains(int(x), int(y - rows))) continue;
+                std::uint8_t& v = m.value[index(x, y - rows)];
                 if (v) continue;
-                const double u = r.i > 0 ? (H - double(surface.height[q])) / double(r.i) : 0;
-                if (r.i <= own_steps || !blocked.blocks(u)) v = intensity(x, y);
+                const double h = surface.height[std::size_t(g - std::ptrdiff_t(rows) * w)];
+                const double u = i > 0 ? (H - h) / double(i) : 0;
+                if (i <= own_steps || !blocked.blocks(u)) v = table[std::size_t(std::max(std::llabs(x - cx), std::llabs(y - rows - cy)))];
             }
-        }
-    });
+        });
+    };
+    for_each_ray_target(cx, cy, m.a, m.b, p, sprite_ray);
 }
 
 }  // namespace isolux

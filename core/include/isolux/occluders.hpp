@@ -34,7 +34,12 @@ struct OccluderMap {
     // Per ground pixel g, the sprite pixels whose point stands over it (h
     // rows above g): shown[shown_start[g] .. shown_start[g + 1]), each a
     // pixel's index in `rect`. The sprite pass tests them where a ray meets g.
+    // Each entry is how many rows above g the pixel lies (its point's height, rounded).
     std::vector<std::uint32_t> shown_start, shown;
+    // Per pixel: has_span | has_shown, one byte a step reads before the rest
+    // (most steps of a ray cross bare ground that no sprite stands over).
+    enum : std::uint8_t { has_span = 1, has_shown = 2 };
+    std::vector<std::uint8_t> flags;
 
     bool span(std::int64_t x, std::int64_t y, float& z_low, float& z_high) const {
         if (!rect.contains(int(x), int(y))) return false;
@@ -70,9 +75,10 @@ struct SolidsCache {
 // sprite when an overlay has none).
 OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache = nullptr);
 
-// Fills `m.shown` from its surface (build_occluders does; a map made by hand
-// calls it once its surface is set). Error when the region has 2^32 pixels or more.
-void index_shown(OccluderMap& m);
+// Fills `m.shown` from its surface and `m.flags` from its spans and surface
+// (build_occluders does; a map made by hand calls it once its spans and
+// surface are set). Error when the region has 2^32 pixels or more.
+void index_occluders(OccluderMap& m);
 
 // One light at (cx, cy), half-extents a, b, at `height` above the ground,
 // traced against `occ` as ground everywhere: value = falloff(max(|dx|, |dy|))
