@@ -165,11 +165,20 @@ TEST(Occluders, solidsMislightLessGroundThanFootprintsAgainst3d) {
             if (seed == 0) {
                 EXPECT_LT(solids.floor.lit_mismatch, paper.floor.lit_mismatch / 2) << where;
                 EXPECT_LT(shapes.floor.lit_mismatch, paper.floor.lit_mismatch / 4) << where;
+                // The sprites too: so the game preset takes solids (below).
+                EXPECT_LT(solids.sprite.lit_mismatch, paper.sprite.lit_mismatch * 0.8) << where;
             }
             EXPECT_LE(solids.floor.lit_mismatch, paper.floor.lit_mismatch + 0.01) << where;
             EXPECT_LE(shapes.floor.lit_mismatch, paper.floor.lit_mismatch) << where;
         }
     }
+}
+
+// The game preset takes what measures closest to 3D on the default map's
+// ground and sprites (above, and docs/accuracy.md): solids.
+TEST(Occluders, theGamePresetTracesAgainstSolids) {
+    EXPECT_EQ(builtin_preset("game").occluders, Occluders::solids);
+    EXPECT_EQ(builtin_preset("paper").occluders, Occluders::footprints);
 }
 
 // Every mode, ray skip and l frames run with solids: flat mode is the same

@@ -136,9 +136,10 @@ int main(int argc, char** argv) {
             scene.width = w, scene.height = h;
         }
         if (scene_file.empty() && seed.empty() && size.empty()) {
-            // The default: the default seed and assets, lit as the README shows.
+            // The default: the default seed and assets, lit as the README
+            // shows (the game preset's look; the paper's is one preset away).
             fs::path def = default_tileset_manifest();
-            fs::path demo = def.empty() ? fs::path() : def.parent_path().parent_path() / "scenes" / "default.json";
+            fs::path demo = def.empty() ? fs::path() : def.parent_path().parent_path() / "scenes" / "showcase.json";
             if (!demo.empty() && fs::exists(demo)) scene = load_scene(demo);
         }
     } catch (const Error& err) {

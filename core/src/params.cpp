@@ -258,7 +258,9 @@ std::string builtin_preset_summary(std::string_view name) {
                "(a small bright spot: raise falloff_scale or pick the game preset for wider light)";
     if (name == "fast") return "fast: half the border rays, a retrace every 4 frames, blurred";
     if (name == "quality") return "quality: a ray to every pixel, traced every frame";
-    if (name == "game") return "game: round lights fading to their border, sprites keep their colour, soft blur";
+    if (name == "game")
+        return "game: round lights fading to their border, shadows from solids estimated from the sprites, sprites keep "
+               "their colour, soft blur";
     return "";
 }
 
@@ -274,7 +276,10 @@ Params builtin_preset(std::string_view name) {
     }
     if (name == "game") {
         // A look for games: round, wide lights that fade out before their
-        // border, lit sprites keeping their hue.
+        // border, lit sprites keeping their hue, and shadows from solids
+        // estimated from the sprites (what measures closest to 3D on the
+        // ground and on the sprites: docs/accuracy.md).
+        p.occluders = Occluders::solids;
         p.falloff_shape = FalloffShape::euclidean;
         p.edge_fade = true;
         p.falloff_scale = 12;
