@@ -387,31 +387,11 @@ int ratios() {
     bench::print_ratio("threads2_speedup", bench::interleaved([&] { one(); }, 5, [&] { two(); }, 5, pairs), ">= 1.7", 2);
 
     // Tracing time per frame (trace, drawing into the texture, correction, from the frame report)
-    // of a walking camera carrying a light, tracing every 4 frames against every frame.
-    auto walk = [](int l) {
-        return [l, st = lighting_state(1), f = long(0), s = lights_scene(bench::world("default", 24), 8, 11)]() mutable {
+    // of a walking camera carrying a light, tracing every l frames, against what stops the rays.
+    auto walk = [](int l, Occluders o) {
+        return [l, o, st = lighting_state(1), f = long(0), s = lights_scene(bench::world("default", 24), 8, 11)]() mutable {
             const World& w = bench::world("default", 24);
             s.params.trace_every = l;
-            double ms = 0;
-            for (int i = 0; i < 16; ++i, ++f) {
-                const Camera cam{300.0 + 6.0 * (f % 64), 200.0 + 3.0 * (f % 64), 960, 540};
-                Scene sf = s;
-                sf.lights.push_back(Light{cam.x + 480.5, cam.y + 270.5});
-                const FrameReport r = render_frame(st, w, sf, cam, f);
-                ms += r.ms[int(Stage::trace)] + r.ms[int(Stage::opacity_correction)];
-            }
-            return ms;
-        };
-    };
-    auto walk4 = walk(4), walk1 = walk(1);
-    bench::print_ratio("trace_every4_cost", bench::interleaved_costs(walk4, walk1, pairs), "<= 0.3");
-
-    // Beyond the paper: the same walk traced against solids estimated from the
-    // sprites (ground rays and the sprite pass) against the paper's whole light
-    // (Algorithm 2 and the opacity correction), every frame.
-    auto walk_against = [](Occluders o) {
-        return [o, st = lighting_state(1), f = long(0), s = lights_scene(bench::world("default", 24), 8, 11)]() mutable {
-            const World& w = bench::world("default", 24);
             s.params.occluders = o;
             double ms = 0;
             for (int i = 0; i < 16; ++i, ++f) {
@@ -424,7 +404,13 @@ int ratios() {
             return ms;
         };
     };
-    auto walk_solids = walk_against(Occluders::solids), walk_footprints = walk_against(Occluders::footprints);
+    // Every 4 frames against every frame.
+    auto walk4 = walk(4, Occluders::footprints), walk1 = walk(1, Occluders::footprints);
+    bench::print_ratio("trace_every4_cost", bench::interleaved_costs(walk4, walk1, pairs), "<= 0.3");
+    // Beyond the paper: against solids estimated from the sprites (ground rays
+    // and the sprite pass) over the paper's whole light (Algorithm 2 and the
+    // opacity correction), every frame.
+    auto walk_solids = walk(1, Occluders::solids), walk_footprints = walk(1, Occluders::footprints);
     bench::print_ratio("solids_trace_cost", bench::interleaved_costs(walk_solids, walk_footprints, pairs), "<= 1.5");
 
     // 1000 lights of which 8 are in view, against those 8 alone (the 8 move each frame).

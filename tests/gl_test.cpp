@@ -236,6 +236,26 @@ TEST(Gl, theGpuTracerGivesTheCpuTracersBytes) {
     gpu_tracer_free(tracer);
 }
 
+namespace {
+
+// Frames drawn with the GPU tracer against the CPU's, a light moving 9 px a frame.
+void expect_gpu_frames_are_cpu_frames(GpuTracer& tracer, const World& w, Scene s, FrameState& cpu, FrameState& gpu) {
+    gpu.options.tracer = [&tracer](const Mask& ob, std::uint64_t rev, const OccluderMap* occ,
+                                   const std::vector<LightMask*>& masks, const std::vector<double>& heights,
+                                   const Params& p) { return gpu_trace_frame(tracer, ob, rev, occ, masks, heights, p); };
+    for (long f = 0; f < 3; ++f) {
+        s.lights[0].x += 9;
+        const FrameReport rc = render_frame(cpu, w, s, Camera{}, f);
+        const FrameReport rg = render_frame(gpu, w, s, Camera{}, f);
+        EXPECT_EQ(rc.tracer, "cpu");
+        EXPECT_EQ(rg.tracer, "gpu");
+        EXPECT_EQ(gpu.traced.texels, cpu.traced.texels) << "frame " << f;
+        EXPECT_EQ(gpu.final.rgba, cpu.final.rgba) << "frame " << f;
+    }
+}
+
+}  // namespace
+
 TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
     ASSERT_NE(gl().window, nullptr) << "no GL context (run under xvfb-run): " << gl().error;
     GpuTracer tracer;
@@ -244,19 +264,7 @@ TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
     Scene s;
     s.lights = {Light{120.5, 90.5}, Light{300.5, 160.5, 60, 40}};
     FrameState cpu, gpu;
-    gpu.options.tracer = [&](const Mask& ob, std::uint64_t rev, const OccluderMap* occ, const std::vector<LightMask*>& masks,
-                             const std::vector<double>& heights, const Params& p) {
-        return gpu_trace_frame(tracer, ob, rev, occ, masks, heights, p);
-    };
-    for (long f = 0; f < 3; ++f) {
-        s.lights[0].x += 9;
-        const FrameReport rc = render_frame(cpu, world(), s, Camera{}, f);
-        const FrameReport rg = render_frame(gpu, world(), s, Camera{}, f);
-        EXPECT_EQ(rc.tracer, "cpu");
-        EXPECT_EQ(rg.tracer, "gpu");
-        EXPECT_EQ(gpu.traced.texels, cpu.traced.texels) << "frame " << f;
-        EXPECT_EQ(gpu.final.rgba, cpu.final.rgba) << "frame " << f;
-    }
+    expect_gpu_frames_are_cpu_frames(tracer, world(), s, cpu, gpu);
     // A new frame state on another map, with the same tracer: its obstacle
     // map is uploaded again (revisions are unique in the process).
     Scene other;
@@ -334,18 +342,6 @@ TEST(Gl, theGpuTracesAgainstSolidsAsTheCpuDoes) {
     s.params.falloff_scale = 8;
     s.lights = {Light{b.x + b.w / 3.0 + 0.5, b.y + b.h / 2.0 + 0.5}, Light{b.x + 2 * b.w / 3.0 + 0.5, b.y + b.h / 3.0 + 0.5}};
     FrameState cpu, gpu;
-    gpu.options.tracer = [&](const Mask& ob, std::uint64_t rev, const OccluderMap* occ, const std::vector<LightMask*>& masks,
-                             const std::vector<double>& heights, const Params& p) {
-        return gpu_trace_frame(tracer, ob, rev, occ, masks, heights, p);
-    };
-    for (long f = 0; f < 3; ++f) {
-        s.lights[0].x += 9;
-        const FrameReport rc = render_frame(cpu, w, s, Camera{}, f);
-        const FrameReport rg = render_frame(gpu, w, s, Camera{}, f);
-        EXPECT_EQ(rc.tracer, "cpu");
-        EXPECT_EQ(rg.tracer, "gpu");
-        EXPECT_EQ(gpu.traced.texels, cpu.traced.texels) << "frame " << f;
-        EXPECT_EQ(gpu.final.rgba, cpu.final.rgba) << "frame " << f;
-    }
+    expect_gpu_frames_are_cpu_frames(tracer, w, s, cpu, gpu);
     gpu_tracer_free(tracer);
 }
