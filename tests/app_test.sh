@@ -221,14 +221,17 @@ cat >"$tmp/inspect.script" <<SCRIPT
 wait 3
 inspect oak
 wait 2
-footprint oak {"run":[50,100,20]}
+footprint oak {"run":[50,100,20],"object":{"foot":[64,108],"height":30}}
 wait 3
 window-shot $tmp/i_shot.png
 save-footprints
 quit
 SCRIPT
 timeout 120 "$app" --scene "$tmp/ts_scene.json" --script "$tmp/inspect.script" >"$tmp/log" 2>&1 || { bad "inspector run"; cat "$tmp/log"; }
-[ "$(json "$tmp/ts/tileset.json" "d['x_custom'], d['sprites'][5]['x_note'], d['sprites'][5]['footprint']")" = "('keep me', 'mine', {'mode': 'run', 'run': [50, 100, 20]})" ] && ok || bad "the inspector's footprint was not saved into the manifest with its other fields: $(head -c 300 "$tmp/ts/tileset.json")"
+[ "$(json "$tmp/ts/tileset.json" "d['x_custom'], d['sprites'][5]['x_note'], d['sprites'][5]['footprint']")" = "('keep me', 'mine', {'mode': 'run', 'object': {'foot': [64, 108], 'height': 30}, 'run': [50, 100, 20]})" ] && ok || bad "the inspector's footprint was not saved into the manifest with its other fields: $(head -c 300 "$tmp/ts/tileset.json")"
+# The corrected solid, as check-tileset reads it from the saved manifest: its axis on that pixel, 30 px high.
+"$cli" check-tileset "$tmp/ts/tileset.json" --json >"$tmp/ts_check.json" 2>/dev/null
+[ "$(json "$tmp/ts_check.json" "[(o['center'], o['height']) for s in d['sprites'] if s['name'] == 'oak' for o in s['objects']]")" = "[([64.5, 108.5], 30.0)]" ] && ok || bad "check-tileset does not show the corrected solid: $(head -c 300 "$tmp/ts_check.json")"
 # The inspector draws the oak's estimated solid as a yellow outline (255, 220, 0): dozens of pixels.
 yellow=$(oiiotool "$tmp/i_shot.png" --colorcount "1,0.8627,0,1" 2>/dev/null | awk '{print $1}')
 [ "${yellow:-0}" -gt 50 ] && ok || bad "the inspector shows no estimated solid (yellow pixels: ${yellow:-none})"

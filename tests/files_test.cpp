@@ -365,13 +365,36 @@ TEST(Tileset, footprintsAreReadAndBadOnesNameTheEntry) {
     EXPECT_EQ(t.sprites[1].footprint.shadow_alpha, 0.8);
     for (const auto& [fp, expect] : std::vector<std::pair<std::string, std::string>>{
              {R"("sideways")", "sideways"}, {R"("run")", "run"}, {R"({"run": [1, 2]})", "run"},
-             {R"({"polygon": [[0, 0], [1, 1]]})", "polygon"}, {R"({"shadow_alpha": 2})", "shadow_alpha"}}) {
+             {R"({"polygon": [[0, 0], [1, 1]]})", "polygon"}, {R"({"shadow_alpha": 2})", "shadow_alpha"},
+             {R"({"object": {"foot": [1]}})", "foot"}, {R"({"object": {"height": 0}})", "height"},
+             {R"({"object": {"foot": [70000, 1]}})", "object"}, {R"({"object": 3})", "object"}}) {
         m = d.write("tileset.json", manifest_with(R"({"name": "odd", "image": "floor.png", "kind": "overlay", "footprint": )" + fp + "}"));
         std::string msg = error_of([&] { load_tileset(m); });
         EXPECT_MENTIONS(msg, "sprites[1]");
         EXPECT_MENTIONS(msg, "footprint");
         EXPECT_MENTIONS(msg, expect);
     }
+}
+
+// A user's correction of the estimated solid (the tileset inspector's) is
+// read from the footprint, and saved into the manifest as it was read.
+TEST(Tileset, anObjectCorrectionIsReadAndSavedBack) {
+    TempDir d;
+    write_png(d.path / "floor.png", 64, 48);
+    const fs::path m = d.write("tileset.json", manifest_with(
+        R"({"name": "post", "image": "floor.png", "kind": "overlay", "footprint": {"object": {"foot": [30, 40], "height": 25}}})"));
+    Tileset t = load_tileset(m);
+    ASSERT_TRUE(t.sprites[1].footprint.object_foot.has_value());
+    EXPECT_EQ(*t.sprites[1].footprint.object_foot, (std::pair{30, 40}));
+    EXPECT_EQ(t.sprites[1].footprint.object_height, 25);
+    EXPECT_EQ(footprint_to_json(t.sprites[1].footprint), R"({"object":{"foot":[30,40],"height":25}})");
+    t.sprites[1].footprint.object_height = 31;
+    save_manifest_footprints(m, t);
+    EXPECT_EQ(load_tileset(m).sprites[1].footprint, t.sprites[1].footprint);
+    t.sprites[1].footprint.object_foot.reset();
+    t.sprites[1].footprint.object_height = 0;
+    save_manifest_footprints(m, t);
+    EXPECT_EQ(load_tileset(m).sprites[1].footprint, FootprintSpec{});
 }
 
 TEST(Files, savingThroughASymlinkKeepsTheLinkAndTheModeAndALoopIsRefused) {

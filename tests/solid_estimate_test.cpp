@@ -83,6 +83,33 @@ TEST(SolidEstimate, aBushsFootMovesDownFromItsEquatorToWhereItStands) {
     EXPECT_NEAR(at_foot[0].center_y, ay, 3);
 }
 
+// A user's correction (the tileset inspector's): the axis stands on the
+// pixel they chose and the solid is as tall as they said, lower or higher
+// than the estimate's own; an object with no footprint gets one where they
+// put it.
+TEST(SolidEstimate, aCorrectionSetsTheFootAndTheHeight) {
+    const int w = 200, h = 170, ax = 100, ay = 150;
+    const Mask object = drawn({trunk, canopy}, w, h, ax, ay);
+    FootprintSpec fix;
+    fix.object_foot = std::pair{ax - 3, ay - 2};
+    fix.object_height = 40;
+    auto objects = estimate_objects(object, foot(w, h, ax, ay), &fix);
+    ASSERT_EQ(objects.size(), 1u);
+    EXPECT_EQ(objects[0].center_x, ax - 3 + 0.5);
+    EXPECT_EQ(objects[0].center_y, ay - 2 + 0.5);
+    EXPECT_EQ(objects[0].height(), 40);
+    fix.object_height = 90;  // above what the estimate reaches (about 69): its top disc held up
+    objects = estimate_objects(object, foot(w, h, ax, ay), &fix);
+    ASSERT_EQ(objects.size(), 1u);
+    EXPECT_EQ(objects[0].height(), 90);
+    EXPECT_GT(objects[0].radius.back(), 0);
+    fix.object_height = 0;  // the foot alone: the estimate's height from there
+    objects = estimate_objects(object, Mask(Rect{0, 0, w, h}), &fix);
+    ASSERT_EQ(objects.size(), 1u);
+    EXPECT_NEAR(objects[0].height(), 45 + 24, 12);
+    EXPECT_EQ(objects[0].rect, (Rect{ax - 3, ay - 2, 1, 1}));
+}
+
 // A box standing on its footprint, and an empty footprint or sprite.
 TEST(SolidEstimate, aCylinderIsItselfAndEmptyInputsGiveNoObject) {
     const int w = 120, h = 120, ax = 60, ay = 100;

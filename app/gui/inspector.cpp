@@ -49,7 +49,7 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
         for (int x = 0; x < obstacle.width; ++x)
             if (obstacle.bits[std::size_t(y) * obstacle.width + x]) px(obstacle.x0 + x, obstacle.y0 + y, IM_COL32(255, 50, 50, 200));
     // The solid estimated from the alpha alone: its outline in yellow (beyond the paper).
-    const std::vector<EstimatedObject> objects = estimate_objects(r.estimate, obstacle);
+    const std::vector<EstimatedObject> objects = estimate_objects(r.estimate, obstacle, &spec);
     const Mask solid = solid_silhouette(objects, s.image.width, s.image.height);
     for (int y = 0; y < solid.height; ++y)
         for (int x = 0; x < solid.width; ++x)
@@ -63,7 +63,7 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
     const ImVec2 a(o.x + (s.anchor_x + 0.5f) * z, o.y + (s.anchor_y + 0.5f) * z);
     dl->AddLine(ImVec2(a.x - 8, a.y), ImVec2(a.x + 8, a.y), IM_COL32(0, 255, 255, 255), 2);
     dl->AddLine(ImVec2(a.x, a.y - 8), ImVec2(a.x, a.y + 8), IM_COL32(0, 255, 255, 255), 2);
-    if (hovered && ImGui::IsMouseDown(0) && spec.mode == FootprintMode::run) {
+    if (hovered && ImGui::IsMouseDown(0) && !ImGui::GetIO().KeyShift && spec.mode == FootprintMode::run) {
         // Drag: the run follows the pointer (its centre under it).
         const ImVec2 m = ImGui::GetIO().MousePos;
         const int cx = int((m.x - o.x) / z), cy = int((m.y - o.y) / z);
@@ -80,7 +80,40 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
     else
         ImGui::TextUnformatted("no obstacle: light passes through this sprite");
     for (const EstimatedObject& ob : objects)
-        ImGui::Text("estimated solid (yellow outline): %.0f px high above its footprint's centre", ob.height());
+        ImGui::Text("estimated solid (yellow outline): %.0f px high, its axis at (%.1f, %.1f)%s", ob.height(),
+                    ob.center_x, ob.center_y, spec.object_foot || spec.object_height ? ", as corrected" : "");
+    // The user's correction of the solid: where it stands and how tall it is.
+    bool fix = spec.object_foot.has_value() || spec.object_height > 0;
+    if (ImGui::Checkbox("correct the solid", &fix)) {
+        if (fix && !objects.empty())
+            spec.object_foot = std::pair{int(std::floor(objects[0].center_x)), int(std::floor(objects[0].center_y))},
+            spec.object_height = int(objects[0].height());
+        else if (fix)
+            spec.object_foot = std::pair{s.anchor_x, s.anchor_y}, spec.object_height = 0;
+        else
+            spec.object_foot.reset(), spec.object_height = 0;
+        changed = true;
+    }
+    if (fix) {
+        int foot[2] = {spec.object_foot ? spec.object_foot->first : s.anchor_x,
+                       spec.object_foot ? spec.object_foot->second : s.anchor_y};
+        if (ImGui::InputInt2("foot x, y (sprite pixels)", foot)) {
+            spec.object_foot = std::pair{std::clamp(foot[0], 0, s.image.width - 1), std::clamp(foot[1], 0, s.image.height - 1)};
+            changed = true;
+        }
+        int height = spec.object_height;
+        if (ImGui::InputInt("height (px, 0: estimated)", &height)) {
+            spec.object_height = std::clamp(height, 0, s.image.height);
+            changed = true;
+        }
+        ImGui::TextDisabled("Shift+click on the sprite to put the foot there");
+    }
+    if (hovered && ImGui::IsMouseClicked(0) && ImGui::GetIO().KeyShift) {
+        const ImVec2 m = ImGui::GetIO().MousePos;
+        spec.object_foot = std::pair{std::clamp(int((m.x - o.x) / z), 0, s.image.width - 1),
+                                     std::clamp(int((m.y - o.y) / z), 0, s.image.height - 1)};
+        changed = true;
+    }
     (void)index;
 }
 

@@ -93,13 +93,15 @@ int top_row(const Mask& object) {
 // per pixel of height, from the ground up, each the largest that fits (a
 // bisection: a smaller disc of the same centre fits wherever a larger one
 // does), until the discs' ellipses reach the top row: a flat top seen from
-// above is one disc's ellipse, not a dome of small discs.
-std::vector<double> fit_discs(const RunsThrough& runs, double fx, double fy, int top, double widest) {
+// above is one disc's ellipse, not a dome of small discs. With `height` (a
+// user's correction) exactly that many discs, one that does not fit taking
+// the radius of the one below.
+std::vector<double> fit_discs(const RunsThrough& runs, double fx, double fy, int top, double widest, int height = 0) {
     std::vector<double> radius;
     double reached = fy;  // the highest screen row the discs' ellipses reach
     for (int z = 0;; ++z) {
         const double yc = fy - (z + 0.5);
-        if (yc < top || reached <= top + 0.5) break;
+        if (height > 0 ? z >= height : (yc < top || reached <= top + 0.5)) break;
         double r = 0;
         if (disc_fits(runs, fx, yc, 0.5)) {
             double lo = 0.5, hi = widest;
@@ -109,6 +111,7 @@ std::vector<double> fit_discs(const RunsThrough& runs, double fx, double fy, int
             }
             r = lo;
         }
+        if (r == 0 && height > 0 && !radius.empty()) r = radius.back();
         radius.push_back(r);
         if (r > 0) reached = std::min(reached, yc - r / sqrt2);
     }
@@ -128,13 +131,29 @@ long covered(const Mask& object, const EstimatedObject& o) {
 
 }  // namespace
 
-std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint) {
+std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction) {
     EstimatedObject o;
-    if (!mask_centre(footprint, o.center_x, o.center_y, o.rect) || object.count() == 0) return {};
+    const bool has_footprint = mask_centre(footprint, o.center_x, o.center_y, o.rect);
+    const bool corrected = correction && correction->object_foot;
+    if ((!has_footprint && !corrected) || object.count() == 0) return {};
+    if (corrected) {
+        // The user's foot: the footprint's box moved to it (a pixel there without one).
+        const auto [fx, fy] = *correction->object_foot;
+        if (!has_footprint) o.rect = Rect{fx, fy, 1, 1}, o.center_x = fx + 0.5, o.center_y = fy + 0.5;
+        o.rect.x += int(std::lround(fx + 0.5 - o.center_x));
+        o.rect.y += int(std::lround(fy + 0.5 - o.center_y));
+        o.center_x = fx + 0.5, o.center_y = fy + 0.5;
+    }
+    const int height = correction ? correction->object_height : 0;
     const int c = int(std::floor(o.center_x));
     const RunsThrough runs = runs_through(object, c);
     const int top = top_row(object);
     const double widest = object.width / sqrt2 + 1;
+    if (corrected) {
+        o.radius = fit_discs(runs, o.center_x, o.center_y, top, widest, height);
+        if (o.radius.empty()) return {};
+        return {o};
+    }
     // Where the axis meets the ground. Algorithm 1's footprint centre is a
     // trunk's base, but a bush's or a rock's widest row: its equator, not
     // where it stands. So the foot may move down, to the object's lowest
@@ -146,20 +165,20 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     for (int j = 0; j < int(runs.first.size()); ++j)
         if (runs.first[std::size_t(j)] <= runs.last[std::size_t(j)]) bottom = std::max(bottom, runs.y0 + j);
     EstimatedObject best = o;
-    best.radius = fit_discs(runs, o.center_x, o.center_y, top, widest);
+    best.radius = fit_discs(runs, o.center_x, o.center_y, top, widest, height);
     const long at_footprint = covered(object, best);
     long best_covered = at_footprint;
     for (double fy = o.center_y + 1; fy <= bottom + 1; fy += 1) {
         EstimatedObject t = o;
         t.center_y = fy;
-        t.radius = fit_discs(runs, o.center_x, fy, top, widest);
+        t.radius = fit_discs(runs, o.center_x, fy, top, widest, height);
         const long n = covered(object, t);
         if (n > best_covered) best = std::move(t), best_covered = n;
     }
     // A pixel row's worth of gain is an outline's rounding, not a better foot.
     if (best_covered <= at_footprint + object.count() / 50) {
         best = o;
-        best.radius = fit_discs(runs, o.center_x, o.center_y, top, widest);
+        best.radius = fit_discs(runs, o.center_x, o.center_y, top, widest, height);
     }
     best.rect.y += int(std::lround(best.center_y - o.center_y));  // the footprint, moved with the foot
     if (best.radius.empty()) return {};
@@ -169,7 +188,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
 std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite& s, const Params& p) {
     FootprintReport report;
     const Mask footprint = tileset_footprint(tileset, s, p, &report);
-    return estimate_objects(report.estimate, footprint);
+    return estimate_objects(report.estimate, footprint, &s.footprint);
 }
 
 Mask solid_silhouette(const std::vector<EstimatedObject>& objects, int w, int h) {

@@ -42,7 +42,8 @@ void read_sprite_fields(const Fields& f, Sprite& s) {
 
 // "auto" | "paper" | "none" | {"mode": ..., "run": [x, y, length],
 // "polygon": [[x, y], ...], "shadow_alpha": a, "shadow_luminance": l,
-// "ground_tolerance": t}; a run or polygon without a mode sets it.
+// "ground_tolerance": t, "object": {"foot": [x, y], "height": h}}; a run or
+// polygon without a mode sets it.
 FootprintSpec footprint_from(const json& j, const std::string& where) {
     FootprintSpec spec;
     auto mode_of = [&](const std::string& m) {
@@ -93,6 +94,18 @@ FootprintSpec footprint_from(const json& j, const std::string& where) {
         }
         if (!spec.mode) spec.mode = FootprintMode::polygon;
     }
+    if (f.has("object")) {
+        // {"foot": [x, y], "height": h}: the user's correction of the estimated solid.
+        const json& o = j["object"];
+        check_object(o, where + ": object");
+        Fields of{o, where + ": object"};
+        if (of.has("foot")) {
+            const json& ft = o["foot"];
+            if (!ft.is_array() || ft.size() != 2) of.fail("foot", "must be [x, y]");
+            spec.object_foot = std::pair{coord(ft[0], "object"), coord(ft[1], "object")};
+        }
+        if (of.has("height")) spec.object_height = int(of.integer("height", 1, max_sprite_offset));
+    }
     if (spec.mode == FootprintMode::run && spec.run_length < 1) f.fail("run", "is required for mode run");
     if (spec.mode == FootprintMode::polygon && spec.polygon.empty()) f.fail("polygon", "is required for mode polygon");
     return spec;
@@ -110,6 +123,12 @@ json footprint_json(const FootprintSpec& f) {
     if (f.shadow_alpha != defaults.shadow_alpha) j["shadow_alpha"] = f.shadow_alpha;
     if (f.shadow_luminance != defaults.shadow_luminance) j["shadow_luminance"] = f.shadow_luminance;
     if (f.ground_tolerance != defaults.ground_tolerance) j["ground_tolerance"] = f.ground_tolerance;
+    if (f.object_foot || f.object_height > 0) {
+        json o = json::object();
+        if (f.object_foot) o["foot"] = {f.object_foot->first, f.object_foot->second};
+        if (f.object_height > 0) o["height"] = f.object_height;
+        j["object"] = o;
+    }
     return j;
 }
 

@@ -37,8 +37,12 @@ struct EstimatedObject {
 // The object standing in a sprite whose object pixels are `object` (the
 // footprint estimate's opacity, baked ground and shadows taken out) and whose
 // footprint is `footprint` (both in sprite pixels). None when the footprint
-// or the object is empty.
-std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint);
+// or the object is empty. `correction` (a sprite's footprint spec) may fix
+// where the axis meets the ground (`object_foot`, the centre of that pixel)
+// and the solid's height (`object_height`), as a user set them in the
+// tileset inspector.
+std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint,
+                                              const FootprintSpec* correction = nullptr);
 
 // The objects of tileset sprite `s` under preset `p`: its footprint as the
 // obstacle map stamps it (tileset_footprint) and the estimate's pixels.

@@ -32,6 +32,11 @@ struct FootprintSpec {
     double shadow_alpha = 0.9;       // auto: a pixel under this alpha...
     double shadow_luminance = 0.08;  // ...and darker than this (0..1) is a baked shadow
     double ground_tolerance = 0.16;  // auto: colour distance (0..1) within which a diamond pixel is ground
+    // A user's correction of the solid estimated from the alpha (beyond the
+    // paper): where its axis meets the ground, sprite pixels, and the top of
+    // its solid above the ground (0: the estimate's own).
+    std::optional<std::pair<int, int>> object_foot;
+    int object_height = 0;
     friend bool operator==(const FootprintSpec&, const FootprintSpec&) = default;
 };
 
