@@ -475,6 +475,11 @@ cmp -s "$tmp/tiled/via_scene.png" "$tmp/level_cli.png" && ok || bad "the Tiled m
 if env -u DISPLAY "$app" --scene "$src/assets/scenes/default.json" --screenshot "$tmp/nodisplay.png" >"$tmp/log" 2>&1 &&
   grep -q "no display" "$tmp/log" && [ -f "$tmp/nodisplay.png" ]; then ok; else bad "no-display fallback"; cat "$tmp/log"; fi
 if cmp -s "$tmp/nodisplay.png" "$tmp/cli.png"; then ok; else bad "the no-display render differs from isolux-cli"; fi
+# The README's main command with no display (scripts/run.sh: no scene named):
+# the showcase scene, as isolux-cli renders it.
+"$cli" render --scene "$src/assets/scenes/showcase.json" --out "$tmp/showcase_cli.png" >/dev/null 2>&1 || bad "isolux-cli could not render the showcase"
+if env -u DISPLAY "$app" --headless-out "$tmp/first_start.png" >"$tmp/log" 2>&1 && grep -q "no display" "$tmp/log" &&
+  cmp -s "$tmp/first_start.png" "$tmp/showcase_cli.png"; then ok; else bad "the first start with no display is not the showcase"; cat "$tmp/log"; fi
 
 echo "app: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
