@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <cstdio>
 
 #include "gui/shader_sources.hpp"
 
@@ -35,15 +34,17 @@ void replace_texture(GLuint& tex, int w, int h, const void* data) {
 }
 
 // The rays' targets as offsets from the centre, in the CPU tracers' order,
-// and the falloff by distance, into storage buffers 0 and 1. Returns the
-// number of rays.
-GLint upload_rays(GpuTracer& t, const LightMask& m, const Params& p) {
-    std::vector<GLint> targets;
+// and the falloff by distance, into storage buffers 0 and 1 (`targets` and
+// `table` are scratch, kept by the caller across a frame's lights). Returns
+// the number of rays.
+GLint upload_rays(GpuTracer& t, const LightMask& m, const Params& p, std::vector<GLint>& targets,
+                  std::vector<GLuint>& table) {
+    targets.clear();
     for_each_ray_target(m.cx, m.cy, m.a, m.b, p, [&](std::int64_t x, std::int64_t y) {
         targets.push_back(GLint(x - m.cx));
         targets.push_back(GLint(y - m.cy));
     });
-    std::vector<GLuint> table(std::size_t(std::max(m.a, m.b)) + 1);
+    table.resize(std::size_t(std::max(m.a, m.b)) + 1);
     for (std::size_t d = 0; d < table.size(); ++d) table[d] = falloff(std::int64_t(d), p.falloff_scale);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, t.targets);
     glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(targets.size() * sizeof(GLint)), targets.data(), GL_STREAM_DRAW);
@@ -135,9 +136,11 @@ bool gpu_trace(GpuTracer& t, const Mask& obstacles, std::uint64_t obstacles_revi
     glUniform2i(glGetUniformLocation(t.program, "obstacle_size"), t.obstacles_rect.w, t.obstacles_rect.h);
     glUniform1i(glGetUniformLocation(t.program, "mode"), p.mode == Mode::light ? 0 : p.mode == Mode::shadow ? 1 : 2);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    std::vector<GLint> targets;
+    std::vector<GLuint> table;
     for (LightMask* m : masks) {
         if (m->clip.empty()) continue;
-        const GLint rays = upload_rays(t, *m, p);
+        const GLint rays = upload_rays(t, *m, p, targets, table);
         ready_outputs(t, *m);
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_2D, t.obstacles);  // (creating the outputs bound them here)
@@ -181,11 +184,13 @@ bool gpu_trace_solids(GpuTracer& t, const OccluderMap& occ, std::uint64_t occlud
     glUniform2i(glGetUniformLocation(t.solids_program, "span_origin"), t.spans_rect.x, t.spans_rect.y);
     glUniform2i(glGetUniformLocation(t.solids_program, "span_size"), t.spans_rect.w, t.spans_rect.h);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    std::vector<GLint> targets;
+    std::vector<GLuint> table;
     bool whole = true;
     for (std::size_t k = 0; k < masks.size() && whole; ++k) {
         LightMask* m = masks[k];
         if (m->clip.empty()) continue;
-        const GLint rays = upload_rays(t, *m, p);
+        const GLint rays = upload_rays(t, *m, p, targets, table);
         ready_outputs(t, *m);
         const GLuint no = 0;
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, t.overflow);

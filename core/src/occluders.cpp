@@ -141,8 +141,7 @@ SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) 
             float best = -1;
             for (const EstimatedObject& o : out.objects) {
                 const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y;
-                for (double z = o.height(); z >= 0 && best < 0; z -= 0.5) {
-                    if (z >= o.height()) continue;
+                for (double z = o.height() - 0.5; z >= 0 && best < 0; z -= 0.5) {
                     const double r = o.radius[std::size_t(z)];
                     const double d2 = 2 * (sy + z) * (sy + z) + sx * sx / 2;
                     if (r > 0 && d2 <= r * r) best = float(z);

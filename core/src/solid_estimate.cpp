@@ -164,8 +164,9 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     int bottom = int(std::floor(o.center_y));
     for (int j = 0; j < int(runs.first.size()); ++j)
         if (runs.first[std::size_t(j)] <= runs.last[std::size_t(j)]) bottom = std::max(bottom, runs.y0 + j);
-    EstimatedObject best = o;
-    best.radius = fit_discs(runs, o.center_x, o.center_y, top, widest, height);
+    EstimatedObject at_footprint_row = o;
+    at_footprint_row.radius = fit_discs(runs, o.center_x, o.center_y, top, widest, height);
+    EstimatedObject best = at_footprint_row;
     const long at_footprint = covered(object, best);
     long best_covered = at_footprint;
     for (double fy = o.center_y + 1; fy <= bottom + 1; fy += 1) {
@@ -176,10 +177,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
         if (n > best_covered) best = std::move(t), best_covered = n;
     }
     // A pixel row's worth of gain is an outline's rounding, not a better foot.
-    if (best_covered <= at_footprint + object.count() / 50) {
-        best = o;
-        best.radius = fit_discs(runs, o.center_x, o.center_y, top, widest, height);
-    }
+    if (best_covered <= at_footprint + object.count() / 50) best = std::move(at_footprint_row);
     best.rect.y += int(std::lround(best.center_y - o.center_y));  // the footprint, moved with the foot
     if (best.radius.empty()) return {};
     return {best};
