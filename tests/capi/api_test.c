@@ -1,0 +1,137 @@
+/* The C API's contract, from C: statuses, messages that name the field,
+ * stable light ids, edits refused by name with the world unchanged, buffers
+ * checked, NULL handled, and a moved light changing only what it should. */
+#include <isolux.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int failures = 0, passes = 0;
+#define CHECK(cond, ...)                                         \
+    do {                                                         \
+        if (cond) {                                              \
+            ++passes;                                            \
+        } else {                                                 \
+            ++failures;                                          \
+            printf("FAIL line %d: %s: ", __LINE__, #cond);       \
+            printf(__VA_ARGS__);                                 \
+            printf(" (last error: %s)\n", isolux_last_error());  \
+        }                                                        \
+    } while (0)
+
+static size_t differing(const uint8_t* a, const uint8_t* b, size_t bytes) {
+    size_t n = 0;
+    for (size_t i = 0; i < bytes; i += 4) n += memcmp(a + i, b + i, 4) != 0;
+    return n;
+}
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        fprintf(stderr, "usage: api_test TILESET_MANIFEST\n");
+        return 2;
+    }
+    const char* tileset = argv[1];
+    CHECK(isolux_api_version() == ISOLUX_API_VERSION, "version %d", isolux_api_version());
+
+    /* Opening: bad inputs are refused by name; *out untouched. */
+    isolux_world* w = NULL;
+    CHECK(isolux_world_open_scene("/nonexistent/dir/level.json", &w) == ISOLUX_ERROR_INPUT && w == NULL, "missing");
+    CHECK(strstr(isolux_last_error(), "level.json") != NULL, "names the file");
+    CHECK(isolux_world_open_seeded("s", 0, 4, NULL, tileset, &w) == ISOLUX_ERROR_INPUT, "width 0");
+    CHECK(strstr(isolux_last_error(), "width") != NULL, "names the field");
+    CHECK(isolux_world_open_seeded("s", 4, 4, "hexagonal", tileset, &w) == ISOLUX_ERROR_INPUT, "layout");
+    CHECK(isolux_world_open_seeded(NULL, 4, 4, NULL, tileset, &w) == ISOLUX_ERROR_ARGUMENT, "NULL seed");
+    CHECK(isolux_world_open_seeded("isolux", 8, 8, NULL, tileset, &w) == ISOLUX_OK && w, "open");
+    if (!w) return 1;
+
+    /* Parameters by the table's names. */
+    char buf[64];
+    CHECK(isolux_world_set_param(w, "ray_skip", "2") == ISOLUX_OK, "ray_skip");
+    CHECK(isolux_world_get_param(w, "ray_skip", buf, sizeof buf) == ISOLUX_OK && strcmp(buf, "2") == 0, "got %s", buf);
+    CHECK(isolux_world_set_param(w, "ray_skip", "-3") == ISOLUX_ERROR_INPUT, "out of range");
+    CHECK(strstr(isolux_last_error(), "ray_skip") != NULL, "names it");
+    CHECK(isolux_world_get_param(w, "ray_skip", buf, sizeof buf) == ISOLUX_OK && strcmp(buf, "2") == 0,
+          "unchanged after a refusal: %s", buf);
+    CHECK(isolux_world_set_param(w, "no_such_param", "1") == ISOLUX_ERROR_INPUT, "unknown name");
+    CHECK(strstr(isolux_last_error(), "no_such_param") != NULL, "names it");
+    CHECK(isolux_world_get_param(w, "ray_skip", buf, 1) == ISOLUX_ERROR_ARGUMENT, "small buffer");
+    CHECK(isolux_world_load_preset(w, "no-such-preset") == ISOLUX_ERROR_INPUT, "unknown preset");
+    CHECK(isolux_world_load_preset(w, "paper") == ISOLUX_OK, "paper");
+    CHECK(isolux_world_get_param(w, "ray_skip", buf, sizeof buf) == ISOLUX_OK && strcmp(buf, "2") != 0,
+          "the preset replaced it: %s", buf);
+
+    /* Lights: stable ids across removal. */
+    isolux_light l;
+    int a = -1, b = -1, c = -1, ids[8], count = 0;
+    isolux_light_init(&l, 500, 300);
+    CHECK(isolux_world_add_light(w, &l, &a) == ISOLUX_OK, "add a");
+    l.x = 700;
+    l.r = 200;
+    CHECK(isolux_world_add_light(w, &l, &b) == ISOLUX_OK, "add b");
+    CHECK(isolux_world_add_light(w, &l, &c) == ISOLUX_OK && a != b && b != c, "ids %d %d %d", a, b, c);
+    CHECK(isolux_world_remove_light(w, b) == ISOLUX_OK, "remove b");
+    CHECK(isolux_world_lights(w, ids, 8, &count) == ISOLUX_OK && count == 2 && ids[0] == a && ids[1] == c, "ids");
+    CHECK(isolux_world_move_light(w, b, 1, 1) == ISOLUX_ERROR_ARGUMENT, "removed id");
+    CHECK(isolux_world_get_light(w, c, &l) == ISOLUX_OK && l.x == 700 && l.r == 200, "c kept: %g", l.x);
+    l.intensity = -1;
+    CHECK(isolux_world_set_light(w, c, &l) == ISOLUX_ERROR_INPUT && strstr(isolux_last_error(), "intensity"),
+          "negative intensity");
+    CHECK(isolux_world_move_light(w, c, 1e300, 0) == ISOLUX_ERROR_INPUT, "far away");
+    CHECK(isolux_world_remove_light(w, c) == ISOLUX_OK, "remove c");
+
+    /* Rendering: buffers checked; a moved light changes the picture and
+     * moving it back gives the same bytes again. */
+    isolux_rect view;
+    CHECK(isolux_world_default_view(w, &view) == ISOLUX_OK && view.width > 0 && view.height > 0, "view");
+    const size_t bytes = (size_t)view.width * (size_t)view.height * 4;
+    uint8_t* first = malloc(bytes);
+    uint8_t* moved = malloc(bytes);
+    uint8_t* back = malloc(bytes);
+    uint8_t* light = malloc(bytes);
+    CHECK(isolux_world_render(w, view, 0, first, bytes - 4, NULL, 0) == ISOLUX_ERROR_ARGUMENT, "short buffer");
+    CHECK(strstr(isolux_last_error(), "rgba") != NULL, "names the buffer");
+    isolux_rect empty = {0, 0, 0, 10};
+    CHECK(isolux_world_render(w, empty, 0, NULL, 0, NULL, 0) == ISOLUX_ERROR_ARGUMENT, "empty view");
+    CHECK(isolux_world_render(w, view, 0, first, bytes, light, bytes) == ISOLUX_OK, "render");
+    CHECK(isolux_world_move_light(w, a, 520, 330) == ISOLUX_OK, "move");
+    CHECK(isolux_world_render(w, view, 1, moved, bytes, NULL, 0) == ISOLUX_OK, "render moved");
+    CHECK(differing(first, moved, bytes) > 100, "moving a light changes the picture");
+    CHECK(isolux_world_move_light(w, a, 500, 300) == ISOLUX_OK, "move back");
+    CHECK(isolux_world_render(w, view, 2, back, bytes, NULL, 0) == ISOLUX_OK, "render back");
+    CHECK(differing(first, back, bytes) == 0, "back where it was: %zu pixels differ", differing(first, back, bytes));
+
+    /* Edits: refused by name with the world unchanged; applied; undone. */
+    int cols = 0, rows = 0;
+    CHECK(isolux_world_tiles(w, &cols, &rows) == ISOLUX_OK && cols == 8 && rows == 8, "%dx%d", cols, rows);
+    const char* bad[] = {"no-such-sprite"};
+    CHECK(isolux_world_set_tile(w, 3, 3, NULL, bad, 1) == ISOLUX_ERROR_INPUT, "unknown overlay");
+    CHECK(strstr(isolux_last_error(), "no-such-sprite") != NULL, "names it");
+    CHECK(isolux_world_set_tile(w, 8, 0, NULL, NULL, 0) == ISOLUX_ERROR_INPUT, "outside");
+    CHECK(strstr(isolux_last_error(), "outside") != NULL, "says so");
+    CHECK(isolux_world_render(w, view, 3, moved, bytes, NULL, 0) == ISOLUX_OK && differing(first, moved, bytes) == 0,
+          "refused edits change nothing");
+    int cleared = 0;
+    for (int row = 0; row < rows; ++row)
+        for (int col = 0; col < cols; ++col)
+            cleared += isolux_world_set_tile(w, col, row, NULL, NULL, 0) == ISOLUX_OK;
+    CHECK(cleared == cols * rows, "every tile's overlays removed: %d", cleared);
+    CHECK(isolux_world_render(w, view, 4, moved, bytes, NULL, 0) == ISOLUX_OK && differing(first, moved, bytes) > 100,
+          "removing every overlay changes the picture");
+    CHECK(isolux_world_clear_edits(w) == ISOLUX_OK, "clear");
+    CHECK(isolux_world_render(w, view, 5, back, bytes, NULL, 0) == ISOLUX_OK && differing(first, back, bytes) == 0,
+          "cleared edits give the seed's picture again: %zu", differing(first, back, bytes));
+
+    /* NULL handles are refused, not crashed on. */
+    CHECK(isolux_world_render(NULL, view, 0, first, bytes, NULL, 0) == ISOLUX_ERROR_ARGUMENT, "NULL world");
+    CHECK(isolux_world_set_param(w, NULL, "1") == ISOLUX_ERROR_ARGUMENT, "NULL name");
+    isolux_world_free(NULL);
+
+    free(first);
+    free(moved);
+    free(back);
+    free(light);
+    isolux_world_free(w);
+    printf("capi_api: %d passed, %d failed\n", passes, failures);
+    return failures ? 1 : 0;
+}
