@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libtcod-dev
   libimgui-dev libglfw3-dev libgl-dev libegl-dev
   fonts-dejavu-core libpugixml-dev zlib1g-dev libzstd-dev zstd tiled libglm-dev
+  godot3-server godot3
   xvfb xauth libgl1-mesa-dri libegl-mesa0 python3
 )
 

@@ -13,4 +13,8 @@ export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cd build/asan
-xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure --timeout 1200
+# Godot loads libisolux into its own, uninstrumented process: those tests
+# (label "hosted") run in scripts/test.sh only. Python's do run here, with the
+# sanitizer's runtime preloaded (tests/capi/run.py).
+echo "sanitize: leaving out the tests labelled hosted: $(ctest -N -L hosted | sed -n 's/^ *Test *#[0-9]*: //p' | tr '\n' ' ')"
+xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure --timeout 1200 -LE hosted

@@ -417,6 +417,7 @@ void write_light_objects(pugi::xml_node m, const Scene& scene, const Grid& g, st
         pugi::xml_node o = lights.append_child("object");
         o.append_attribute("id") = object_id++;
         o.append_attribute("name") = l.name.empty() ? ("light " + std::to_string(i + 1)).c_str() : l.name.c_str();
+        o.append_attribute("type") = "light";
         o.append_attribute("x") = number(px).c_str();
         o.append_attribute("y") = number(py).c_str();
         if (l.hidden) o.append_attribute("visible") = 0;
@@ -431,7 +432,7 @@ void write_light_objects(pugi::xml_node m, const Scene& scene, const Grid& g, st
 }
 
 // Obstacles: the obstacle map as polygons (screen rectangles, which an
-// isometric map's object pixels shear), for collision or occluders.
+// isometric map's object pixels shear) of type "occluder".
 void write_obstacle_objects(pugi::xml_node m, const World& world, const Scene& scene, const Grid& g,
                             std::pair<int, int> origin, int& next_id, int& object_id) {
     pugi::xml_node obstacles = m.append_child("objectgroup");
@@ -443,6 +444,9 @@ void write_obstacle_objects(pugi::xml_node m, const World& world, const Scene& s
         g.screen_to_object(r.x - origin.first, r.y - origin.second, px, py);
         pugi::xml_node o = obstacles.append_child("object");
         o.append_attribute("id") = object_id++;
+        // What Tiled 1.8 writes for an object's class, and what Tiled
+        // importers (Godot 3's, YATI for Godot 4) turn into light occluders.
+        o.append_attribute("type") = "occluder";
         o.append_attribute("x") = number(px).c_str();
         o.append_attribute("y") = number(py).c_str();
         const double corners[4][2] = {{0, 0}, {double(r.w), 0}, {double(r.w), double(r.h)}, {0, double(r.h)}};

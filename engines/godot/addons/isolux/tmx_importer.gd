@@ -1,0 +1,409 @@
+# Turns a Tiled map exported by isolux (isometric, CSV floors, image-collection
+# or sheet tilesets) into a Godot 3.2 scene whose pixels are isolux's world
+# pixels: an isometric TileMap for the floors, a Sprite per overlay, a Light2D
+# per light, a LightOccluder2D per obstacle and a CanvasModulate for the
+# ambient. Tiled's projection: a point (x, y) of an isometric map's object
+# layer lands on screen at ((x - y) * tw / th / 2 + H * tw / 2, (x + y) / 2);
+# isolux's `isolux_origin_x`, `isolux_origin_y` map properties move Tiled's
+# screen (0, 0) to the world pixel isolux renders it at (0, 0 for other maps).
+#
+#   var level = preload("res://addons/isolux/tmx_importer.gd").new().import_tmx("/abs/level.tmx")
+#   if level == null: push_error(importer.error)
+tool
+extends Reference
+
+var error := ""
+
+var _map := {}            # the map element's attributes
+var _props := {}          # the map's properties
+var _tiles := {}          # gid -> {texture, region, offset, align}
+var _floors := []         # [width, height, [gids]]
+var _overlays := []       # [{gid, x, y, w, h}]
+var _lights := []         # [{name, x, y, props}]
+var _obstacles := []      # [{x, y, points}]
+var _light_texture: ImageTexture = null
+
+
+func import_tmx(path: String) -> Node2D:
+	error = ""
+	if not _read_map(path):
+		return null
+	return _build()
+
+
+# ------------------------------------------------------------------ reading
+
+func _fail(where: String, what: String) -> bool:
+	if error == "":
+		error = where + ": " + what
+	return false
+
+
+func _read_map(path: String) -> bool:
+	var p = XMLParser.new()
+	if p.open(path) != OK:
+		return _fail(path, "cannot be opened")
+	var stack = []
+	var group = ""
+	var object = null
+	var data_encoding = ""
+	while p.read() == OK:
+		var kind = p.get_node_type()
+		if kind == XMLParser.NODE_ELEMENT:
+			var name = p.get_node_name()
+			var attrs = _attributes(p)
+			var parent: String = stack.back() if stack.size() > 0 else ""
+			match name:
+				"map":
+					_map = attrs
+					if attrs.get("orientation", "") != "isometric":
+						return _fail(path, "orientation \"%s\": the importer reads isometric maps" % attrs.get("orientation", ""))
+					if attrs.get("infinite", "0") == "1":
+						return _fail(path, "infinite maps are not read by this importer")
+				"tileset":
+					if not _read_tileset(path, attrs, p):
+						return false
+					continue  # _read_tileset consumed an embedded tileset whole
+				"layer":
+					_floors = [int(attrs.get("width", "0")), int(attrs.get("height", "0")), []]
+				"data":
+					data_encoding = attrs.get("encoding", "")
+					if data_encoding != "csv":
+						return _fail(path, "layer data encoding \"%s\": the importer reads csv (isolux's export)" % data_encoding)
+				"objectgroup":
+					group = attrs.get("name", "")
+				"object":
+					object = {"attrs": attrs, "props": {}, "points": null, "group": group}
+				"polygon":
+					if object != null:
+						object["points"] = _points(attrs.get("points", ""))
+				"property":
+					if parent == "properties" and stack.size() >= 2:
+						var owner: String = stack[stack.size() - 2]
+						if owner == "map":
+							_props[attrs.get("name", "")] = attrs.get("value", "")
+						elif owner == "object" and object != null:
+							object["props"][attrs.get("name", "")] = attrs.get("value", "")
+			if p.is_empty():
+				if name == "object":
+					_object_done(object)
+					object = null
+			else:
+				stack.push_back(name)
+		elif kind == XMLParser.NODE_TEXT:
+			if stack.size() > 0 and stack.back() == "data" and data_encoding == "csv":
+				for cell in p.get_node_data().split(",", false):
+					var t = cell.strip_edges()
+					if t != "":
+						_floors[2].push_back(int(t))
+		elif kind == XMLParser.NODE_ELEMENT_END:
+			var name = p.get_node_name()
+			if stack.size() > 0:
+				stack.pop_back()
+			if name == "object":
+				_object_done(object)
+				object = null
+			elif name == "objectgroup":
+				group = ""
+	if _map.empty():
+		return _fail(path, "no map element")
+	return true
+
+
+func _object_done(object) -> void:
+	if object == null:
+		return
+	var a: Dictionary = object["attrs"]
+	var o = {"x": float(a.get("x", "0")), "y": float(a.get("y", "0")), "name": a.get("name", ""),
+		"props": object["props"], "type": a.get("type", a.get("class", ""))}
+	if a.has("gid"):
+		o["gid"] = int(a["gid"])
+		o["w"] = float(a.get("width", "0"))
+		o["h"] = float(a.get("height", "0"))
+		_overlays.push_back(o)
+	elif object["group"] == "lights" or o["type"] == "light":
+		_lights.push_back(o)
+	elif object["points"] != null and (object["group"] == "obstacles" or o["type"] == "occluder"):
+		o["points"] = object["points"]
+		_obstacles.push_back(o)
+
+
+func _attributes(p: XMLParser) -> Dictionary:
+	var d = {}
+	for i in range(p.get_attribute_count()):
+		d[p.get_attribute_name(i)] = p.get_attribute_value(i)
+	return d
+
+
+func _points(text: String) -> PoolVector2Array:
+	var out = PoolVector2Array()
+	for pair in text.split(" ", false):
+		var xy = pair.split(",")
+		if xy.size() == 2:
+			out.push_back(Vector2(float(xy[0]), float(xy[1])))
+	return out
+
+
+# A tileset: external (source=) or embedded; image collections and sheets.
+func _read_tileset(map_path: String, attrs: Dictionary, map_parser: XMLParser) -> bool:
+	var first = int(attrs.get("firstgid", "1"))
+	var p = map_parser
+	var where = map_path
+	var base_dir = map_path.get_base_dir()
+	if attrs.has("source"):
+		where = base_dir.plus_file(attrs["source"])
+		p = XMLParser.new()
+		if p.open(where) != OK:
+			return _fail(where, "cannot be opened")
+		base_dir = where.get_base_dir()
+		attrs = {}
+	elif map_parser.is_empty():
+		return true
+	var offset = Vector2.ZERO
+	var align = ""
+	var tile_size = Vector2(float(attrs.get("tilewidth", "0")), float(attrs.get("tileheight", "0")))
+	var columns = int(attrs.get("columns", "0"))
+	var spacing = int(attrs.get("spacing", "0"))
+	var margin = int(attrs.get("margin", "0"))
+	align = attrs.get("objectalignment", "")
+	var tile_id = -1
+	var sheet: Texture = null
+	var depth = 0
+	while p.read() == OK:
+		var kind = p.get_node_type()
+		if kind == XMLParser.NODE_ELEMENT:
+			var name = p.get_node_name()
+			var a = _attributes(p)
+			match name:
+				"tileset":
+					tile_size = Vector2(float(a.get("tilewidth", "0")), float(a.get("tileheight", "0")))
+					columns = int(a.get("columns", "0"))
+					spacing = int(a.get("spacing", "0"))
+					margin = int(a.get("margin", "0"))
+					align = a.get("objectalignment", "")
+				"tileoffset":
+					offset = Vector2(float(a.get("x", "0")), float(a.get("y", "0")))
+				"tile":
+					tile_id = int(a.get("id", "0"))
+				"image":
+					var tex = _texture(base_dir.plus_file(a.get("source", "")))
+					if tex == null:
+						return _fail(where, "image \"%s\" cannot be read" % a.get("source", ""))
+					if tile_id >= 0:
+						_tiles[first + tile_id] = {"texture": tex, "region": Rect2(Vector2.ZERO, tex.get_size())}
+					else:
+						sheet = tex
+			if not p.is_empty():
+				depth += 1
+				if name == "tile":
+					pass
+		elif kind == XMLParser.NODE_ELEMENT_END:
+			var name = p.get_node_name()
+			if name == "tile":
+				tile_id = -1
+			if name == "tileset":
+				break
+			depth -= 1
+	if sheet != null and columns > 0:
+		var count = int((sheet.get_height() - 2 * margin + spacing) / (tile_size.y + spacing)) * columns
+		for i in range(count):
+			var r = Rect2(margin + (i % columns) * (tile_size.x + spacing), margin + (i / columns) * (tile_size.y + spacing),
+				tile_size.x, tile_size.y)
+			_tiles[first + i] = {"texture": sheet, "region": r}
+	for gid in _tiles.keys():
+		if gid >= first and not _tiles[gid].has("offset"):
+			_tiles[gid]["offset"] = offset
+			_tiles[gid]["align"] = align
+	return true
+
+
+# Loaded straight from the file, unfiltered: Godot draws isolux's pixels.
+func _texture(path: String) -> ImageTexture:
+	var img = Image.new()
+	if img.load(path) != OK:
+		return null
+	var tex = ImageTexture.new()
+	tex.create_from_image(img, 0)
+	return tex
+
+
+# ------------------------------------------------------------------ building
+
+func _tw() -> float:
+	return float(_map.get("tilewidth", "0"))
+
+
+func _th() -> float:
+	return float(_map.get("tileheight", "0"))
+
+
+func origin() -> Vector2:
+	return Vector2(float(_props.get("isolux_origin_x", "0")), float(_props.get("isolux_origin_y", "0")))
+
+
+# Tiled's isometric projection of an object-layer point, in world pixels.
+func project(x: float, y: float) -> Vector2:
+	var h = float(_map.get("height", "0"))
+	return Vector2((x - y) * _tw() / _th() / 2.0 + h * _tw() / 2.0, (x + y) / 2.0) + origin()
+
+
+func _build() -> Node2D:
+	var root = Node2D.new()
+	root.name = "Level"
+	var ambient = float(_props.get("ambient_clarity", "1"))
+	var modulate = CanvasModulate.new()
+	modulate.name = "Ambient"
+	modulate.color = Color(ambient, ambient, ambient)
+	_add(root, modulate)
+	_add(root, _build_floors())
+	var overlays = Node2D.new()
+	overlays.name = "Overlays"
+	_add(root, overlays)
+	for o in _overlays:
+		var s = _build_sprite(o)
+		if s != null:
+			_add(overlays, s, root)
+	var lights = Node2D.new()
+	lights.name = "Lights"
+	_add(root, lights)
+	for l in _lights:
+		_add(lights, _build_light(l), root)
+	var occluders = Node2D.new()
+	occluders.name = "Occluders"
+	_add(root, occluders)
+	for o in _obstacles:
+		_add(occluders, _build_occluder(o), root)
+	return root
+
+
+func _add(parent: Node, child: Node, owner: Node = null) -> void:
+	parent.add_child(child)
+	child.owner = owner if owner != null else parent
+
+
+# Floors: Tiled draws a cell's image with its bottom-left corner on the
+# diamond's bottom-left (the top corner moved down by th and left by tw / 2),
+# then shifted by the tileset's tileoffset. Godot draws an isometric cell's
+# texture (tile origin top-left) at its top corner moved left by tw / 2,
+# plus the tile's texture offset: the offset carries the rest.
+func _build_floors() -> TileMap:
+	var tm = TileMap.new()
+	tm.name = "Floors"
+	tm.mode = TileMap.MODE_ISOMETRIC
+	tm.cell_size = Vector2(_tw(), _th())
+	tm.cell_tile_origin = TileMap.TILE_ORIGIN_TOP_LEFT
+	tm.position = project(0, 0)
+	var ts = TileSet.new()
+	var ids = {}
+	var w: int = _floors[0] if _floors.size() > 0 else 0
+	var cells: Array = _floors[2] if _floors.size() > 0 else []
+	for i in range(cells.size()):
+		var raw: int = cells[i]
+		var gid = raw & 0x0FFFFFFF
+		if gid == 0 or not _tiles.has(gid):
+			continue
+		if not ids.has(gid):
+			var t: Dictionary = _tiles[gid]
+			var id = ids.size()
+			ids[gid] = id
+			ts.create_tile(id)
+			ts.tile_set_texture(id, t["texture"])
+			ts.tile_set_region(id, t["region"])
+			var size: Vector2 = t["region"].size
+			ts.tile_set_texture_offset(id, Vector2(0, _th() - size.y) + t["offset"])
+		tm.set_cell(i % w, i / w, ids[gid], raw & 0x80000000 != 0, raw & 0x40000000 != 0)
+	tm.tile_set = ts
+	return tm
+
+
+# An overlay: its image aligned on its projected point as the tileset's
+# objectalignment says (Tiled's default on isometric maps: bottom).
+func _build_sprite(o: Dictionary):
+	var raw: int = o["gid"]
+	var gid = raw & 0x0FFFFFFF
+	if not _tiles.has(gid):
+		return null
+	var t: Dictionary = _tiles[gid]
+	var s = Sprite.new()
+	s.texture = t["texture"]
+	s.centered = false
+	s.region_enabled = true
+	s.region_rect = t["region"]
+	s.flip_h = raw & 0x80000000 != 0
+	s.flip_v = raw & 0x40000000 != 0
+	var size: Vector2 = t["region"].size
+	if o["w"] > 0 and o["h"] > 0:
+		s.scale = Vector2(o["w"] / size.x, o["h"] / size.y)
+		size = Vector2(o["w"], o["h"])
+	var align: String = t.get("align", "")
+	var at = Vector2(-size.x / 2.0, -size.y)  # bottom
+	match align:
+		"topleft": at = Vector2.ZERO
+		"top": at = Vector2(-size.x / 2.0, 0)
+		"topright": at = Vector2(-size.x, 0)
+		"left": at = Vector2(0, -size.y / 2.0)
+		"center": at = -size / 2.0
+		"right": at = Vector2(-size.x, -size.y / 2.0)
+		"bottomleft": at = Vector2(0, -size.y)
+		"bottomright": at = Vector2(-size.x, -size.y)
+	s.position = project(o["x"], o["y"]) + at + t["offset"]
+	return s
+
+
+func _colour(text: String, fallback: Color) -> Color:
+	var hex = text.trim_prefix("#")
+	if hex.length() == 8:
+		hex = hex.substr(2)  # Tiled's #AARRGGBB
+	if hex.length() != 6 or not hex.is_valid_hex_number():
+		return fallback
+	return Color("#" + hex)
+
+
+# A light: a round texture scaled to its a x b area.
+func _build_light(l: Dictionary) -> Light2D:
+	var light = Light2D.new()
+	light.name = l["name"] if l["name"] != "" else "light"
+	light.position = project(l["x"], l["y"])
+	var props: Dictionary = l["props"]
+	var a = float(props.get("a", _props.get("area_a", "128")))
+	var b = float(props.get("b", _props.get("area_b", "128")))
+	light.texture = _round_light()
+	light.texture_scale = 2.0 * max(a, b) / 256.0
+	light.scale = Vector2(a / max(a, b), b / max(a, b))
+	light.color = _colour(props.get("color", ""), Color(1, 1, 1))
+	light.energy = float(props.get("intensity", "1"))
+	light.range_height = float(props.get("height", _props.get("light_height", "0")))
+	light.shadow_enabled = true
+	light.set_meta("isolux_area", Vector2(a, b))
+	return light
+
+
+func _round_light() -> ImageTexture:
+	if _light_texture != null:
+		return _light_texture
+	var img = Image.new()
+	img.create(256, 256, false, Image.FORMAT_RGBA8)
+	img.lock()
+	for y in range(256):
+		for x in range(256):
+			var d = Vector2(x + 0.5 - 128, y + 0.5 - 128).length() / 128.0
+			var v = clamp(1.0 - d, 0.0, 1.0)
+			img.set_pixel(x, y, Color(v, v, v, 1))
+	img.unlock()
+	_light_texture = ImageTexture.new()
+	_light_texture.create_from_image(img)
+	return _light_texture
+
+
+# An obstacle: its polygon's points projected, relative to its own point.
+func _build_occluder(o: Dictionary) -> LightOccluder2D:
+	var occ = LightOccluder2D.new()
+	var at = project(o["x"], o["y"])
+	occ.position = at
+	var poly = OccluderPolygon2D.new()
+	var pts = PoolVector2Array()
+	for p in o["points"]:
+		pts.push_back(project(o["x"] + p.x, o["y"] + p.y) - at)
+	poly.polygon = pts
+	occ.occluder = poly
+	return occ

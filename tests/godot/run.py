@@ -1,0 +1,174 @@
+#!/usr/bin/env python3
+"""isolux inside Godot 3.2 (Debian's godot3-server, headless, and godot3 under
+the test suite's Xvfb), with the add-on in engines/godot/addons/isolux:
+
+1. The importer (tmx_importer.gd) turns isolux's TMX exports of the default
+   and showcase scenes and examples/walk's level into Godot scenes, saved as .scn. Node by node, in
+   Godot's pixels: each Light2D stands at its scene light's world pixel with
+   its colour, energy and a x b area; each LightOccluder2D covers only
+   obstacle pixels of `isolux-cli render --layer obstacles`, and all of them
+   together cover every obstacle pixel; every overlay is a Sprite; every floor
+   cell is in the TileMap; the CanvasModulate is the ambient clarity.
+2. The imported level drawn by godot3 with its lights and CanvasModulate off
+   matches `isolux-cli render --layer map` over the same world rectangle:
+   at most 0.5 % of pixels differ by more than 2/255 (idiff, RGB).
+3. IsoluxLighting (the GDNative library) renders the default and showcase
+   scenes and an exported TMX inside godot3-server: its light texture and its
+   final picture have isolux-cli's bytes.
+
+Usage: run.py ISOLUX_CLI GDNATIVE_LIBRARY SOURCE_DIR
+"""
+import json, os, shutil, subprocess, sys, tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "capi"))
+from png_rgba import png_rgba  # noqa: E402 (tests/capi/png_rgba.py)
+
+cli, gdnative, src = (os.path.abspath(a) for a in sys.argv[1:4])
+tmp = tempfile.mkdtemp(prefix="isolux_godot_")
+failures, passes = [], 0
+
+
+def check(ok, what):
+    global passes
+    if ok:
+        passes += 1
+    else:
+        failures.append(what)
+        print("FAIL", what)
+
+
+def run(args, env=None, timeout=120):
+    try:
+        p = subprocess.run([str(a) for a in args], capture_output=True, text=True, timeout=timeout,
+                           env=dict(os.environ, **(env or {})), stdin=subprocess.DEVNULL)
+    except subprocess.TimeoutExpired:
+        # A GDScript error leaves Godot waiting: the timeout is the failure.
+        print("timed out:", " ".join(map(str, args)))
+        return None
+    if p.returncode != 0:
+        print("command:", " ".join(map(str, args)), "exit", p.returncode, "\n", p.stdout[-3000:], p.stderr[-3000:])
+    return p
+
+
+# A Godot project holding the add-on (as a game copies it) and the test scripts.
+project = os.path.join(tmp, "project")
+shutil.copytree(os.path.join(src, "engines/godot/addons"), os.path.join(project, "addons"))
+os.makedirs(os.path.join(project, "addons/isolux/bin"), exist_ok=True)
+shutil.copy(gdnative, os.path.join(project, "addons/isolux/bin/libisolux_gdnative.so"))
+for script in ("import_level.gd", "lighting_bytes.gd"):
+    shutil.copy(os.path.join(src, "tests/godot", script), project)
+with open(os.path.join(project, "project.godot"), "w") as f:
+    f.write('config_version=4\n\n[application]\n\nconfig/name="isolux tests"\n')
+godot_env = {"HOME": tmp, "ISOLUX_ASSETS": os.path.join(src, "assets")}
+
+
+def godot(binary, script, env):
+    return run([binary, "--path", project, "-s", script], dict(godot_env, **env))
+
+
+def cli_png(args, name):
+    out = os.path.join(tmp, name + ".png")
+    p = run([cli, "render", *args, "--out", out])
+    return png_rgba(out) if p and p.returncode == 0 else None
+
+
+# ------------------------------------------------------------ 1, 2: import
+VIEW = (256, 70, 1024, 768)  # fits the suite's 1280x1024 Xvfb screen
+for name, scene_path in (("default", os.path.join(src, "assets/scenes/default.json")),
+                         ("showcase", os.path.join(src, "assets/scenes/showcase.json")),
+                         ("walk", os.path.join(src, "examples/walk/level.json"))):
+    scene = json.load(open(scene_path))
+    tmx = os.path.join(tmp, name, "level.tmx")
+    os.makedirs(os.path.dirname(tmx))
+    p = run([cli, "export-tiled", "--scene", scene_path, "--out", tmx])
+    if not p or p.returncode:
+        check(False, f"{name}: export-tiled failed")
+        continue
+    text = open(tmx).read()
+    check(text.count('type="occluder"') > 10, f"{name}: obstacles are written as type=\"occluder\"")
+    nodes_path = os.path.join(tmp, name + ".nodes.json")
+    p = godot("godot3-server", "import_level.gd", {"ISOLUX_TMX": tmx, "ISOLUX_NODES_OUT": nodes_path,
+                                                    "ISOLUX_SCENE_OUT": os.path.join(tmp, name + ".scn")})
+    if not p or p.returncode or not os.path.exists(nodes_path):
+        check(False, f"{name}: the importer failed in godot3-server")
+        continue
+    print(p.stdout.strip().splitlines()[-1])
+    nodes = json.load(open(nodes_path))
+    check(os.path.getsize(os.path.join(tmp, name + ".scn")) > 1000, f"{name}: the scene is saved")
+
+    # Lights: at the scene's world pixels, with its colours and areas.
+    preset = scene.get("preset", {})
+    lights = nodes["lights"]
+    check(len(lights) == len(scene["lights"]), f"{name}: {len(lights)} Light2D for {len(scene['lights'])} lights")
+    for got, want in zip(lights, scene["lights"]):
+        area = [want.get("a", preset.get("area_a", 128)), want.get("b", preset.get("area_b", 128))]
+        ok = (abs(got["x"] - want["x"]) < 0.01 and abs(got["y"] - want["y"]) < 0.01 and
+              got["color"] == want["color"] and abs(got["energy"] - want["intensity"]) < 1e-6 and got["area"] == area)
+        check(ok, f"{name}: Light2D {got} for the scene's {want}")
+    check(abs(nodes["ambient"] - preset.get("ambient_clarity", 1)) < 1e-3, f"{name}: CanvasModulate {nodes['ambient']}")
+    check(len(nodes["sprites"]) == text.count(" gid="), f"{name}: {len(nodes['sprites'])} sprites")
+    check(nodes["floors"]["cells"] == scene["width"] * scene["height"], f"{name}: {nodes['floors']['cells']} floor cells")
+
+    # Occluders: exactly the obstacle map's pixels (isolux-cli paints them
+    # white over the map; a pixel the map already has white proves nothing).
+    span = scene["width"] + scene["height"]
+    frame = (-256, -256, span * 64 + 512, span * 32 + 768)  # world pixels around the whole map (128x64 tiles)
+    at = ["--view", ",".join(map(str, frame))]
+    obstacles = cli_png(["--scene", scene_path, "--layer", "obstacles", *at], name + ".obstacles")
+    plain = cli_png(["--scene", scene_path, "--layer", "map", *at], name + ".map")
+    if obstacles and plain:
+        w, h, px = obstacles
+        covered = set()
+        for poly in nodes["occluders"]:
+            xs, ys = [q[0] for q in poly], [q[1] for q in poly]
+            for y in range(int(round(min(ys))), int(round(max(ys)))):
+                for x in range(int(round(min(xs))), int(round(max(xs)))):
+                    covered.add((x - frame[0], y - frame[1]))
+        white = {(i // 4 % w, i // 4 // w) for i in range(0, len(px), 4) if px[i:i + 3] == b"\xff\xff\xff"}
+        outside = len(covered - white)
+        missed = sum(1 for x, y in white - covered if plain[2][(y * w + x) * 4:(y * w + x) * 4 + 3] != b"\xff\xff\xff")
+        print(f"{name}: occluders cover {len(covered)} pixels, the obstacle map {len(white)}: "
+              f"{outside} outside it, {missed} missed")
+        check(len(white) > 100 and outside == 0 and missed == 0,
+              f"{name}: occluders and the obstacle map differ ({outside} outside, {missed} missed)")
+
+    # The level drawn by Godot against isolux's map layer.
+    drawn = os.path.join(tmp, name + ".godot.png")
+    p = godot("godot3", "import_level.gd", {"ISOLUX_TMX": tmx, "ISOLUX_NODES_OUT": nodes_path,
+                                            "ISOLUX_SCENE_OUT": os.path.join(tmp, name + ".scn"),
+                                            "ISOLUX_DRAW_OUT": drawn, "ISOLUX_VIEW": ",".join(map(str, VIEW))})
+    ours = os.path.join(tmp, name + ".isolux.png")
+    q = run([cli, "render", "--scene", scene_path, "--layer", "map", "--view", ",".join(map(str, VIEW)), "--out", ours])
+    if not p or p.returncode or not os.path.exists(drawn) or not q or q.returncode:
+        check(False, f"{name}: godot3 did not draw the level (needs a display: the suite runs under Xvfb)")
+        continue
+    for f in (drawn, ours):
+        run(["oiiotool", f, "--ch", "R,G,B", "-o", f + ".rgb.png"])
+    d = subprocess.run(["idiff", "-v", "-fail", "0.0079", "-warn", "0.0079", "-failpercent", "0.5", drawn + ".rgb.png",
+                        ours + ".rgb.png"], capture_output=True, text=True)
+    over = [l.strip() for l in d.stdout.splitlines() if "over 0.0079" in l]
+    print(f"{name}: Godot's drawing against isolux's map layer: {over[0] if over else d.stdout[-300:]}")
+    check(d.returncode in (0, 1), f"{name}: Godot draws the imported level unlike isolux\n{d.stdout[-600:]}")
+
+# ------------------------------------------------------------ 3: GDNative
+levels = [("default", os.path.join(src, "assets/scenes/default.json"), "--scene"),
+          ("showcase", os.path.join(src, "assets/scenes/showcase.json"), "--scene"),
+          ("default TMX", os.path.join(tmp, "default", "level.tmx"), "--map")]
+for name, path, flag in levels:
+    for layer in ("light", "final"):
+        raw = os.path.join(tmp, f"{name}.{layer}.raw".replace(" ", "_"))
+        p = godot("godot3-server", "lighting_bytes.gd", {"ISOLUX_LEVEL": path, "ISOLUX_LAYER": layer,
+                                                         "ISOLUX_BYTES_OUT": raw})
+        want = cli_png([flag, path, "--layer", layer], f"{name}.{layer}.cli".replace(" ", "_"))
+        if not p or p.returncode or not os.path.exists(raw) or not want:
+            check(False, f"{name}: IsoluxLighting did not render its {layer} layer in godot3-server")
+            continue
+        got = open(raw, "rb").read()
+        same = got == want[2]
+        lit = sum(1 for i in range(0, len(got), 4) if any(got[i:i + 3]))
+        print(f"{name}: IsoluxLighting's {layer} layer in Godot, {want[0]}x{want[1]}: "
+              f"{'the same bytes as' if same else 'NOT the bytes of'} isolux-cli ({lit} lit pixels)")
+        check(same and lit > 1000, f"{name}: IsoluxLighting's {layer} layer differs from isolux-cli's")
+
+print(f"godot: {passes} passed, {len(failures)} failed")
+sys.exit(1 if failures else 0)
