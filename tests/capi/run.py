@@ -4,7 +4,7 @@ libisolux) and examples/python/render.py (Python, ctypes only) render the
 default scene, the showcase scene and Tiled's own example map; each picture
 and light texture must have the same bytes as `isolux-cli render`.
 
-Usage: run.py ISOLUX_CLI C_RENDER LIBISOLUX SOURCE_DIR [--preload=SANITIZER_RUNTIME]
+Usage: run.py ISOLUX_CLI C_RENDER LIBISOLUX SOURCE_DIR [--preload=LIB:LIB]
 With --preload (the AddressSanitizer build), Python runs with the sanitizer's
 runtime preloaded, so the instrumented library loads into it; its leak check
 is off there (the interpreter keeps its allocations to exit by design).
