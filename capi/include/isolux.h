@@ -62,7 +62,7 @@ ISOLUX_API const char* isolux_last_error(void);
 /* A seeded map: `seed` text, `width` x `height` tiles, `layout` "diamond",
  * "staggered" or "paper" (NULL: diamond), on the tileset manifest
  * `tileset_manifest` (NULL: isolux's default tileset, found under
- * $ISOLUX_ASSETS, else beside the installed library). No lights. */
+ * $ISOLUX_ASSETS, else beside the installed library or add-on). No lights. */
 ISOLUX_API isolux_status isolux_world_open_seeded(const char* seed, int width, int height, const char* layout,
                                                   const char* tileset_manifest, isolux_world** out);
 /* A scene JSON file (seed or Tiled map, preset, lights, camera, edits). */

@@ -69,8 +69,9 @@ isolux_status argument_error(const std::string& message) {
 }
 
 // The default tileset beside the library: $ISOLUX_ASSETS, else
-// <libdir>/../share/isolux/assets, found from this library's own path (a game
-// may live anywhere; the library knows where it was installed).
+// <libdir>/../share/isolux/assets (an installed prefix), else
+// <libdir>/../assets (the Godot add-on's folder), found from this library's
+// own path: a game may live anywhere, the library knows where it was put.
 fs::path default_tileset() {
     const fs::path rel = fs::path("default") / "tileset.json";
     std::error_code ec;
@@ -79,8 +80,9 @@ fs::path default_tileset() {
     Dl_info info{};
     if (dladdr(reinterpret_cast<void*>(&isolux_api_version), &info) && info.dli_fname) {
         const fs::path lib = fs::weakly_canonical(fs::path(info.dli_fname), ec);
-        const fs::path installed = lib.parent_path().parent_path() / "share" / "isolux" / "assets" / rel;
-        if (!ec && fs::exists(installed, ec)) return installed;
+        const fs::path up = lib.parent_path().parent_path();
+        for (const fs::path& beside : {up / "share" / "isolux" / "assets" / rel, up / "assets" / rel})
+            if (!ec && fs::exists(beside, ec)) return beside;
     }
 #ifdef ISOLUX_SOURCE_ASSETS
     if (fs::exists(fs::path(ISOLUX_SOURCE_ASSETS) / rel, ec)) return fs::path(ISOLUX_SOURCE_ASSETS) / rel;

@@ -16,14 +16,21 @@ the test suite's Xvfb), with the add-on in engines/godot/addons/isolux:
    scenes and an exported TMX inside godot3-server: its light texture and its
    final picture have isolux-cli's bytes.
 
-Usage: run.py ISOLUX_CLI GDNATIVE_LIBRARY SOURCE_DIR
+4. The demo (demo/main.tscn, the installed project's main scene) walks a
+   light for a few frames in godot3-server; its last frame has the bytes of
+   `isolux-cli render` with that light.
+
+Everything runs from an install (`cmake --install BUILD_DIR`), as a game
+gets it.
+
+Usage: run.py ISOLUX_CLI BUILD_DIR SOURCE_DIR
 """
 import json, os, shutil, subprocess, sys, tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "capi"))
 from png_rgba import png_rgba  # noqa: E402 (tests/capi/png_rgba.py)
 
-cli, gdnative, src = (os.path.abspath(a) for a in sys.argv[1:4])
+cli, build, src = (os.path.abspath(a) for a in sys.argv[1:4])
 tmp = tempfile.mkdtemp(prefix="isolux_godot_")
 failures, passes = [], 0
 
@@ -50,16 +57,17 @@ def run(args, env=None, timeout=120):
     return p
 
 
-# A Godot project holding the add-on (as a game copies it) and the test scripts.
-project = os.path.join(tmp, "project")
-shutil.copytree(os.path.join(src, "engines/godot/addons"), os.path.join(project, "addons"))
-os.makedirs(os.path.join(project, "addons/isolux/bin"), exist_ok=True)
-shutil.copy(gdnative, os.path.join(project, "addons/isolux/bin/libisolux_gdnative.so"))
+# The installed Godot project (<prefix>/share/isolux/godot: the add-on with
+# its library and default tileset, and the demo), plus the test scripts.
+prefix = os.path.join(tmp, "prefix")
+p = run(["cmake", "--install", build, "--prefix", prefix])
+if not p or p.returncode:
+    sys.exit("godot: cmake --install failed")
+project = os.path.join(prefix, "share/isolux/godot")
 for script in ("import_level.gd", "lighting_bytes.gd"):
     shutil.copy(os.path.join(src, "tests/godot", script), project)
-with open(os.path.join(project, "project.godot"), "w") as f:
-    f.write('config_version=4\n\n[application]\n\nconfig/name="isolux tests"\n')
-godot_env = {"HOME": tmp, "ISOLUX_ASSETS": os.path.join(src, "assets")}
+# No ISOLUX_ASSETS: the library finds the default tileset beside itself.
+godot_env = {"HOME": tmp, "ISOLUX_ASSETS": ""}
 
 
 def godot(binary, script, env):
@@ -169,6 +177,22 @@ for name, path, flag in levels:
         print(f"{name}: IsoluxLighting's {layer} layer in Godot, {want[0]}x{want[1]}: "
               f"{'the same bytes as' if same else 'NOT the bytes of'} isolux-cli ({lit} lit pixels)")
         check(same and lit > 1000, f"{name}: IsoluxLighting's {layer} layer differs from isolux-cli's")
+
+# ------------------------------------------------------------ 4: the demo
+out = os.path.join(tmp, "demo.raw")
+p = run(["godot3-server", "--path", project], dict(godot_env, ISOLUX_DEMO_FRAMES="3", ISOLUX_DEMO_OUT=out))
+if not p or p.returncode or not os.path.exists(out + ".txt"):
+    check(False, "the demo did not run in godot3-server")
+else:
+    f, lx, ly, vx, vy, vw, vh = map(int, open(out + ".txt").read().split())
+    level = os.path.join(project, "demo/level.json")
+    area = json.load(open(level))["preset"]["area_a"]
+    want = cli_png(["--scene", level, "--view", f"{vx},{vy},{vw},{vh}",
+                    "--light", f"{lx},{ly},{area},{area},ffe0b0,h=30"], "demo.cli")
+    same = want is not None and open(out, "rb").read() == want[2]
+    print(f"demo: frame {f}, the walking light at ({lx}, {ly}): "
+          f"{'the same bytes as' if same else 'NOT the bytes of'} isolux-cli")
+    check(same, "the demo's frame differs from isolux-cli's")
 
 print(f"godot: {passes} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)
