@@ -14,6 +14,7 @@
 
 #include "isolux/files.hpp"
 #include "isolux/footprint.hpp"
+#include "isolux/solid_estimate.hpp"
 
 using namespace isolux;
 namespace fs = std::filesystem;
@@ -94,6 +95,38 @@ TEST(RealArt, lincityTreesOnABakedGroundDiamondStandOnTheirObstacles) {
     // The paper's Algorithm 1 puts this one on the grass diamond instead.
     int checked = 0;
     EXPECT_EQ(misses(load("lincity-ng", "lincity-ng-data"), Footprint::paper, &checked).size(), 1u);
+}
+
+// A grove painted as one sprite: every tree is an object of its own, its
+// axis within 8 px of its trunk's foot, with a solid (the canopy above it).
+TEST(RealArt, lincityGrovesHaveAnObjectAtEveryTrunk) {
+    const Loaded l = load("lincity-ng", "lincity-ng-data");
+    int groves = 0;
+    for (const auto& entry : l.manifest["sprites"]) {
+        if (!entry.contains("expected_trunks")) continue;
+        ++groves;
+        const std::string name = entry["name"].get<std::string>();
+        const Sprite* s = nullptr;
+        for (const Sprite& c : l.tileset.sprites)
+            if (c.name == name) s = &c;
+        ASSERT_NE(s, nullptr) << name;
+        const std::vector<EstimatedObject> objects = sprite_objects(l.tileset, *s, Params{});
+        EXPECT_EQ(objects.size(), entry["expected_trunks"].size()) << name;
+        for (const auto& t : entry["expected_trunks"]) {
+            const double ex = t[0].get<double>() + 0.5, ey = t[1].get<double>() + 0.5;
+            double nearest = 1e9;
+            for (const EstimatedObject& o : objects) nearest = std::min(nearest, std::hypot(o.center_x - ex, o.center_y - ey));
+            EXPECT_LE(nearest, 8.0) << name << ": the trunk at (" << t[0] << ", " << t[1] << ") has no object within 8 px";
+        }
+        for (const EstimatedObject& o : objects) EXPECT_GE(o.height(), 20.0) << name << ": a tree's solid";
+    }
+    EXPECT_EQ(groves, 2);
+    // The single tree stays one object.
+    for (const Sprite& c : l.tileset.sprites) {
+        if (c.name == "tree") {
+            EXPECT_EQ(sprite_objects(l.tileset, c, Params{}).size(), 1u);
+        }
+    }
 }
 
 TEST(RealArt, bakedGroundAndShadowsAreDetectedWhereTheyAre) {

@@ -269,7 +269,7 @@ int run_check_tileset(const CheckArgs& a) {
         }
         // Beyond the paper: each object's solid, estimated from the alpha alone,
         // and how much of the manifest's shape it shares, where there is one.
-        const std::vector<EstimatedObject> objects = estimate_objects(fr.estimate, fp, &s.footprint);
+        const std::vector<EstimatedObject> objects = estimate_objects(fr.estimate, fp, &s.footprint, &s.image);
         e["objects"] = nlohmann::json::array();
         for (const EstimatedObject& o : objects)
             e["objects"].push_back({{"center", {std::round(o.center_x * 10) / 10, std::round(o.center_y * 10) / 10}},
@@ -302,7 +302,8 @@ int run_check_tileset(const CheckArgs& a) {
     }
     if (!a.sheet.empty()) {
         // A contact sheet: each sprite with its obstacle (red), its estimated
-        // solid's outline (yellow) and its anchor (cyan cross).
+        // solids' outline (yellow), each object's footprint (orange) and its
+        // anchor (cyan cross).
         int cell_w = 1, cell_h = 1;
         for (const DrawnSprite& d : drawn)
             cell_w = std::max(cell_w, d.sprite->image.width + 8), cell_h = std::max(cell_h, d.sprite->image.height + 8);
@@ -332,6 +333,14 @@ int run_check_tileset(const CheckArgs& a) {
                                             !solid.get(x, y + 1)))
                         std::copy_n(yellow, 4, sheet.at(ox + x, oy + y));
             paint_mask(sheet, Rect{-ox, -oy, sheet.width, sheet.height}, drawn[k].footprint, 0, 0, red);
+            // Each object's footprint (orange outline): a grove has one per tree.
+            static constexpr std::uint8_t orange[4] = {255, 140, 0, 255};
+            for (const EstimatedObject& o : drawn[k].objects)
+                for (int y = o.rect.y; y < o.rect.y + o.rect.h; ++y)
+                    for (int x = o.rect.x; x < o.rect.x + o.rect.w; ++x)
+                        if ((y == o.rect.y || y == o.rect.y + o.rect.h - 1 || x == o.rect.x || x == o.rect.x + o.rect.w - 1) &&
+                            x >= 0 && y >= 0 && x < cell_w - 8 && y < cell_h - 8)
+                            std::copy_n(orange, 4, sheet.at(ox + x, oy + y));
             for (int d = -5; d <= 5; ++d) {
                 for (auto [x, y] : {std::pair{s.anchor_x + d, s.anchor_y}, std::pair{s.anchor_x, s.anchor_y + d}})
                     if (x >= 0 && y >= 0 && x < cell_w - 8 && y < cell_h - 8) std::copy_n(cyan, 4, sheet.at(ox + x, oy + y));

@@ -49,13 +49,17 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
         for (int x = 0; x < obstacle.width; ++x)
             if (obstacle.bits[std::size_t(y) * obstacle.width + x]) px(obstacle.x0 + x, obstacle.y0 + y, IM_COL32(255, 50, 50, 200));
     // The solid estimated from the alpha alone: its outline in yellow (beyond the paper).
-    const std::vector<EstimatedObject> objects = estimate_objects(r.estimate, obstacle, &spec);
+    const std::vector<EstimatedObject> objects = estimate_objects(r.estimate, obstacle, &spec, &s.image);
     const Mask solid = solid_silhouette(objects, s.image.width, s.image.height);
     for (int y = 0; y < solid.height; ++y)
         for (int x = 0; x < solid.width; ++x)
             if (solid.get(x, y) &&
                 (!solid.get(x - 1, y) || !solid.get(x + 1, y) || !solid.get(x, y - 1) || !solid.get(x, y + 1)))
                 px(x, y, IM_COL32(255, 220, 0, 255));
+    // Each object's footprint (a grove has one per tree), outlined in orange.
+    for (const EstimatedObject& ob : objects)
+        dl->AddRect(ImVec2(o.x + ob.rect.x * z, o.y + ob.rect.y * z),
+                    ImVec2(o.x + (ob.rect.x + ob.rect.w) * z, o.y + (ob.rect.y + ob.rect.h) * z), IM_COL32(255, 140, 0, 255));
     if (r.trace.run_length > 0)
         dl->AddRect(ImVec2(o.x + r.trace.run_start * z, o.y + r.trace.chosen_line * z),
                     ImVec2(o.x + (r.trace.run_start + r.trace.run_length) * z, o.y + (r.trace.chosen_line + 1) * z),

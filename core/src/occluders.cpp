@@ -135,18 +135,31 @@ SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) 
     // footprint. On the view line through sprite pixel (sx, sy) relative to
     // an axis's foot, the point z high lies 2 (sy + z)^2 + sx^2 / 2 squared
     // ground pixels from the axis (screen x = X - Y, y = (X + Y) / 2 - z).
+    // With several objects (a grove), the viewer meets the front one first
+    // (the lowest foot on screen), and a pixel no solid shows takes its row's
+    // height above the foot of the object whose axis is nearest.
+    std::vector<std::size_t> front_first(out.objects.size());
+    for (std::size_t k = 0; k < front_first.size(); ++k) front_first[k] = k;
+    std::stable_sort(front_first.begin(), front_first.end(),
+                     [&](std::size_t a, std::size_t b) { return out.objects[a].center_y > out.objects[b].center_y; });
     out.heights.assign(std::size_t(s.image.width) * s.image.height, 0.f);
     for (int y = 0; y < s.image.height; ++y)
         for (int x = 0; x < s.image.width; ++x) {
             float best = -1;
-            for (const EstimatedObject& o : out.objects) {
+            for (std::size_t k : front_first) {
+                const EstimatedObject& o = out.objects[k];
                 const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y;
                 for (double z = o.height() - 0.5; z >= 0 && best < 0; z -= 0.5) {
                     const double r = o.radius[std::size_t(z)];
                     const double d2 = 2 * (sy + z) * (sy + z) + sx * sx / 2;
                     if (r > 0 && d2 <= r * r) best = float(z);
                 }
-                if (best < 0) best = float(std::max(0.0, o.center_y - (y + 0.5)));
+            }
+            if (best < 0 && !out.objects.empty()) {
+                const EstimatedObject* nearest = &out.objects[0];
+                for (const EstimatedObject& o : out.objects)
+                    if (std::abs(x + 0.5 - o.center_x) < std::abs(x + 0.5 - nearest->center_x)) nearest = &o;
+                best = float(std::max(0.0, nearest->center_y - (y + 0.5)));
             }
             out.heights[std::size_t(y) * s.image.width + x] = std::max(best, 0.f);
         }

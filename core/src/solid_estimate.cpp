@@ -129,9 +129,94 @@ long covered(const Mask& object, const EstimatedObject& o) {
     return n;
 }
 
+// A tree's foot in a grove sprite: the bottom row of its trunk and the mean
+// column of the trunk's lowest three rows.
+struct TrunkFoot {
+    double x = 0;  // pixel column (its centre is x + 0.5)
+    int y = 0;     // pixel row
+};
+
+// A grove painted as one sprite (LinCity-NG's tree2 and tree3) shows its
+// trees apart only by colour: their canopies merge into one silhouette, and
+// Algorithm 1 finds one run under it. A trunk is bark: an opaque pixel redder
+// than it is green (r > g + 6, r >= b, r < 200; foliage and grass are
+// greener, sand and stone greyer or brighter), in an 8-connected component at
+// least 6 pixels tall, taller than wide, of 15 pixels or more (a berry, a
+// flower or a speck of soil is smaller or wider). Components are found in
+// row-major order, so the list is the same on every machine.
+std::vector<TrunkFoot> find_trunks(const Image& image) {
+    const int w = image.width, h = image.height;
+    std::vector<std::uint8_t> bark(std::size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::uint8_t* p = image.at(x, y);
+            bark[std::size_t(y) * w + x] = p[3] >= 128 && p[0] > p[1] + 6 && p[0] >= p[2] && p[0] < 200;
+        }
+    std::vector<TrunkFoot> feet;
+    std::vector<int> stack, component;
+    for (int start = 0; start < w * h; ++start) {
+        if (!bark[std::size_t(start)]) continue;
+        bark[std::size_t(start)] = 0;
+        stack.assign(1, start);
+        component.clear();
+        while (!stack.empty()) {
+            const int i = stack.back();
+            stack.pop_back();
+            component.push_back(i);
+            const int x = i % w, y = i / w;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= w || ny >= h || !bark[std::size_t(ny) * w + nx]) continue;
+                    bark[std::size_t(ny) * w + nx] = 0;
+                    stack.push_back(ny * w + nx);
+                }
+        }
+        int x0 = w, x1 = -1, y0 = h, y1 = -1;
+        for (int i : component)
+            x0 = std::min(x0, i % w), x1 = std::max(x1, i % w), y0 = std::min(y0, i / w), y1 = std::max(y1, i / w);
+        const int tall = y1 - y0 + 1, wide = x1 - x0 + 1;
+        if (component.size() < 15 || tall < 6 || tall < wide) continue;
+        double sum = 0;
+        int n = 0;
+        for (int i : component)
+            if (i / w >= y1 - 2) sum += i % w, ++n;
+        feet.push_back({sum / n, y1});
+    }
+    return feet;
+}
+
+// One object per trunk: the object's pixels go to the trunk whose column is
+// nearest (the lower index on a tie), and each part gets its solid of
+// revolution standing on its trunk's foot, with a 5 x 3 footprint there.
+std::vector<EstimatedObject> grove_objects(const Mask& object, const std::vector<TrunkFoot>& feet) {
+    std::vector<EstimatedObject> out;
+    for (std::size_t k = 0; k < feet.size(); ++k) {
+        Mask part(object.rect());
+        for (int j = 0; j < object.height; ++j)
+            for (int i = 0; i < object.width; ++i) {
+                if (!object.bits[std::size_t(j) * object.width + i]) continue;
+                const double x = object.x0 + i;
+                std::size_t nearest = 0;
+                for (std::size_t t = 1; t < feet.size(); ++t)
+                    if (std::abs(x - feet[t].x) < std::abs(x - feet[nearest].x)) nearest = t;
+                if (nearest == k) part.bits[std::size_t(j) * object.width + i] = 1;
+            }
+        EstimatedObject o;
+        o.center_x = feet[k].x + 0.5;
+        o.center_y = feet[k].y + 0.5;
+        o.rect = Rect{int(std::floor(feet[k].x)) - 2, feet[k].y - 2, 5, 3};
+        const RunsThrough runs = runs_through(part, int(std::floor(o.center_x)));
+        o.radius = fit_discs(runs, o.center_x, o.center_y, top_row(part), part.width / sqrt2 + 1);
+        if (!o.radius.empty()) out.push_back(std::move(o));
+    }
+    return out;
+}
+
 }  // namespace
 
-std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction) {
+std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction,
+                                              const Image* image) {
     EstimatedObject o;
     const bool has_footprint = mask_centre(footprint, o.center_x, o.center_y, o.rect);
     const bool corrected = correction && correction->object_foot;
@@ -143,6 +228,14 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
         o.rect.x += int(std::lround(fx + 0.5 - o.center_x));
         o.rect.y += int(std::lround(fy + 0.5 - o.center_y));
         o.center_x = fx + 0.5, o.center_y = fy + 0.5;
+    }
+    // A grove: one object per trunk the colours show (two or more).
+    if (image && !corrected) {
+        const std::vector<TrunkFoot> feet = find_trunks(*image);
+        if (feet.size() >= 2) {
+            std::vector<EstimatedObject> grove = grove_objects(object, feet);
+            if (grove.size() >= 2) return grove;
+        }
     }
     const int height = correction ? correction->object_height : 0;
     const int c = int(std::floor(o.center_x));
@@ -186,7 +279,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
 std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite& s, const Params& p) {
     FootprintReport report;
     const Mask footprint = tileset_footprint(tileset, s, p, &report);
-    return estimate_objects(report.estimate, footprint, &s.footprint);
+    return estimate_objects(report.estimate, footprint, &s.footprint, &s.image);
 }
 
 Mask solid_silhouette(const std::vector<EstimatedObject>& objects, int w, int h) {

@@ -40,9 +40,10 @@ struct EstimatedObject {
 // or the object is empty. `correction` (a sprite's footprint spec) may fix
 // where the axis meets the ground (`object_foot`, the centre of that pixel)
 // and the solid's height (`object_height`), as a user set them in the
-// tileset inspector.
+// tileset inspector. With the sprite's `image`, a grove (two or more trunks
+// the colours show, each a tree's foot) gives one object per tree.
 std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint,
-                                              const FootprintSpec* correction = nullptr);
+                                              const FootprintSpec* correction = nullptr, const Image* image = nullptr);
 
 // The objects of tileset sprite `s` under preset `p`: its footprint as the
 // obstacle map stamps it (tileset_footprint) and the estimate's pixels.
