@@ -11,6 +11,7 @@
 #include "isolux/files.hpp"
 #include "isolux/frame.hpp"
 #include "isolux/hash.hpp"
+#include "isolux/light_texture.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -148,6 +149,42 @@ TEST(Edits, editsApplyInOrderFieldByFieldAndAnEmptyListClearsOverlays) {
     EXPECT_EQ(w.placed.shift_y, seeded.placed.shift_y);
 }
 
+// The whole map's picture keeps its frame whatever the edits: a scene whose
+// edits clear every overlay (the tall trees on the top edge included) and a
+// scene whose edits plant trees everywhere put a world light at the same
+// image pixel as the seed's map does, in the frame and in the rendered bytes.
+TEST(Edits, editsNeverMoveWhereAWorldPixelLandsInTheWholeMapsPicture) {
+    Scene s = small_scene();
+    s.seed = "forest";
+    const World seeded = make_world(tiles(), s);
+    Scene cleared = s, planted = s;
+    for (int r = 0; r < s.height; ++r)
+        for (int c = 0; c < s.width; ++c) {
+            cleared.edits.push_back(edit(c, r, std::nullopt, std::vector<std::string>{}));
+            planted.edits.push_back(edit(c, r, std::nullopt, std::vector<std::string>{"pine"}));
+        }
+    const World bare = make_world(tiles(), cleared), wooded = make_world(tiles(), planted);
+    const Rect frame = camera_view(Camera{}, seeded);
+    // The edits did change what the sprites cover, and the frame did not follow.
+    EXPECT_NE(wooded.placed.bounds, seeded.placed.bounds);
+    EXPECT_EQ(camera_view(Camera{}, bare), frame);
+    EXPECT_EQ(camera_view(Camera{}, wooded), frame);
+    // A light's pixel in the rendered light texture: the brightest one.
+    auto brightest = [&](const World& w) {
+        Scene one = s;
+        one.lights = {Light{frame.x + 300.0, frame.y + 200.0}};
+        FrameState st;
+        render_frame(st, w, one, Camera{}, 0);
+        const Image img = light_texture_image(st.light);
+        std::size_t best = 0;
+        for (std::size_t i = 0; i < img.rgba.size(); i += 4)
+            if (img.rgba[i] > img.rgba[best]) best = i;
+        return std::pair{int(best / 4) % img.width, int(best / 4) / img.width};
+    };
+    EXPECT_EQ(brightest(bare), brightest(seeded));
+    EXPECT_EQ(brightest(wooded), brightest(seeded));
+}
+
 TEST(Edits, editsOutsideTheMapAreKeptAndReported) {
     Scene s = small_scene();
     s.edits = {edit(3, 3, "water", std::nullopt), edit(40, 2, "water", std::nullopt), edit(-1, 0, "sand", std::nullopt)};
@@ -180,7 +217,10 @@ TEST(Edits, theBrushWritesOnlyWhatDiffersFromTheSeed) {
     EXPECT_TRUE(edits.empty());  // back to the seed: nothing to store
 }
 
-TEST(Edits, aTreeOnTheTopRowReachesAboveTheOriginAndTheWholeMapViewShowsIt) {
+// A tree planted on the top row reaches above the origin: the sprites'
+// bounds grow, the whole map's frame stays the seed's (a camera or --view
+// shows beyond it).
+TEST(Edits, aTreeOnTheTopRowReachesAboveTheOriginAndTheWholeMapsFrameStays) {
     Scene s = small_scene();
     s.seed = "lake";
     World w = make_world(tiles(), s);
@@ -190,8 +230,7 @@ TEST(Edits, aTreeOnTheTopRowReachesAboveTheOriginAndTheWholeMapViewShowsIt) {
     // Diamond layout: tile (0, 0) is the topmost.
     set_edits(w, {edit(0, 0, std::nullopt, std::vector<std::string>{"pine", "pine", "pine"})});
     EXPECT_LT(w.placed.bounds.y, 0);
-    const Rect view = camera_view(Camera{}, w);
-    EXPECT_EQ(view, w.placed.bounds);
+    EXPECT_EQ(camera_view(Camera{}, w), before);
     // Removing it shrinks the map back exactly.
     set_edits(w, {});
     EXPECT_EQ(w.placed.bounds, before);

@@ -52,8 +52,9 @@ double render_work(const Scene& scene, Rect view, int frames) {
 
 Rect camera_view(const Camera& c, const World& w) {
     const double x = std::clamp(std::floor(c.x), -1e9, 1e9), y = std::clamp(std::floor(c.y), -1e9, 1e9);
-    // No size: the whole map, wherever the camera was (as isolux-cli renders it).
-    if (c.width <= 0 || c.height <= 0) return w.placed.bounds;
+    // No size: the whole map's frame, wherever the camera was (as isolux-cli
+    // renders it), the same whatever the edits.
+    if (c.width <= 0 || c.height <= 0) return w.frame.empty() ? w.placed.bounds : w.frame;
     return {int(x), int(y), c.width, c.height};
 }
 

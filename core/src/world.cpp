@@ -32,11 +32,13 @@ World make_world(Tileset tileset, const Scene& scene, std::string_view source, s
     if (resolved.empty()) {
         w.map = w.seeded;
         w.placed = place_sprites(w.map, w.tileset);
+        w.frame = w.placed.bounds;
     } else {
         // The world's pixels are the seeded map's: an edit never moves lights.
         const PlacedMap origin = place_sprites(w.seeded, w.tileset);
         w.map = apply_edits(w.seeded, resolved);
         w.placed = place_sprites(w.map, w.tileset, &origin);
+        w.frame = origin.bounds;
     }
     w.edits = scene.edits;
     touch(w);

@@ -185,9 +185,9 @@ constexpr double huge_trace_steps = 4e9;
 // isolux-cli and in the app's screenshots alike.
 constexpr long long max_render_pixels = 1LL << 28;
 
-// The view a camera shows: its rectangle, or the whole map (its bounds,
-// which edits may extend above or left of the origin) when its width or
-// height is 0.
+// The view a camera shows: its rectangle, or the whole map (World::frame:
+// the seeded map's bounds, which edits never move) when its width or height
+// is 0.
 Rect camera_view(const Camera& camera, const World& world);
 
 // Runs frame number `frame` (0, 1, 2, ...) for the scene's lights and

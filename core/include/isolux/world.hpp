@@ -20,6 +20,11 @@ struct World {
     Map map;                      // the level: the seeded map with `edits` applied
     PlacedMap placed;
     std::vector<TileEdit> edits;  // the edits `map` holds
+    // The picture of the whole map (a camera with no size): the seeded map's
+    // bounds, its tiles and the seed's own sprites, so an edit that removes
+    // or adds a sprite on the edge never moves where a world pixel lands in
+    // the image. Empty (a Tiled map's world): the placed sprites' bounds.
+    Rect frame;
     std::uint64_t revision = 0;   // changes whenever the world changes, so caches know
 
     // What edits changed in place since the world was built (or touched):
