@@ -4,12 +4,21 @@
 # input (place a light, move a slider, undo, save a preset and a scene).
 # Usage: app_test.sh PATH/TO/isolux PATH/TO/isolux-cli SOURCE_DIR
 set -u
-app=$1
+app_bin=$1
 cli=$2
 src=$3
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 export ISOLUX_CONFIG_DIR="$tmp/config"
+# The scripted runs click at places of a 1600x900 window: they ask for that
+# size (an explicit size is exact; only a remembered or default one is fitted
+# to the screen, which section 7 tests with the binary itself).
+app="$tmp/isolux-1600x900"
+cat >"$app" <<WRAP
+#!/usr/bin/env bash
+case " \$* " in *" --width "*) exec "$app_bin" "\$@" ;; *) exec "$app_bin" --width 1600 --height 900 "\$@" ;; esac
+WRAP
+chmod +x "$app"
 # Under the sanitizers (scripts/sanitize.sh), the GL driver's own allocations
 # (Mesa's JIT, unloaded at exit) read as leaks that no suppression can name:
 # leak checking is off for the app's processes; ASan and UBSan stay on.
@@ -480,6 +489,34 @@ if cmp -s "$tmp/nodisplay.png" "$tmp/cli.png"; then ok; else bad "the no-display
 "$cli" render --scene "$src/assets/scenes/showcase.json" --out "$tmp/showcase_cli.png" >/dev/null 2>&1 || bad "isolux-cli could not render the showcase"
 if env -u DISPLAY "$app" --headless-out "$tmp/first_start.png" >"$tmp/log" 2>&1 && grep -q "no display" "$tmp/log" &&
   cmp -s "$tmp/first_start.png" "$tmp/showcase_cli.png"; then ok; else bad "the first start with no display is not the showcase"; cat "$tmp/log"; fi
+
+# 7. The window fits the screen and remembers its size. On a 1280x720 screen
+# the default 1600x900 window opens within the screen; resized to 900x600 and
+# closed, it reopens at 900x600; an explicit --width/--height is exact and
+# is not remembered.
+fit_config="$tmp/fit_config"
+cat >"$tmp/fit1.script" <<SCRIPT
+wait 2
+window-shot $tmp/fit_first.png
+resize 900 600
+wait 3
+quit
+SCRIPT
+cat >"$tmp/fit2.script" <<SCRIPT
+wait 3
+window-shot $tmp/fit_second.png
+quit
+SCRIPT
+png_size() { python3 -c "import struct,sys; d=open(sys.argv[1],'rb').read(24); print(*struct.unpack('>II', d[16:24]))" "$1"; }
+ISOLUX_CONFIG_DIR="$fit_config" timeout 120 xvfb-run -a -s "-screen 0 1280x720x24" "$app_bin" --scene "$src/assets/scenes/default.json" --script "$tmp/fit1.script" >"$tmp/log" 2>&1 || { bad "fit run"; cat "$tmp/log"; }
+read -r fw fh <<<"$(png_size "$tmp/fit_first.png" 2>/dev/null || echo "0 0")"
+[ "$fw" -gt 0 ] && [ "$fw" -le 1280 ] && [ "$fh" -gt 0 ] && [ "$fh" -le 720 ] && ok || bad "the default window ($fw x $fh) does not fit a 1280x720 screen"
+[ "$(json "$fit_config/settings.json" "d['window_width'], d['window_height']")" = "(900, 600)" ] && ok || bad "the window's last size was not remembered: $(cat "$fit_config/settings.json")"
+ISOLUX_CONFIG_DIR="$fit_config" timeout 120 xvfb-run -a -s "-screen 0 1280x720x24" "$app_bin" --scene "$src/assets/scenes/default.json" --script "$tmp/fit2.script" >"$tmp/log" 2>&1 || { bad "reopen-size run"; cat "$tmp/log"; }
+[ "$(png_size "$tmp/fit_second.png" 2>/dev/null)" = "900 600" ] && ok || bad "the window did not reopen at its last size: $(png_size "$tmp/fit_second.png" 2>/dev/null)"
+ISOLUX_CONFIG_DIR="$fit_config" timeout 120 "$app_bin" --width 700 --height 500 --scene "$src/assets/scenes/default.json" --script "$tmp/fit2.script" >"$tmp/log" 2>&1 || { bad "explicit-size run"; cat "$tmp/log"; }
+[ "$(png_size "$tmp/fit_second.png" 2>/dev/null)" = "700 500" ] && ok || bad "an explicit size is not exact"
+[ "$(json "$fit_config/settings.json" "d['window_width'], d['window_height']")" = "(900, 600)" ] && ok || bad "an explicit size was remembered"
 
 echo "app: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -52,6 +52,11 @@ Settings load_settings(const fs::path& dir, std::string* warning) {
                 }
             }
         if (j.contains("show_stats") && j["show_stats"].is_boolean()) s.show_stats = j["show_stats"].get<bool>();
+        for (auto [key, field, lo] : {std::tuple{"window_width", &s.window_width, 320}, {"window_height", &s.window_height, 240}})
+            if (j.contains(key) && j[key].is_number_integer()) {
+                const long long v = j[key].get<long long>();
+                if (v >= lo && v <= 8192) *field = int(v);
+            }
         if (j.contains("tracer") && j["tracer"].is_string()) {
             const std::string t = j["tracer"].get<std::string>();
             if (t == "auto" || t == "cpu" || t == "gpu") s.tracer = t;
@@ -70,6 +75,7 @@ void save_settings(const fs::path& dir, const Settings& s) {
     nlohmann::json recent = nlohmann::json::array();
     for (const RecentFile& f : s.recent) recent.push_back({{"path", f.path}, {"kind", std::string(to_string(f.kind))}});
     nlohmann::json j{{"schema_version", 1}, {"recent", recent}, {"show_stats", s.show_stats}, {"tracer", s.tracer}};
+    if (s.window_width > 0 && s.window_height > 0) j["window_width"] = s.window_width, j["window_height"] = s.window_height;
     // Paths that are not UTF-8 are written with U+FFFD in their place, not refused.
     write_file_atomic(dir / "settings.json", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }

@@ -28,6 +28,9 @@ struct Settings {
     // shader unless the GL driver is a software rasteriser, where the CPU is
     // faster), "cpu" or "gpu". The pixels are the same either way.
     std::string tracer = "auto";
+    // The editor window's size when it last closed (0: never), reopened at
+    // that size (fitted to the screen's work area).
+    int window_width = 0, window_height = 0;
 };
 
 // Reads settings.json from `dir`; a missing or bad file gives the defaults

@@ -112,8 +112,12 @@ int main(int argc, char** argv) {
     cli.add_option("--tracer", tracer_choice, "auto, cpu or gpu: which tracer to run (overrides View › Tracer)")
         ->check(CLI::IsMember({"auto", "cpu", "gpu"}));
     cli.add_option("--headless-out", headless_out, "With no display: where the headless render goes (default isolux.png)");
-    cli.add_option("--width", width, "Window width")->check(CLI::Range(320, 8192));
-    cli.add_option("--height", height, "Window height")->check(CLI::Range(240, 8192));
+    // Without --width/--height: the size the window last closed at (else
+    // 1600x900), fitted to the screen's work area.
+    CLI::Option* width_opt = cli.add_option("--width", width, "Window width (default: the last size, else 1600)")
+                                 ->check(CLI::Range(320, 8192));
+    CLI::Option* height_opt = cli.add_option("--height", height, "Window height (default: the last size, else 900)")
+                                  ->check(CLI::Range(240, 8192));
     try {
         cli.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -148,8 +152,14 @@ int main(int argc, char** argv) {
     }
 
     const bool screenshot_mode = !screenshot.empty();
+    const bool size_given = width_opt->count() > 0 || height_opt->count() > 0;
+    const fs::path config = config_dir();
+    if (!size_given && !screenshot_mode) {
+        const Settings remembered = load_settings(config);
+        if (remembered.window_width > 0) width = remembered.window_width, height = remembered.window_height;
+    }
     std::string why;
-    GLFWwindow* window = open_window(width, height, !screenshot_mode, why);
+    GLFWwindow* window = open_window(width, height, !screenshot_mode, why, !size_given && !screenshot_mode);
     if (!window) {
         try {
             return render_headless(scene, scene_file.empty() ? "the default scene" : scene_file,
@@ -163,7 +173,6 @@ int main(int argc, char** argv) {
     App app;
     app.scene_arg = scene_file;
     app.screenshot_frames = frames > 0 ? frames : 1;
-    const fs::path config = config_dir();
     try {
         app.editor = make_editor(scene, config);
         if (!script_file.empty()) app.script = load_script(script_file);
@@ -230,6 +239,10 @@ int main(int argc, char** argv) {
         const double dt = std::chrono::duration<double>(t - last).count();
         last = t;
         app.now = std::chrono::duration<double>(t - start).count();
+        if (app.script && app.script->resize_w > 0) {
+            glfwSetWindowSize(window, app.script->resize_w, app.script->resize_h);
+            app.script->resize_w = app.script->resize_h = 0;
+        }
         glfwGetFramebufferSize(window, &app.window_w, &app.window_h);
         if (app.now >= reload_check) {
             renderer_reload_shaders(app.renderer);  // hot reload; errors show in the status bar
@@ -319,6 +332,10 @@ int main(int argc, char** argv) {
             break;
     }
     stop_long_trace(app);
+    // The window's size is remembered, unless it was a one-off: a size given
+    // on the command line, or a screenshot's hidden window.
+    if (!size_given && !screenshot_mode) glfwGetWindowSize(window, &app.editor.settings.window_width,
+                                                           &app.editor.settings.window_height);
     try {
         save_settings(config, app.editor.settings);
     } catch (const std::exception&) {

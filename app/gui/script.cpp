@@ -39,7 +39,7 @@ Script load_script(const std::filesystem::path& path) {
         // -1: one or more.
         static const std::pair<const char*, int> arity[] = {
             {"wait", 1}, {"click", 2}, {"rclick", 2}, {"drag", 4}, {"key", 1}, {"param", 2},
-            {"type", 1}, {"window-shot", 1}, {"inspect", 1}, {"footprint", 2}, {"save-footprints", 0}, {"save-preset", 1}, {"save-scene", 1}, {"load-scene", 1}, {"load-preset", 1}, {"quit", 0},
+            {"type", 1}, {"window-shot", 1}, {"resize", 2}, {"inspect", 1}, {"footprint", 2}, {"save-footprints", 0}, {"save-preset", 1}, {"save-scene", 1}, {"load-scene", 1}, {"load-preset", 1}, {"quit", 0},
             {"overlay", 2}, {"sweep", -1}, {"wait-sweep", 0}, {"long-work", 1}, {"apply-point", 1}, {"save-sweep", 1},
             {"tool", 1}, {"brush", 2}, {"view", 3}, {"click-tile", 2}, {"drag-tiles", 4}, {"new", 0}, {"fit", 0},
             {"open-dropped", 1}, {"check-glyphs", 1}, {"dump-panels", 1}, {"export-final", 1}, {"select", 1},
@@ -322,6 +322,9 @@ void run_script_step(App& app) {
         save_footprints(e);
     } else if (step.op == "window-shot") {
         s.window_shot = step.args[0];
+    } else if (step.op == "resize") {
+        s.resize_w = std::clamp(std::atoi(step.args[0].c_str()), 320, 8192);
+        s.resize_h = std::clamp(std::atoi(step.args[1].c_str()), 240, 8192);
     } else if (step.op == "type") {
         for (char c : step.args[0]) io.AddInputCharacter(unsigned(c));
     } else if (step.op == "param") {

@@ -48,6 +48,7 @@ struct Script {
     bool quit = false;
     bool waiting_sweep = false;  // wait-sweep: hold the script until the sweep ends
     std::string window_shot;     // window-shot: written once this frame is drawn
+    int resize_w = 0, resize_h = 0;  // resize W H: the window takes that size next frame
     // move-lights N: for N frames every light moves a pixel (right, then
     // left), as a game's lights do; the next command waits for the last.
     int move_lights = 0;
