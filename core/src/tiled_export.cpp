@@ -319,8 +319,14 @@ pugi::xml_node start_map(pugi::xml_document& doc, const Map& map, const Grid& g)
 }
 
 // The preset, and what isolux needs to light the map again.
-void write_map_properties(pugi::xml_node m, const Scene& scene, Layout layout, std::pair<int, int> origin) {
+void write_map_properties(pugi::xml_node m, const Scene& scene, Layout layout, std::pair<int, int> origin, Rect frame) {
     pugi::xml_node props = m.append_child("properties");
+    // The whole map's picture (World::frame), so a map read back renders the
+    // same image as its scene, whatever the edits.
+    if (!frame.empty())
+        add_property(props, "isolux_frame", nullptr,
+                     std::to_string(frame.x) + "," + std::to_string(frame.y) + "," + std::to_string(frame.w) + "," +
+                         std::to_string(frame.h));
     add_property(props, "isolux_layout", nullptr, std::string(to_string(layout)));
     add_property(props, "isolux_origin_x", "int", std::to_string(origin.first));
     add_property(props, "isolux_origin_y", "int", std::to_string(origin.second));
@@ -511,7 +517,7 @@ std::pair<int, int> export_tiled(const World& world, const Scene& scene, const f
     pugi::xml_document doc;
     pugi::xml_node m = start_map(doc, world.map, g);
     int next_id = 1, object_id = 1;
-    write_map_properties(m, scene, world.map.layout, origin);
+    write_map_properties(m, scene, world.map.layout, origin, world.frame);
     write_tileset_refs(m, e, files);
     if (!floors_as_objects) write_floor_layers(m, world, e, next_id);
     write_overlay_objects(m, world, g, e, floors_as_objects, origin, next_id, object_id);

@@ -12,12 +12,19 @@ namespace isolux {
 struct Grid {
     bool isometric = true;  // else staggered, axis y
     bool stagger_even = false;
-    int tw = 0, th = 0, w = 0, h = 0;
+    int tw = 0, th = 0, w = 0, h = 0;  // w x h: the cells isolux holds
+    // An infinite map's cells are its chunks' bounding box: cell (x, y) is
+    // Tiled's (x + x0, y + y0), and Tiled's projection keeps the map's
+    // declared height (map_h). A finite map: 0, 0 and its height.
+    int x0 = 0, y0 = 0, map_h = -1;
+    bool infinite = false;
 
+    double projection_h() const { return map_h >= 0 ? map_h : h; }
     // The bottom-left of cell (x, y)'s box: where Tiled draws its image from.
     void cell_bottom_left(int x, int y, double& sx, double& sy) const {
+        x += x0, y += y0;
         if (isometric) {
-            const double origin_x = double(h) * tw / 2;
+            const double origin_x = projection_h() * tw / 2;
             sx = (x - y) * tw / 2.0 + origin_x - tw / 2.0;
             sy = (x + y) * th / 2.0 + th;
         } else {
@@ -33,7 +40,7 @@ struct Grid {
             return;
         }
         const double tx = px / th, ty = py / th;
-        sx = (tx - ty) * tw / 2.0 + double(h) * tw / 2;
+        sx = (tx - ty) * tw / 2.0 + projection_h() * tw / 2;
         sy = (tx + ty) * th / 2.0;
     }
     void screen_to_object(double sx, double sy, double& px, double& py) const {
@@ -41,7 +48,7 @@ struct Grid {
             px = sx, py = sy;
             return;
         }
-        const double a = (sx - double(h) * tw / 2) / (tw / 2.0), b = sy / (th / 2.0);
+        const double a = (sx - projection_h() * tw / 2) / (tw / 2.0), b = sy / (th / 2.0);
         px = (a + b) / 2 * th;
         py = (b - a) / 2 * th;
     }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdio>
 #include <cmath>
 #include <cstdlib>
 #include <iterator>
@@ -144,6 +145,38 @@ Image flipped(const Image& in, std::uint32_t flags) {
     return out;
 }
 
+// An infinite map's cells: the bounding box of every tile layer's chunks
+// (groups included), its top row even so that a staggered map's rows keep
+// their shift. Refused by name when there are none or the box is beyond
+// max_tiled_side a side.
+void read_chunk_bounds(const fs::path& tmx, const pugi::xml_node& m, Grid& g) {
+    long long x0 = LLONG_MAX, y0 = LLONG_MAX, x1 = LLONG_MIN, y1 = LLONG_MIN;
+    std::vector<pugi::xml_node> stack{m};
+    while (!stack.empty()) {
+        const pugi::xml_node n = stack.back();
+        stack.pop_back();
+        for (pugi::xml_node c : n.children()) {
+            const std::string name = c.name();
+            if (name == "group") stack.push_back(c);
+            if (name != "layer") continue;
+            for (pugi::xml_node ch : c.child("data").children("chunk")) {
+                const long long x = int_attr(tmx, ch, "x", -1000000000, 1000000000), y = int_attr(tmx, ch, "y", -1000000000, 1000000000);
+                const long long w = int_attr(tmx, ch, "width", 1, max_tiled_side), h = int_attr(tmx, ch, "height", 1, max_tiled_side);
+                x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x + w), y1 = std::max(y1, y + h);
+            }
+        }
+    }
+    if (x1 == LLONG_MIN) fail(tmx, m, "is an infinite map (infinite=\"1\") whose tile layers hold no chunks");
+    if (y0 % 2 != 0) --y0;  // an even top row: staggered rows keep their shift
+    if (x1 - x0 > max_tiled_side || y1 - y0 > max_tiled_side)
+        fail(tmx, m, "is an infinite map whose chunks span " + std::to_string(x1 - x0) + "x" + std::to_string(y1 - y0) +
+                         " tiles, over " + std::to_string(max_tiled_side) + " a side");
+    g.infinite = true;
+    g.map_h = g.h;
+    g.x0 = int(x0), g.y0 = int(y0);
+    g.w = int(x1 - x0), g.h = int(y1 - y0);
+}
+
 // The map element: orientation, size and tile size as a Grid.
 Grid read_map_grid(const fs::path& tmx, const pugi::xml_node& m) {
     const std::string orientation = m.attribute("orientation").value();
@@ -158,11 +191,11 @@ Grid read_map_grid(const fs::path& tmx, const pugi::xml_node& m) {
     } else {
         fail(tmx, m, "orientation \"" + orientation + "\" is not supported: isolux lights isometric and staggered maps");
     }
-    if (std::string(m.attribute("infinite").value()) == "1") fail(tmx, m, "infinite maps are not supported");
     g.w = int_attr(tmx, m, "width", 1, max_tiled_side);
     g.h = int_attr(tmx, m, "height", 1, max_tiled_side);
     g.tw = int_attr(tmx, m, "tilewidth", 2, 4096);
     g.th = int_attr(tmx, m, "tileheight", 2, 4096);
+    if (std::string(m.attribute("infinite").value()) == "1") read_chunk_bounds(tmx, m, g);
     return g;
 }
 
@@ -320,10 +353,15 @@ private:
     // first tile layer is the floor unless isolux_kind properties say.
     void read_tile_layer(const pugi::xml_node& layer, double lx, double ly) {
         const std::string layer_kind = property(layer, "isolux_kind");
-        const int lw = int_attr(tmx_, layer, "width", 1, max_tiled_side, g_.w), lh = int_attr(tmx_, layer, "height", 1, max_tiled_side, g_.h);
-        if (lw != g_.w || lh != g_.h)
-            fail(tmx_, layer, "is " + std::to_string(lw) + "x" + std::to_string(lh) + ", the map " + std::to_string(g_.w) + "x" + std::to_string(g_.h));
-        const std::vector<std::uint32_t> gids = layer_gids(tmx_, layer, lw, lh);
+        std::vector<std::uint32_t> gids;
+        if (g_.infinite) {
+            gids = chunked_layer_gids(tmx_, layer, g_.x0, g_.y0, g_.w, g_.h);
+        } else {
+            const int lw = int_attr(tmx_, layer, "width", 1, max_tiled_side, g_.w), lh = int_attr(tmx_, layer, "height", 1, max_tiled_side, g_.h);
+            if (lw != g_.w || lh != g_.h)
+                fail(tmx_, layer, "is " + std::to_string(lw) + "x" + std::to_string(lh) + ", the map " + std::to_string(g_.w) + "x" + std::to_string(g_.h));
+            gids = layer_gids(tmx_, layer, lw, lh);
+        }
         const bool floor_layer = layer_kind.empty() ? first_tile_layer_ : layer_kind == "floor";
         first_tile_layer_ = false;
         if (++tile_layers_ > max_tiled_layers)
@@ -487,6 +525,14 @@ void place_world(const fs::path& tmx, const pugi::xml_node& m, const Grid& g, co
     out.origin_y = -y0;
     finish_placed(pm);
     for (Light& l : out.scene.lights) l.x += out.origin_x, l.y += out.origin_y;
+    // A map isolux exported keeps its scene's frame (four integers, world pixels).
+    if (const std::string f = property(m, "isolux_frame"); !f.empty()) {
+        long long v[4] = {0, 0, 0, 0};
+        if (std::sscanf(f.c_str(), "%lld,%lld,%lld,%lld", &v[0], &v[1], &v[2], &v[3]) != 4 || std::llabs(v[0]) > 100000000 ||
+            std::llabs(v[1]) > 100000000 || v[2] < 1 || v[3] < 1 || v[2] > 100000000 || v[3] > 100000000)
+            fail(tmx, m, "property isolux_frame=\"" + f + "\" is not X,Y,W,H in world pixels");
+        out.world.frame = Rect{int(v[0]), int(v[1]), int(v[2]), int(v[3])};
+    }
 
     Map& map = out.world.map;
     map.width = g.w;

@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "isolux/error.hpp"
+#include "isolux/tiled.hpp"
 #include "isolux/file_io.hpp"
 
 namespace fs = std::filesystem;
@@ -156,50 +157,77 @@ std::string unzstd_bounded(const fs::path& file, const pugi::xml_node& data, con
 
 }  // namespace
 
-std::vector<std::uint32_t> layer_gids(const fs::path& file, const pugi::xml_node& layer, int w, int h) {
-    const pugi::xml_node data = layer.child("data");
-    if (!data) fail(file, layer, "has no <data>");
-    if (data.child("chunk")) fail(file, data, "holds chunks: infinite maps are not supported (Map > Map Properties > Infinite off)");
+namespace {
+
+// `count` gids from `holder` (a layer's <data>, or one of its <chunk>s) in the
+// <data>'s encoding and compression.
+std::vector<std::uint32_t> decode_gids(const fs::path& file, const pugi::xml_node& data, const pugi::xml_node& holder,
+                                       std::size_t count, const std::string& size_text) {
     const std::string encoding = data.attribute("encoding").value(), compression = data.attribute("compression").value();
-    const std::size_t count = std::size_t(w) * h;
     std::vector<std::uint32_t> gids;
     gids.reserve(count);
     if (encoding == "csv") {
         if (!compression.empty()) fail(file, data, "CSV data cannot be compressed");
-        const char* p = data.text().get();
+        const char* p = holder.text().get();
         while (*p) {
             while (*p == ' ' || *p == '\n' || *p == '\r' || *p == '\t' || *p == ',') ++p;
             if (!*p) break;
             char* end = nullptr;
             const unsigned long long v = std::strtoull(p, &end, 10);
-            if (end == p || v > 0xFFFFFFFFull) fail(file, data, "CSV data holds a value that is not a gid");
+            if (end == p || v > 0xFFFFFFFFull) fail(file, holder, "CSV data holds a value that is not a gid");
             gids.push_back(std::uint32_t(v));
             if (gids.size() > count) break;
             p = end;
         }
     } else if (encoding == "base64") {
-        std::string bytes = base64_decode(file, data, data.text().get());
+        std::string bytes = base64_decode(file, holder, holder.text().get());
         const std::size_t want = count * 4;
-        if (compression == "zlib" || compression == "gzip") bytes = inflate_bounded(file, data, bytes, want);
-        else if (compression == "zstd") bytes = unzstd_bounded(file, data, bytes, want);
+        if (compression == "zlib" || compression == "gzip") bytes = inflate_bounded(file, holder, bytes, want);
+        else if (compression == "zstd") bytes = unzstd_bounded(file, holder, bytes, want);
         else if (!compression.empty()) fail(file, data, "compression \"" + compression + "\" is unknown (zlib, gzip, zstd)");
-        if (bytes.size() != want)
-            fail(file, data, "holds " + std::to_string(bytes.size() / 4) + " tiles, the layer is " + std::to_string(w) + "x" +
-                                 std::to_string(h));
+        if (bytes.size() != want) fail(file, holder, "holds " + std::to_string(bytes.size() / 4) + " tiles, " + size_text);
         for (std::size_t i = 0; i < count; ++i) {
             const auto* b = reinterpret_cast<const unsigned char*>(&bytes[i * 4]);
             gids.push_back(std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24);
         }
     } else if (encoding.empty()) {
-        for (pugi::xml_node t : data.children("tile")) {
+        for (pugi::xml_node t : holder.children("tile")) {
             gids.push_back(std::uint32_t(std::strtoull(t.attribute("gid").value(), nullptr, 10)));
             if (gids.size() > count) break;
         }
     } else {
         fail(file, data, "encoding \"" + encoding + "\" is unknown (csv, base64)");
     }
-    if (gids.size() != count)
-        fail(file, data, "holds " + std::to_string(gids.size()) + " tiles, the layer is " + std::to_string(w) + "x" + std::to_string(h));
+    if (gids.size() != count) fail(file, holder, "holds " + std::to_string(gids.size()) + " tiles, " + size_text);
+    return gids;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> layer_gids(const fs::path& file, const pugi::xml_node& layer, int w, int h) {
+    const pugi::xml_node data = layer.child("data");
+    if (!data) fail(file, layer, "has no <data>");
+    if (data.child("chunk"))
+        fail(file, data, "holds chunks, but the map is not infinite (infinite=\"1\" on the map reads them)");
+    return decode_gids(file, data, data, std::size_t(w) * h,
+                       "the layer is " + std::to_string(w) + "x" + std::to_string(h));
+}
+
+std::vector<std::uint32_t> chunked_layer_gids(const fs::path& file, const pugi::xml_node& layer, int x0, int y0, int w,
+                                              int h) {
+    const pugi::xml_node data = layer.child("data");
+    if (!data) fail(file, layer, "has no <data>");
+    std::vector<std::uint32_t> gids(std::size_t(w) * h, 0);
+    for (pugi::xml_node ch : data.children("chunk")) {
+        const int cx = int_attr(file, ch, "x", -1000000000, 1000000000), cy = int_attr(file, ch, "y", -1000000000, 1000000000);
+        const int cw = int_attr(file, ch, "width", 1, max_tiled_side), chh = int_attr(file, ch, "height", 1, max_tiled_side);
+        const std::vector<std::uint32_t> part =
+            decode_gids(file, data, ch, std::size_t(cw) * chh, "the chunk is " + std::to_string(cw) + "x" + std::to_string(chh));
+        // Every chunk lies inside the bounds read_chunk_bounds took of them all.
+        for (int y = 0; y < chh; ++y)
+            for (int x = 0; x < cw; ++x)
+                gids[std::size_t(cy + y - y0) * std::size_t(w) + std::size_t(cx + x - x0)] = part[std::size_t(y) * cw + x];
+    }
     return gids;
 }
 

@@ -35,5 +35,10 @@ std::string property(const pugi::xml_node& node, const char* name);
 // (uncompressed, zlib, gzip or zstd, never inflated past the layer's size)
 // or XML <tile>s.
 std::vector<std::uint32_t> layer_gids(const std::filesystem::path& file, const pugi::xml_node& layer, int w, int h);
+// An infinite map's layer: its <chunk>s (each decoded as a layer's data is)
+// laid into the w x h cells whose first is Tiled's (x0, y0); cells no chunk
+// holds are empty (gid 0). Every chunk must lie inside those cells.
+std::vector<std::uint32_t> chunked_layer_gids(const std::filesystem::path& file, const pugi::xml_node& layer, int x0,
+                                              int y0, int w, int h);
 
 }  // namespace isolux

@@ -9,7 +9,9 @@
 3. Maps written here by hand (every encoding and compression, external and
    embedded tilesets, sheets and image collections, tile offsets, flips, tile
    objects, a group with an offset; isometric and staggered) and Tiled's own
-   example map: isolux's `--layer map` against tmxrasterizer's picture.
+   example maps (isometric, and staggered infinite): isolux's `--layer map`
+   against tmxrasterizer's picture. Infinite versions of the hand maps
+   (chunks from a negative tile) draw the finite maps' bytes.
 4. Bad maps: a clear error naming the file and the element, exit 2.
 
 Usage: run.py ISOLUX_CLI SOURCE_DIR
@@ -183,6 +185,42 @@ for orientation in ["isometric", "staggered"]:
         open(tmx, "w").write(hand_map(orientation, encoding))
         judge(tmx, f"hand_{orientation}_{encoding}")
 
+# Infinite maps: chunked layers (4x4 chunks whose first tile is Tiled's
+# (-3, -5), or (-3, -6) on a staggered map, whose rows' shift follows their
+# parity) hold the same tiles as the finite map, so isolux draws the same
+# bytes (its world starts at what the sprites cover).
+def chunked(gids, encoding, x0, y0, size=4):
+    cells = {(x0 + x, y0 + y): g for y, row in enumerate(gids) for x, g in enumerate(row)}
+    cx0, cy0 = (x0 // size) * size, (y0 // size) * size
+    out = []
+    for cy in range(cy0, y0 + len(gids), size):
+        for cx in range(cx0, x0 + len(gids[0]), size):
+            part = [[cells.get((cx + i, cy + j), 0) for i in range(size)] for j in range(size)]
+            body = data(part, encoding)
+            body = body[body.index(">") + 1:body.rindex("<")]
+            out.append(f'<chunk x="{cx}" y="{cy}" width="{size}" height="{size}">{body}</chunk>')
+    head = data([[0]], encoding)
+    return head[:head.index(">") + 1] + "".join(out) + "</data>"
+
+
+for orientation in ["isometric", "staggered"]:
+    for encoding in ["csv", "zlib"]:
+        finite = hand_map(orientation, encoding)
+        finite = finite[:finite.index(" <group")] + finite[finite.index(" </group>") + len(" </group>"):]
+        infinite = finite.replace('infinite="0"', 'infinite="1"')
+        y0 = -6 if orientation == "staggered" else -5
+        infinite = infinite.replace(data(floors, encoding), chunked(floors, encoding, -3, y0))
+        infinite = infinite.replace(data(overlay, encoding), chunked(overlay, encoding, -3, y0))
+        pair = []
+        for kind, text in (("finite", finite), ("infinite", infinite)):
+            path = os.path.join(hand, f"{kind}_{orientation}_{encoding}.tmx")
+            open(path, "w").write(text)
+            out = os.path.join(tmp, f"{kind}_{orientation}_{encoding}.png")
+            p = run(cli, "render", "--map", path, "--layer", "map", "--out", out)
+            pair.append(open(out, "rb").read() if p.returncode == 0 and os.path.exists(out) else None)
+        check(pair[0] is not None and pair[0] == pair[1],
+              f"infinite {orientation} {encoding}: the chunked map does not draw the finite one's bytes")
+
 # Lights in a hand-written map light it.
 lit = os.path.join(hand, "lit.tmx")
 open(lit, "w").write(hand_map("isometric", "csv", """<objectgroup id="9" name="lights">
@@ -205,6 +243,16 @@ if os.path.exists(example):
         shutil.copy(os.path.join(os.path.dirname(example), f), ex)
     judge(os.path.join(ex, "isometric_grass_and_water.tmx"), "tiled_example_isometric")
 
+# Tiled's own infinite staggered example (chunks, base64 with zlib).
+stag = "/usr/share/doc/tiled/examples/isometric_staggered_grass_and_water.tmx.gz"
+check(os.path.exists(stag), "Tiled's infinite staggered example is installed (the tiled package)")
+if os.path.exists(stag):
+    ex = os.path.join(tmp, "example_staggered")
+    os.makedirs(ex, exist_ok=True)
+    shutil.copy("/usr/share/doc/tiled/examples/isometric_grass_and_water.png", ex)
+    open(os.path.join(ex, "staggered.tmx"), "wb").write(gzip.open(stag).read())
+    judge(os.path.join(ex, "staggered.tmx"), "tiled_example_staggered_infinite")
+
 # Tiled's own orthogonal example is refused by name.
 desert = "/usr/share/doc/tiled/examples/desert.tmx"
 if os.path.exists(desert):
@@ -224,7 +272,8 @@ bad = {
     "short_data": (good.replace(f"{F1},{F1},", "", 1), "holds"),
     "bomb": (good.replace(data(floors, "csv"), f'<data encoding="base64" compression="zlib">{bomb}</data>', 1), "bomb"),
     "malformed": (good[: len(good) // 2], "malformed XML"),
-    "infinite": (good.replace('infinite="0"', 'infinite="1"'), "infinite"),
+    "infinite_without_chunks": (good.replace('infinite="0"', 'infinite="1"'), "no chunks"),
+    "chunks_in_a_finite_map": (good.replace(data(floors, "csv"), chunked(floors, "csv", 0, 0), 1), "not infinite"),
 }
 for name, (text, needle) in bad.items():
     path = os.path.join(hand, "bad_" + name + ".tmx")
