@@ -666,10 +666,16 @@ int isolux_cli_main(int argc, char** argv) {
 
     std::string export_scene, export_out;
     bool export_images = false;
+    int export_chunk = 0;
     CLI::App* export_tiled_cmd = app.add_subcommand("export-tiled", "Write a scene's level as a Tiled map (TMX, TSX, images)");
     export_tiled_cmd->add_option("--scene", export_scene, "Scene JSON file")->required();
     export_tiled_cmd->add_option("--out", export_out, "The map to write: DIR/NAME.tmx")->required();
     export_tiled_cmd->add_flag("--images", export_images, "Also the light texture and the final frame as (hidden) image layers");
+    export_tiled_cmd->add_option("--infinite", export_chunk,
+                                 "Write an infinite map: tile layers as chunks of N x N tiles (Tiled's own: 16)")
+        ->check(CLI::Range(1, 1024))
+        ->expected(0, 1)
+        ->default_str("16");
 
     try {
         app.parse(argc, argv);
@@ -692,6 +698,7 @@ int isolux_cli_main(int argc, char** argv) {
             const World world = build_world(scene, export_scene);
             TiledExport opt;
             opt.images = export_images;
+            opt.chunk = export_tiled_cmd->count("--infinite") ? (export_chunk > 0 ? export_chunk : 16) : 0;
             const auto [ox, oy] = export_tiled(world, scene, export_out, opt);
             std::cout << "wrote " << export_out << " (" << world.map.width << "x" << world.map.height << " "
                       << (world.map.layout == Layout::staggered ? "staggered" : "isometric") << ", " << scene.lights.size()

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <functional>
 #include <cstdio>
 #include <sstream>
 #include <tuple>
@@ -299,7 +300,7 @@ ExportTilesets collect_tilesets(const World& world, const Grid& g, bool floors_a
     return e;
 }
 
-pugi::xml_node start_map(pugi::xml_document& doc, const Map& map, const Grid& g) {
+pugi::xml_node start_map(pugi::xml_document& doc, const Map& map, const Grid& g, bool infinite) {
     add_declaration(doc);
     pugi::xml_node m = doc.append_child("map");
     m.append_attribute("version") = "1.8";
@@ -310,7 +311,7 @@ pugi::xml_node start_map(pugi::xml_document& doc, const Map& map, const Grid& g)
     m.append_attribute("height") = map.height;
     m.append_attribute("tilewidth") = g.tw;
     m.append_attribute("tileheight") = g.th;
-    m.append_attribute("infinite") = 0;
+    m.append_attribute("infinite") = infinite ? 1 : 0;
     if (!g.isometric) {
         m.append_attribute("staggeraxis") = "y";
         m.append_attribute("staggerindex") = "odd";
@@ -352,10 +353,24 @@ void write_tileset_refs(pugi::xml_node m, const ExportTilesets& e, const ExportF
     t.append_attribute("source") = files.overlays_tsx.c_str();
 }
 
+// The gids of cells [col0, col0 + w) x [row0, row0 + h) as CSV, one row a line.
+std::string csv_cells(const std::function<int(int, int)>& gid, int col0, int row0, int w, int h) {
+    std::string csv = "\n";
+    for (int row = row0; row < row0 + h; ++row) {
+        for (int col = col0; col < col0 + w; ++col) {
+            csv += std::to_string(gid(col, row));
+            if (row + 1 < row0 + h || col + 1 < col0 + w) csv += ",";
+        }
+        csv += "\n";
+    }
+    return csv;
+}
+
 // Floors: tile layers, CSV; each tile's floors from the placed sprites (a
 // seeded map holds one a tile; a Tiled map read in may stack several, one
 // layer each, marked isolux_kind floor so that they read back as floors).
-void write_floor_layers(pugi::xml_node m, const World& world, const ExportTilesets& e, int& next_id) {
+// With `chunk`, each layer's cells as chunks of that many tiles a side.
+void write_floor_layers(pugi::xml_node m, const World& world, const ExportTilesets& e, int& next_id, int chunk) {
     const Map& map = world.map;
     const std::size_t tiles = std::size_t(map.width) * map.height;
     std::vector<std::vector<int>> floors_at(tiles);
@@ -373,18 +388,26 @@ void write_floor_layers(pugi::xml_node m, const World& world, const ExportTilese
         layer.append_attribute("width") = map.width;
         layer.append_attribute("height") = map.height;
         if (layers > 1) add_property(layer.append_child("properties"), "isolux_kind", nullptr, "floor");
-        std::string csv = "\n";
-        for (int row = 0; row < map.height; ++row) {
-            for (int col = 0; col < map.width; ++col) {
-                const std::vector<int>& here = floors_at[std::size_t(row) * map.width + col];
-                csv += std::to_string(k < here.size() ? e.floor_gid[std::size_t(here[k])] : 0);
-                if (row + 1 < map.height || col + 1 < map.width) csv += ",";
-            }
-            csv += "\n";
-        }
+        auto gid = [&](int col, int row) {
+            const std::vector<int>& here = floors_at[std::size_t(row) * map.width + col];
+            return k < here.size() ? e.floor_gid[std::size_t(here[k])] : 0;
+        };
         pugi::xml_node data = layer.append_child("data");
         data.append_attribute("encoding") = "csv";
-        data.text() = csv.c_str();
+        if (chunk <= 0) {
+            data.text() = csv_cells(gid, 0, 0, map.width, map.height).c_str();
+            continue;
+        }
+        for (int row = 0; row < map.height; row += chunk)
+            for (int col = 0; col < map.width; col += chunk) {
+                const int w = std::min(chunk, map.width - col), h = std::min(chunk, map.height - row);
+                pugi::xml_node c = data.append_child("chunk");
+                c.append_attribute("x") = col;
+                c.append_attribute("y") = row;
+                c.append_attribute("width") = w;
+                c.append_attribute("height") = h;
+                c.text() = csv_cells(gid, col, row, w, h).c_str();
+            }
     }
 }
 
@@ -495,6 +518,11 @@ void write_image_layers(pugi::xml_node m, const World& world, const Scene& scene
 std::pair<int, int> export_tiled(const World& world, const Scene& scene, const fs::path& tmx, const TiledExport& options) {
     if (tmx.extension() != ".tmx") throw Error(tmx.string() + ": the map must be a .tmx file");
     check_output_target(write_target(tmx));  // a FIFO or a device is refused before any image or TSX is written
+    if (options.chunk < 0 || options.chunk > max_tiled_side)
+        throw Error(tmx.string() + ": the chunk size " + std::to_string(options.chunk) + " is not in [1, " +
+                    std::to_string(max_tiled_side) + "]");
+    if (options.chunk > 0 && world.map.layout == Layout::paper)
+        throw Error(tmx.string() + ": an infinite map needs tile layers, and the paper layout's floors are tile objects");
     const Tileset& ts = world.tileset;
     const std::string base = tmx.stem().string();
     const fs::path dir = tmx.parent_path().empty() ? fs::path(".") : tmx.parent_path();
@@ -515,11 +543,11 @@ std::pair<int, int> export_tiled(const World& world, const Scene& scene, const f
     write_tsx(dir / files.overlays_tsx, base + "_overlays", ts, e.overlays, e.image_files, images, 0, 0, "topleft");
 
     pugi::xml_document doc;
-    pugi::xml_node m = start_map(doc, world.map, g);
+    pugi::xml_node m = start_map(doc, world.map, g, options.chunk > 0);
     int next_id = 1, object_id = 1;
     write_map_properties(m, scene, world.map.layout, origin, world.frame);
     write_tileset_refs(m, e, files);
-    if (!floors_as_objects) write_floor_layers(m, world, e, next_id);
+    if (!floors_as_objects) write_floor_layers(m, world, e, next_id, options.chunk);
     write_overlay_objects(m, world, g, e, floors_as_objects, origin, next_id, object_id);
     write_light_objects(m, scene, g, origin, next_id, object_id);
     write_obstacle_objects(m, world, scene, g, origin, next_id, object_id);

@@ -2,7 +2,7 @@
 """Tiled maps out and in, judged by Tiled's own renderer (tmxrasterizer).
 
 1. Scenes exported with `isolux-cli export-tiled` (diamond with edits, and
-   staggered) are drawn by tmxrasterizer; isolux-cli's `--layer map` of the
+   staggered; finite, and infinite with --infinite 4) are drawn by tmxrasterizer; isolux-cli's `--layer map` of the
    same scene over the same pixels must match: at most 0.5 % of pixels
    differing by more than 2/255 (idiff).
 2. Exported then imported (`render --map`): the same `--layer final` bytes.
@@ -103,6 +103,18 @@ for name, scene in scenes.items():
     run(cli, "render", "--scene", sp, "--out", a)
     run(cli, "render", "--map", tmx, "--out", b)
     check(open(a, "rb").read() == open(b, "rb").read(), name + ": exported and imported, --layer final differs")
+    # As an infinite map (chunks of 4 tiles, the last ones cut at the map's
+    # edge): tmxrasterizer draws it as isolux does, and it reads back to the
+    # same lit frame.
+    inf = os.path.join(tmp, "inf_" + name, name + ".tmx")
+    p = run(cli, "export-tiled", "--scene", sp, "--out", inf, "--infinite", "4")
+    text = open(inf).read() if os.path.exists(inf) else ""
+    check(p.returncode == 0 and 'infinite="1"' in text and text.count("<chunk") >= 4, name + ": export-tiled --infinite")
+    judge(inf, "export_infinite_" + name, scene=sp)
+    c = os.path.join(tmp, name + ".inf.png")
+    run(cli, "render", "--map", inf, "--out", c)
+    check(os.path.exists(c) and open(a, "rb").read() == open(c, "rb").read(),
+          name + ": exported as an infinite map and imported, --layer final differs")
 
 # ---------------------------------------------------------------- 3: maps by hand
 art = os.path.join(src, "assets", "default")

@@ -17,6 +17,11 @@ namespace isolux {
 
 struct TiledExport {
     bool images = false;  // the light texture and the final frame as image layers (PNG beside the map)
+    // An infinite map (infinite="1"): tile layers as <chunk>s of chunk x
+    // chunk tiles from tile (0, 0), the last ones cut to the map's edge, so
+    // the chunks cover the map's cells exactly and Tiled draws it as the
+    // finite map. 0: a finite map.
+    int chunk = 0;
 };
 
 // Writes `tmx` (DIR/NAME.tmx) for the scene's level: floors as a tile layer
