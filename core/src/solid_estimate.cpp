@@ -190,18 +190,19 @@ std::vector<TrunkFoot> find_trunks(const Image& image) {
 // nearest (the lower index on a tie), and each part gets its solid of
 // revolution standing on its trunk's foot, with a 5 x 3 footprint there.
 std::vector<EstimatedObject> grove_objects(const Mask& object, const std::vector<TrunkFoot>& feet) {
+    std::vector<Mask> parts(feet.size(), Mask(object.rect()));
+    for (int j = 0; j < object.height; ++j)
+        for (int i = 0; i < object.width; ++i) {
+            if (!object.bits[std::size_t(j) * object.width + i]) continue;
+            const double x = object.x0 + i;
+            std::size_t nearest = 0;
+            for (std::size_t t = 1; t < feet.size(); ++t)
+                if (std::abs(x - feet[t].x) < std::abs(x - feet[nearest].x)) nearest = t;
+            parts[nearest].bits[std::size_t(j) * object.width + i] = 1;
+        }
     std::vector<EstimatedObject> out;
     for (std::size_t k = 0; k < feet.size(); ++k) {
-        Mask part(object.rect());
-        for (int j = 0; j < object.height; ++j)
-            for (int i = 0; i < object.width; ++i) {
-                if (!object.bits[std::size_t(j) * object.width + i]) continue;
-                const double x = object.x0 + i;
-                std::size_t nearest = 0;
-                for (std::size_t t = 1; t < feet.size(); ++t)
-                    if (std::abs(x - feet[t].x) < std::abs(x - feet[nearest].x)) nearest = t;
-                if (nearest == k) part.bits[std::size_t(j) * object.width + i] = 1;
-            }
+        const Mask& part = parts[k];
         EstimatedObject o;
         o.center_x = feet[k].x + 0.5;
         o.center_y = feet[k].y + 0.5;
