@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -249,4 +250,66 @@ TEST(Occluders, keptSolidsBuildTheSameMapAndFrameAsFreshOnes) {
     FrameState fresh_state;
     render_frame(fresh_state, w, at, cam, 0);
     EXPECT_EQ(walked.light.texels, fresh_state.light.texels);
+}
+
+// The passes walk the border rays' prefix tree when the light's whole area is
+// its clip and lies in the map (occluders_tree.cpp), ray by ray otherwise: the
+// same bytes. A clip one pixel wider than the area takes the rays; both are
+// compared over the area, on drawn seeds, light positions and heights, every
+// ray skip and area shape, light and shadow modes, solids and shapes.
+TEST(Occluders, theTreePassesGiveTheRaysBytes) {
+    int compared = 0, lit_sprites = 0, shaded_ground = 0;
+    for (const char* seed : {"isolux", "tree-walk", "forest-7"}) {
+        Scene s;
+        s.seed = seed;
+        s.width = s.height = 14;
+        const World w = make_world(test::default_tileset(), s);
+        const Rect b = w.placed.bounds;
+        for (Occluders o : {Occluders::solids, Occluders::shapes}) {
+            Params p;
+            p.occluders = o;
+            p.falloff_scale = 16;
+            const OccluderMap occ = build_occluders(w, p, b);
+            for (int draw = 0; draw < 8; ++draw) {
+                const std::uint64_t h = hash_point(hash_seed(seed), draw, int(o));
+                const int a = 20 + int(h % 90), bb = 20 + int((h >> 8) % 90);
+                const std::int64_t cx = b.x + a + std::int64_t((h >> 16) % std::uint64_t(b.w - 2 * a));
+                const std::int64_t cy = b.y + bb + std::int64_t((h >> 32) % std::uint64_t(b.h - 2 * bb));
+                const double height = std::array{0.0, 4.0, 16.0, 32.0, 64.0, 200.0}[(h >> 40) % 6];
+                p.ray_skip = std::array{1, 2, 5}[(h >> 48) % 3];
+                p.mode = (h >> 56) % 2 ? Mode::shadow : Mode::light;
+                const Rect area{int(cx) - a, int(cy) - bb, 2 * a + 1, 2 * bb + 1};
+                const Rect wider{area.x - 1, area.y - 1, area.w + 2, area.h + 2};
+                LightMask tree = trace_light_solids(occ, cx, cy, a, bb, height, p, area);
+                LightMask rays = trace_light_solids(occ, cx, cy, a, bb, height, p, wider);
+                auto same = [&](const char* pass) {
+                    for (int y = 0; y < area.h; ++y)
+                        for (int x = 0; x < area.w; ++x) {
+                            const std::uint8_t t = tree.value[std::size_t(y) * area.w + x];
+                            const std::uint8_t r = rays.value[std::size_t(y + 1) * wider.w + (x + 1)];
+                            if (t != r) {
+                                ADD_FAILURE() << pass << ": seed " << seed << " draw " << draw << " pixel " << x << "," << y
+                                              << ": tree " << int(t) << ", rays " << int(r);
+                                return;
+                            }
+                        }
+                    ++compared;
+                };
+                same("ground");
+                for (std::size_t i = 0; i < tree.value.size(); ++i) shaded_ground += tree.value[i] == 0;
+                light_sprite_points(tree, occ, height, p);
+                light_sprite_points(rays, occ, height, p);
+                same("sprites");
+                for (std::size_t i = 0; i < tree.value.size(); ++i) {
+                    const int px = area.x + int(i % std::size_t(area.w)), py = area.y + int(i / std::size_t(area.w));
+                    lit_sprites += tree.value[i] && occ.surface.instance[std::size_t(py - occ.rect.y) * occ.rect.w +
+                                                                         std::size_t(px - occ.rect.x)] >= 0;
+                }
+            }
+        }
+    }
+    EXPECT_EQ(compared, 96);
+    // The scenes hold both shaded ground and lit sprites, so the comparison can fail.
+    EXPECT_GT(shaded_ground, 10000);
+    EXPECT_GT(lit_sprites, 10000);
 }

@@ -11,6 +11,7 @@
 #include "isolux/error.hpp"
 #include "isolux/footprint.hpp"
 #include "isolux/solid_estimate.hpp"
+#include "occluders_tree.hpp"
 
 namespace isolux {
 
@@ -303,6 +304,11 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
     assert(occ.flags.size() == occ.low.size());  // index_occluders
     const double H = std::max(height, 0.0);
     const std::vector<std::uint8_t> table = falloff_table(a, b, p.falloff_scale);
+    if (occluder_tree_serves(occ, m, p)) {
+        trace_ground_tree(m, occ, H, table, p);
+        if (p.mode == Mode::shadow) std::fill(m.reached.begin(), m.reached.end(), std::uint8_t(1));
+        return m;
+    }
     // Ground pixels: one pass per ray, each span before a pixel shading a
     // stretch of the ray beyond it (its own pixel too when it stands on the
     // ground). Stretches that run to the border are one: from the nearest
@@ -423,7 +429,10 @@ void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, co
             }
         });
     };
-    for_each_ray_target(cx, cy, m.a, m.b, p, sprite_ray);
+    if (occluder_tree_serves(occ, m, p))
+        light_sprite_points_tree(m, occ, H, table, p, own_steps);
+    else
+        for_each_ray_target(cx, cy, m.a, m.b, p, sprite_ray);
 }
 
 }  // namespace isolux

@@ -1,0 +1,323 @@
+// The passes of occluders.hpp over the border rays' prefix tree
+// (occluders_tree.hpp). A node is one step of every ray through its prefix:
+// its depth is the step count, and its subtree [i, end) all the rays' steps
+// beyond it. What a ray carries (the shades of the spans it passed, the
+// descents they block) depends only on its path, so it is carried down the
+// tree. Below no span at all a node is simply lit: those parts are walked
+// four nodes at a time, reading one flag byte each.
+#include "occluders_tree.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <tuple>
+
+#include "ray_tree.hpp"
+
+namespace isolux {
+
+namespace {
+
+constexpr int max_extent = 512;  // as the paper's tracer: larger areas go ray by ray
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+// A node as the walks read it: its area index (from the top-left) times 1024
+// plus its depth (< 1024), and the end of its subtree.
+struct Node {
+    std::uint32_t at_depth;
+    std::int32_t end;
+};
+constexpr std::uint32_t depth_bits = 10;
+
+std::shared_ptr<const std::vector<Node>> tree_nodes(int a, int b, int k) {
+    static std::mutex mutex;
+    static std::map<std::tuple<int, int, int>, std::shared_ptr<const std::vector<Node>>> cache;
+    std::lock_guard<std::mutex> lock(mutex);
+    auto& slot = cache[{a, b, k}];
+    if (!slot) {
+        const auto tree = ray_tree(a, b, k);
+        auto nodes = std::make_shared<std::vector<Node>>(tree->end.size());
+        const std::int32_t centre = b * (2 * a + 1) + a;
+        for (std::size_t i = 0; i < nodes->size(); ++i)
+            (*nodes)[i] = {std::uint32_t(centre + tree->offset[i]) << depth_bits | tree->depth[i], tree->end[i]};
+        slot = nodes;
+    }
+    return slot;
+}
+
+// The light's area (the mask's clip) in the occluder map: an area index's
+// row and column, and the map index of the same pixel.
+struct AreaInMap {
+    std::uint32_t w;
+    double inv_w;  // (o + 0.5) / w never lies within rounding of a whole number
+    std::size_t base, map_w;
+    AreaInMap(const OccluderMap& occ, Rect area)
+        : w(std::uint32_t(area.w)), inv_w(1.0 / area.w),
+          base(std::size_t(area.y - occ.rect.y) * occ.rect.w + std::size_t(area.x - occ.rect.x)),
+          map_w(std::size_t(occ.rect.w)) {}
+    std::uint32_t row(std::uint32_t o) const { return std::uint32_t((o + 0.5) * inv_w); }
+    std::size_t map(std::uint32_t o) const {
+        const std::uint32_t r = row(o);
+        return base + r * map_w + (o - r * w);
+    }
+};
+
+// The occluder flags of the area, rows copied into the area's layout.
+const std::uint8_t* area_flags(const OccluderMap& occ, Rect area, const AreaInMap& in) {
+    thread_local std::vector<std::uint8_t> local;
+    local.resize(std::size_t(area.w) * area.h);
+    for (int y = 0; y < area.h; ++y)
+        std::memcpy(&local[std::size_t(y) * area.w], &occ.flags[in.base + std::size_t(y) * in.map_w], std::size_t(area.w));
+    return local.data();
+}
+
+// Walks nodes from `i` while no node holds a span, calling at(o, depth) for
+// each whose flags have a bit of `wanted`; four nodes a step while none of
+// them has any. Returns the first node holding a span (or n).
+template <class At>
+std::int32_t walk_clear(const Node* node, std::int32_t i, std::int32_t n, const std::uint8_t* flags,
+                        std::uint8_t wanted, At&& at) {
+    const std::uint8_t any = wanted | OccluderMap::has_span;
+    for (;;) {
+        while (i + 4 <= n) {
+            const std::uint32_t w0 = node[i].at_depth, w1 = node[i + 1].at_depth, w2 = node[i + 2].at_depth,
+                                w3 = node[i + 3].at_depth;
+            if ((flags[w0 >> depth_bits] | flags[w1 >> depth_bits] | flags[w2 >> depth_bits] | flags[w3 >> depth_bits]) & any)
+                break;
+            i += 4;
+        }
+        if (i >= n) return n;
+        const std::uint32_t w = node[i].at_depth;
+        const std::uint8_t f = flags[w >> depth_bits];
+        if (f & OccluderMap::has_span) return i;
+        if (f & wanted) at(w >> depth_bits, w & ((1u << depth_bits) - 1));
+        ++i;
+    }
+}
+
+// The same, writing each node's falloff (ground pass: every node before a
+// span is lit).
+std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const std::uint8_t* flags,
+                         const std::uint8_t* table, std::uint8_t* value) {  // nodes [i, n)
+    for (;;) {
+        while (i + 4 <= n) {
+            const std::uint32_t w0 = node[i].at_depth, w1 = node[i + 1].at_depth, w2 = node[i + 2].at_depth,
+                                w3 = node[i + 3].at_depth;
+            const std::uint32_t o0 = w0 >> depth_bits, o1 = w1 >> depth_bits, o2 = w2 >> depth_bits, o3 = w3 >> depth_bits;
+            if ((flags[o0] | flags[o1] | flags[o2] | flags[o3]) & OccluderMap::has_span) break;
+            constexpr std::uint32_t d = (1u << depth_bits) - 1;
+            value[o0] = table[w0 & d];
+            value[o1] = table[w1 & d];
+            value[o2] = table[w2 & d];
+            value[o3] = table[w3 & d];
+            i += 4;
+        }
+        if (i >= n) return n;
+        const std::uint32_t w = node[i].at_depth;
+        if (flags[w >> depth_bits] & OccluderMap::has_span) return i;
+        value[w >> depth_bits] = table[w & ((1u << depth_bits) - 1)];
+        ++i;
+    }
+}
+
+struct Shade {
+    double from, to;  // the depths [from, to) a span shades
+};
+
+}  // namespace
+
+bool occluder_tree_serves(const OccluderMap& occ, const LightMask& m, const Params& p) {
+    const Rect area{int(m.cx) - m.a, int(m.cy) - m.b, 2 * m.a + 1, 2 * m.b + 1};
+    return p.rays == Rays::border && m.a <= max_extent && m.b <= max_extent && m.clip == area &&
+           intersect(area, occ.rect) == area && occ.flags.size() == occ.low.size();
+}
+
+void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
+                       const Params& p) {
+    const auto tree = tree_nodes(m.a, m.b, p.ray_skip);
+    const Node* node = tree->data();
+    const std::int32_t n = std::int32_t(tree->size());
+    const AreaInMap in(occ, m.clip);
+    const std::uint8_t* flags = area_flags(occ, m.clip, in);
+    std::uint8_t* value = m.value.data();
+    // Below a span: a stack of the subtrees whose shades differ from their
+    // parent's, each with its shades (those still ahead) and the depth from
+    // which everything is shaded to the border.
+    struct Frame {
+        std::int32_t end;
+        double endless;
+        std::size_t begin, count;  // its shades in `shades`
+    };
+    thread_local std::vector<Frame> stack;
+    thread_local std::vector<Shade> shades;
+    // A shade or an endless one that starts past the area's last depth
+    // shades nothing (a canopy far out shades beyond the border).
+    const double last_depth = double(std::max(m.a, m.b));
+    stack.assign(1, Frame{n, inf, 0, 0});
+    shades.clear();
+    for (std::int32_t i = 0; i < n;) {
+        while (stack.back().end <= i) {
+            shades.resize(stack.back().begin);
+            stack.pop_back();
+        }
+        const Frame top = stack.back();
+        if (top.count == 0 && top.endless == inf) {  // nothing shades these rays yet
+            i = light_clear(node, i, top.end, flags, table.data(), value);
+            if (i >= top.end) continue;
+        }
+        const std::uint32_t w = node[i].at_depth, o = w >> depth_bits, k = w & ((1u << depth_bits) - 1);
+        const double kd = double(k);
+        double endless = top.endless;
+        Shade own{0, 0};
+        if (flags[o] & OccluderMap::has_span) {
+            const std::size_t g = in.map(o);
+            const float lo = occ.low[g], hi = occ.high[g];
+            if (lo < H) {
+                const double from = lo <= 0 ? kd : kd * H / (H - lo);
+                const double to = kd * H / (H - hi);
+                if (from > last_depth)
+                    ;
+                else if (hi >= H)
+                    endless = std::min(endless, from);
+                else
+                    own = {from, to};
+            }
+        }
+        if (endless <= kd) {  // this node and its whole subtree are shaded
+            i = node[i].end;
+            continue;
+        }
+        // The frame's shades are disjoint and sorted: `own` is new to them
+        // unless one holds it.
+        bool shaded = own.from <= kd && kd < own.to, held = own.to <= kd + 1 || own.from >= endless;
+        for (std::size_t s = top.begin; s < top.begin + top.count; ++s) {
+            shaded = shaded || (shades[s].from <= kd && kd < shades[s].to);
+            held = held || (shades[s].from <= own.from && own.to <= shades[s].to);
+        }
+        if (!shaded) value[o] = table[k];
+        if ((!held || endless != top.endless) && node[i].end > i + 1) {
+            // The shades its subtree sees: those still ahead of depth k + 1
+            // and before `endless`, with `own` joined to them.
+            Frame f{node[i].end, endless, shades.size(), 0};
+            const double ahead = kd + 1;
+            if (held) own = {0, 0};
+            for (std::size_t s = top.begin; s < top.begin + top.count; ++s) {
+                const Shade c = shades[s];
+                if (c.to <= ahead || c.from >= endless) continue;
+                if (own.to > own.from && own.from <= c.to && c.from <= own.to) {  // overlapping: one
+                    own = {std::min(own.from, c.from), std::max(own.to, c.to)};
+                    continue;
+                }
+                if (own.to > own.from && own.to < c.from) {  // before c: in its place
+                    shades.push_back(own);
+                    own = {0, 0};
+                }
+                shades.push_back(c);
+            }
+            if (own.to > ahead && own.from < endless) shades.push_back(own);
+            f.count = shades.size() - f.begin;
+            stack.push_back(f);
+        }
+        ++i;
+    }
+}
+
+void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
+                              const Params& p, int own_steps) {
+    const auto tree = tree_nodes(m.a, m.b, p.ray_skip);
+    const Node* node = tree->data();
+    const std::int32_t n = std::int32_t(tree->size());
+    const AreaInMap in(occ, m.clip);
+    const std::uint8_t* flags = area_flags(occ, m.clip, in);
+    std::uint8_t* value = m.value.data();
+    const std::uint32_t W = std::uint32_t(m.clip.w);
+    const std::size_t map_w = in.map_w;
+    // The sprite pixels standing over area pixel o (its map index g), lit
+    // unless `blocked(u)` for the descent u of the segment down to them.
+    auto light_shown = [&](std::uint32_t o, std::uint32_t k, auto&& blocked) {
+        const std::size_t g = in.map(o);
+        const std::uint32_t r = in.row(o), c = o - r * W;
+        for (std::uint32_t e = occ.shown_start[g]; e < occ.shown_start[g + 1]; ++e) {
+            const std::uint32_t rows = occ.shown[e];
+            if (rows > r) continue;  // above the area
+            std::uint8_t& v = value[o - rows * W];
+            if (v) continue;
+            const double h = occ.surface.height[g - rows * map_w];
+            const double u = k > 0 ? (H - h) / double(k) : 0;
+            if (int(k) <= own_steps || !blocked(u))
+                v = table[std::size_t(std::max(std::abs(int(c) - m.a), std::abs(int(r) - int(rows) - m.b)))];
+        }
+    };
+    // Below a span: per depth on the current path, the node's span and the
+    // descents blocked there (a level's own set, or an ancestor's when no
+    // span joined it).
+    const int depths = std::max(m.a, m.b) + 1;
+    struct Blocked {  // disjoint (from, to], sorted: the union of what was added
+        std::vector<std::pair<double, double>> iv;
+        void add(double from, double to) {
+            auto it = std::lower_bound(iv.begin(), iv.end(), from, [](const auto& v, double x) { return v.second < x; });
+            auto end = it;
+            while (end != iv.end() && end->first <= to) {
+                from = std::min(from, end->first);
+                to = std::max(to, end->second);
+                ++end;
+            }
+            it = iv.erase(it, end);
+            iv.insert(it, {from, to});
+        }
+        bool blocks(double u) const {
+            auto it = std::lower_bound(iv.begin(), iv.end(), u, [](const auto& v, double x) { return v.second < x; });
+            return it != iv.end() && it->first < u;
+        }
+    };
+    thread_local std::vector<Blocked> level;
+    thread_local std::vector<int> ref;
+    thread_local std::vector<std::pair<float, float>> span;  // hi <= lo: none
+    level.resize(std::size_t(depths) + 1);
+    ref.assign(std::size_t(depths), 0);
+    span.assign(std::size_t(depths), {0.f, 0.f});
+    const int none = depths;  // the empty set
+    level[std::size_t(none)].iv.clear();
+    for (std::int32_t i = 0; i < n;) {
+        i = walk_clear(node, i, n, flags, OccluderMap::has_shown,
+                       [&](std::uint32_t o, std::uint32_t k) { light_shown(o, k, [](double) { return false; }); });
+        if (i >= n) break;
+        // Node i holds a span and no node before it on its rays does.
+        const std::int32_t last = node[i].end;
+        const int first = int(node[i].at_depth & ((1u << depth_bits) - 1));
+        for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = {0.f, 0.f};
+        for (; i < last; ++i) {
+            const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
+            const int k = int(w & ((1u << depth_bits) - 1));
+            const std::uint8_t f = flags[o];
+            span[std::size_t(k)] = (f & OccluderMap::has_span) ? std::pair{occ.low[in.map(o)], occ.high[in.map(o)]}
+                                                                : std::pair{0.f, 0.f};
+            int at = k > first ? ref[std::size_t(k - 1)] : none;
+            const int s = k - own_steps;
+            if (s >= 0 && span[std::size_t(s)].second > span[std::size_t(s)].first) {
+                const auto [slo, shi] = span[std::size_t(s)];
+                if (s > 0 || (slo <= H && H < shi)) {
+                    Blocked& b = level[std::size_t(k)];
+                    if (at != k) b.iv = level[std::size_t(at)].iv;
+                    if (s == 0)  // the light's own pixel: a light inside a solid is hidden from all
+                        b.add(-inf, inf);
+                    else
+                        b.add((H - shi) / double(s), (H - slo) / double(s));
+                    at = k;
+                }
+            }
+            ref[std::size_t(k)] = at;
+            if (f & OccluderMap::has_shown) {
+                const Blocked& b = level[std::size_t(at)];
+                light_shown(o, std::uint32_t(k), [&](double u) { return b.blocks(u); });
+            }
+        }
+    }
+}
+
+}  // namespace isolux
