@@ -199,11 +199,12 @@ void frame_lights(benchmark::State& st, int n, int threads) {
 }
 
 // A walk: the camera moves 6 px a frame with a light carried at its centre,
-// 16 frames an iteration; tracing every l frames.
-void frame_walk(benchmark::State& st, int l) {
+// 16 frames an iteration; tracing every l frames, against what `o` says stops rays.
+void frame_walk(benchmark::State& st, int l, Occluders o) {
     const World& w = bench::world("default", 24);
     Scene s = lights_scene(w, 8, 11);
     s.params.trace_every = l;
+    s.params.occluders = o;
     FrameState fs = lighting_state(1);
     long f = 0;
     double tracing_ms = 0, frames = 0;
@@ -287,7 +288,9 @@ void register_frames() {
                 ->UseRealTime();
     for (int l : {1, 4})
         benchmark::RegisterBenchmark(("frame/walk/trace_every:" + std::to_string(l)).c_str(),
-                                     [l](benchmark::State& st) { frame_walk(st, l); });
+                                     [l](benchmark::State& st) { frame_walk(st, l, Occluders::footprints); });
+    benchmark::RegisterBenchmark("frame/walk/occluders:solids",
+                                 [](benchmark::State& st) { frame_walk(st, 1, Occluders::solids); });
     benchmark::RegisterBenchmark("frame/offscreen/lights:8", [](benchmark::State& st) { frame_offscreen(st, false); });
     benchmark::RegisterBenchmark("frame/offscreen/lights:1000", [](benchmark::State& st) { frame_offscreen(st, true); });
     benchmark::RegisterBenchmark("frame/static", [](benchmark::State& st) { frame_static(st, true); });

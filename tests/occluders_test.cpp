@@ -22,16 +22,12 @@ namespace {
 OccluderMap ground_with(Rect r, Rect where, float lo, float hi) {
     OccluderMap m;
     m.rect = r;
-    m.low.assign(std::size_t(r.w) * r.h, 0.f);
-    m.high.assign(m.low.size(), 0.f);
+    m.spans.assign(std::size_t(r.w) * r.h, Span{});
     for (int y = where.y; y < where.y + where.h; ++y)
-        for (int x = where.x; x < where.x + where.w; ++x) {
-            m.low[std::size_t(y - r.y) * r.w + (x - r.x)] = lo;
-            m.high[std::size_t(y - r.y) * r.w + (x - r.x)] = hi;
-        }
+        for (int x = where.x; x < where.x + where.w; ++x) m.spans[std::size_t(y - r.y) * r.w + (x - r.x)] = {lo, hi};
     m.surface.rect = r;
-    m.surface.instance.assign(m.low.size(), -1);
-    m.surface.height.assign(m.low.size(), 0.f);
+    m.surface.instance.assign(m.spans.size(), -1);
+    m.surface.height.assign(m.spans.size(), 0.f);
     index_occluders(m);
     return m;
 }
@@ -127,7 +123,7 @@ TEST(Occluders, shapesAreRefusedByNameWhereASpriteHasNone) {
     }
     p.occluders = Occluders::solids;
     const OccluderMap m = build_occluders(w, p, w.placed.bounds);
-    EXPECT_GT(std::count_if(m.high.begin(), m.high.end(), [](float h) { return h > 0; }), 100);
+    EXPECT_GT(std::count_if(m.spans.begin(), m.spans.end(), [](const Span& s) { return s.high > 0; }), 100);
 }
 
 // Against the 3D reference, on the default seed's map and on drawn seeds and
@@ -232,8 +228,7 @@ TEST(Occluders, keptSolidsBuildTheSameMapAndFrameAsFreshOnes) {
     build_occluders(w, s.params, Rect{b.x, b.y, b.w / 2, b.h / 2}, &cache);
     EXPECT_GT(std::count(cache.made.begin(), cache.made.end(), 1), 0);
     const OccluderMap warm = build_occluders(w, s.params, b, &cache), fresh = build_occluders(w, s.params, b);
-    EXPECT_EQ(warm.low, fresh.low);
-    EXPECT_EQ(warm.high, fresh.high);
+    EXPECT_EQ(warm.spans, fresh.spans);
     EXPECT_EQ(warm.surface.instance, fresh.surface.instance);
     EXPECT_EQ(warm.surface.height, fresh.surface.height);
     EXPECT_EQ(warm.shown_start, fresh.shown_start);

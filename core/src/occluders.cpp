@@ -5,6 +5,7 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -27,13 +28,11 @@ constexpr int own_steps = 3;
 void fill(OccluderMap& m, std::size_t i, double lo, double hi) {
     lo = std::max(0.0, lo);
     if (hi <= lo) return;
-    if (m.high[i] <= m.low[i]) {
-        m.low[i] = float(lo);
-        m.high[i] = float(hi);
-    } else {
-        m.low[i] = std::min(m.low[i], float(lo));
-        m.high[i] = std::max(m.high[i], float(hi));
-    }
+    Span& s = m.spans[i];
+    if (!s.any())
+        s = {float(lo), float(hi)};
+    else
+        s = {std::min(s.low, float(lo)), std::max(s.high, float(hi))};
 }
 
 // The heights the solid fills on the vertical line through ground point (X, Y).
@@ -178,23 +177,24 @@ void index_occluders(OccluderMap& m) {
     // shows the ground or its ground pixel lies below the map.
     auto ground_of = [&](std::size_t i, std::size_t& g, std::uint32_t& rows) {
         if (s.instance[i] < 0) return false;
-        rows = std::uint32_t(std::llround(s.height[i]));
+        rows = std::uint32_t(rows_above(s.height[i]));
         if (i / w + rows >= std::size_t(s.rect.h)) return false;
         g = i + rows * w;
         return true;
     };
     std::size_t g = 0;
     std::uint32_t rows = 0;
+    m.tallest = 0;
     for (std::size_t i = 0; i < n; ++i)
-        if (ground_of(i, g, rows)) ++m.shown_start[g + 1];
+        if (ground_of(i, g, rows)) ++m.shown_start[g + 1], m.tallest = std::max(m.tallest, int(rows));
     for (std::size_t i = 0; i < n; ++i) m.shown_start[i + 1] += m.shown_start[i];
-    m.shown.assign(m.shown_start[n], 0);
+    m.shown.assign(m.shown_start[n], 0.f);
     std::vector<std::uint32_t> next(m.shown_start.begin(), m.shown_start.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
-        if (ground_of(i, g, rows)) m.shown[next[g]++] = rows;
+        if (ground_of(i, g, rows)) m.shown[next[g]++] = s.height[i];
     m.flags.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i)
-        m.flags[i] = std::uint8_t((m.high[i] > m.low[i] ? OccluderMap::has_span : 0) |
+        m.flags[i] = std::uint8_t((m.spans[i].any() ? OccluderMap::has_span : 0) |
                                   (m.shown_start[i + 1] > m.shown_start[i] ? OccluderMap::has_shown : 0));
 }
 
@@ -268,14 +268,30 @@ std::vector<std::uint8_t> falloff_table(int a, int b, double scale) {
     return t;
 }
 
+// A sprite pixel's point h high over ground point (gx, gy) that no ray walks:
+// lit unless a span on its own line from the light's centre (but the last
+// own_steps) holds the segment's height there. Inside the map the line steps
+// by index and reads a span only where the flags say one stands.
+bool own_line_lit(const OccluderMap& occ, std::int64_t cx, std::int64_t cy, std::int64_t gx, std::int64_t gy, double h,
+                  double H) {
+    const std::int64_t steps = std::max(std::llabs(gx - cx), std::llabs(gy - cy));
+    bool lit = true;
+    walk_ray(cx, cy, gx, gy, occ.rect, occ.rect, [&](std::int64_t i, std::int64_t, std::int64_t, std::ptrdiff_t g, std::ptrdiff_t) {
+        if (!lit || i > steps - own_steps || g < 0 || !(occ.flags[std::size_t(g)] & OccluderMap::has_span)) return;
+        const Span sp = occ.spans[std::size_t(g)];
+        const double z = H + (h - H) * double(i) / double(steps);
+        lit = !(z >= sp.low && z < sp.high);
+    });
+    return lit;
+}
+
 }  // namespace
 
 OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache) {
     OccluderMap m;
     m.rect = region;
     const std::size_t n = std::size_t(std::max(0, region.w)) * std::max(0, region.h);
-    m.low.assign(n, 0.f);
-    m.high.assign(n, 0.f);
+    m.spans.assign(n, Span{});
     if (region.empty() || p.occluders == Occluders::footprints) {
         m.surface = build_surface(world, region, p.opacity_threshold);
         index_occluders(m);
@@ -301,14 +317,30 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
     LightMask m;
     start_mask(m, cx, cy, a, b, p, clip, p.mode == Mode::shadow);
     if (m.clip.empty()) return m;
-    assert(occ.flags.size() == occ.low.size());  // index_occluders
+    assert(occ.flags.size() == occ.spans.size());  // index_occluders
     const double H = std::max(height, 0.0);
     const std::vector<std::uint8_t> table = falloff_table(a, b, p.falloff_scale);
-    if (occluder_tree_serves(occ, m, p)) {
-        trace_ground_tree(m, occ, H, table, p);
+    const Rect area{int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1};
+    if (occluder_tree_serves(occ, area, p)) {
+        if (m.clip == area) {
+            trace_ground_tree(m, occ, H, table, p);
+        } else if (double(area.w) * area.h <= 4.0 * double(m.clip.w) * m.clip.h) {
+            // Clipped: the whole area over the tree, then the clip copied
+            // (rays run to the border whatever the clip).
+            thread_local LightMask whole;
+            start_mask(whole, cx, cy, a, b, p, area);
+            trace_ground_tree(whole, occ, H, table, p);
+            for (int y = 0; y < m.clip.h; ++y)
+                std::memcpy(&m.value[std::size_t(y) * m.clip.w],
+                            &whole.value[std::size_t(m.clip.y + y - area.y) * area.w + std::size_t(m.clip.x - area.x)],
+                            std::size_t(m.clip.w));
+        } else {
+            goto by_rays;
+        }
         if (p.mode == Mode::shadow) std::fill(m.reached.begin(), m.reached.end(), std::uint8_t(1));
         return m;
     }
+by_rays:
     // Ground pixels: one pass per ray, each span before a pixel shading a
     // stretch of the ray beyond it (its own pixel too when it stands on the
     // ground). Stretches that run to the border are one: from the nearest
@@ -318,16 +350,15 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
     struct Shade { double from, to; };
     std::vector<Shade> shades;
     const double inf = std::numeric_limits<double>::infinity();
-    const float* low = occ.low.data();
-    const float* high = occ.high.data();
+    const Span* spans = occ.spans.data();
     const std::uint8_t* flags = occ.flags.data();
     for_each_ray_target(cx, cy, a, b, p, [&](std::int64_t tx, std::int64_t ty) {
         shades.clear();
         double endless_from = inf;
         walk_ray(cx, cy, tx, ty, occ.rect, m.clip, [&](std::int64_t i, std::int64_t, std::int64_t, std::ptrdiff_t g, std::ptrdiff_t v) {
             const double k = double(i);
-            if (g >= 0 && (flags[g] & OccluderMap::has_span) && low[g] < H) {
-                const float lo = low[g], hi = high[g];
+            if (g >= 0 && (flags[g] & OccluderMap::has_span) && spans[g].low < H) {
+                const float lo = spans[g].low, hi = spans[g].high;
                 const double from = lo <= 0 ? k : k * H / (H - lo);
                 const double to = k * H / (H - hi);
                 if (hi >= H)
@@ -365,33 +396,45 @@ void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, co
     auto at = [&](std::int64_t x, std::int64_t y) {
         return std::size_t(y - surface.rect.y) * surface.rect.w + std::size_t(x - surface.rect.x);
     };
-    auto shows_sprite = [&](std::int64_t x, std::int64_t y) {
-        return surface.rect.contains(int(x), int(y)) && surface.instance[at(x, y)] >= 0;
-    };
     auto intensity = [&](std::int64_t x, std::int64_t y) {
         return falloff(std::max(std::llabs(x - cx), std::llabs(y - cy)), p.falloff_scale);
     };
     const Rect whole_area{int(cx) - m.a, int(cy) - m.b, 2 * m.a + 1, 2 * m.b + 1};
+    // A clipped light the tree serves whole: its whole area's sprite pixels,
+    // then the clip's copied (rays run to the border whatever the clip, so
+    // each pixel's answer is the same).
+    const Rect ray_area{int(cx) - m.a, int(cy) - m.b - occ.tallest, 2 * m.a + 1, 2 * (m.b + occ.tallest) + 1};
+    if (!(m.clip == whole_area) && occluder_tree_serves(occ, ray_area, p) &&
+        double(whole_area.w) * whole_area.h <= 4.0 * double(area.w) * area.h) {
+        thread_local LightMask whole;
+        start_mask(whole, cx, cy, m.a, m.b, p, whole_area);
+        light_sprite_points(whole, occ, height, p);
+        for (int y = area.y; y < area.y + area.h; ++y)
+            for (int x = area.x; x < area.x + area.w; ++x)
+                if (surface.instance[at(x, y)] >= 0)
+                    m.value[index(x, y)] = whole.value[std::size_t(y - whole_area.y) * whole_area.w + std::size_t(x - whole_area.x)];
+        return;
+    }
     // Every sprite pixel starts unlit; a ray that reaches its ground point
-    // unblocked lights it. One whose ground point no ray walks (outside the
-    // area or the map) is tested along its own line.
-    for (int y = area.y; y < area.y + area.h; ++y)
-        for (int x = area.x; x < area.x + area.w; ++x) {
-            if (!shows_sprite(x, y)) continue;
-            m.value[index(x, y)] = 0;
-            const double h = surface.height[at(x, y)];
-            const std::int64_t gx = x, gy = y + std::llround(h);
-            if (whole_area.contains(int(gx), int(gy)) && surface.rect.contains(int(gx), int(gy))) continue;
-            const std::int64_t steps = std::max(std::llabs(gx - cx), std::llabs(gy - cy));
-            bool lit = true;
-            for (BresenhamRay r(cx, cy, gx, gy); lit && !r.done() && r.i <= steps - own_steps; r.step()) {
-                float lo = 0, hi = 0;
-                if (!occ.span(r.x, r.y, lo, hi)) continue;
-                const double z = H + (h - H) * double(r.i) / double(steps);
-                lit = !(z >= lo && z < hi);
-            }
-            if (lit) m.value[index(x, y)] = intensity(x, y);
+    // unblocked lights it. The rays run to the border of the light's area
+    // grown by the tallest point's rows, so a sprite standing below the area
+    // whose top shows in it is reached too (the tree's rays are the same
+    // bytes). One whose ground point no ray walks (off the map) is tested
+    // along its own line (own_line_lit).
+    const Rect rows = intersect(area, surface.rect);  // outside the surface: no sprite
+    for (int y = rows.y; y < rows.y + rows.h; ++y) {
+        const std::int32_t* instance = &surface.instance[at(rows.x, y)];
+        const float* heights = &surface.height[at(rows.x, y)];
+        std::uint8_t* value = &m.value[index(rows.x, y)];
+        for (int i = 0; i < rows.w; ++i) {
+            if (instance[i] < 0) continue;
+            value[i] = 0;
+            const double h = heights[i];
+            const std::int64_t gx = rows.x + i, gy = y + rows_above(h);
+            if (ray_area.contains(int(gx), int(gy)) && surface.rect.contains(int(gx), int(gy))) continue;
+            if (own_line_lit(occ, cx, cy, gx, gy, h, H)) value[i] = intensity(gx, y);
         }
+    }
     // Along each ray: the descents blocked by the spans passed at least
     // own_steps before (the last steps hold the point's own solid at about
     // its height), then the points over this step's ground pixel.
@@ -399,7 +442,6 @@ void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, co
     BlockedDescents blocked;
     std::array<std::pair<float, float>, own_steps + 1> passed{};  // the spans of the last steps (none: hi <= lo)
     const double inf = std::numeric_limits<double>::infinity();
-    const std::ptrdiff_t w = surface.rect.w;
     auto sprite_ray = [&](std::int64_t tx, std::int64_t ty) {
         blocked.clear();
         walk_ray(cx, cy, tx, ty, occ.rect, m.clip, [&](std::int64_t i, std::int64_t x, std::int64_t y, std::ptrdiff_t g, std::ptrdiff_t) {
@@ -415,24 +457,24 @@ void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, co
                 }
             }
             const std::uint8_t f = g >= 0 ? occ.flags[std::size_t(g)] : 0;
-            passed[std::size_t(i) % passed.size()] =
-                f & OccluderMap::has_span ? std::pair{occ.low[std::size_t(g)], occ.high[std::size_t(g)]} : std::pair{0.f, 0.f};
+            const Span sp = f & OccluderMap::has_span ? occ.spans[std::size_t(g)] : Span{};
+            passed[std::size_t(i) % passed.size()] = {sp.low, sp.high};
             if (!(f & OccluderMap::has_shown)) return;
             for (std::uint32_t k = occ.shown_start[std::size_t(g)]; k < occ.shown_start[std::size_t(g) + 1]; ++k) {
-                const std::uint32_t rows = occ.shown[k];
+                const double h = occ.shown[k];
+                const std::int64_t rows = rows_above(h);
                 if (!area.contains(int(x), int(y - rows))) continue;
                 std::uint8_t& v = m.value[index(x, y - rows)];
                 if (v) continue;
-                const double h = surface.height[std::size_t(g - std::ptrdiff_t(rows) * w)];
                 const double u = i > 0 ? (H - h) / double(i) : 0;
                 if (i <= own_steps || !blocked.blocks(u)) v = table[std::size_t(std::max(std::llabs(x - cx), std::llabs(y - rows - cy)))];
             }
         });
     };
-    if (occluder_tree_serves(occ, m, p))
+    if (m.clip == whole_area && occluder_tree_serves(occ, ray_area, p))
         light_sprite_points_tree(m, occ, H, table, p, own_steps);
     else
-        for_each_ray_target(cx, cy, m.a, m.b, p, sprite_ray);
+        for_each_ray_target(cx, cy, m.a, m.b + occ.tallest, p, sprite_ray);
 }
 
 }  // namespace isolux

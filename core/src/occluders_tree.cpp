@@ -100,41 +100,42 @@ std::int32_t walk_clear(const Node* node, std::int32_t i, std::int32_t n, const 
     }
 }
 
-// The same, writing each node's falloff (ground pass: every node before a
-// span is lit).
+// The same, writing each node's falloff (ground pass: a node before any span
+// on its rays is lit), and skipping the subtree of each node at depth
+// `endless` or more (shaded to the border by a span before them).
 std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const std::uint8_t* flags,
-                         const std::uint8_t* table, std::uint8_t* value) {  // nodes [i, n)
+                         const std::uint8_t* table, std::uint8_t* value, std::uint32_t endless) {
+    constexpr std::uint32_t d = (1u << depth_bits) - 1;
     for (;;) {
-        while (i + 4 <= n) {
-            const std::uint32_t w0 = node[i].at_depth, w1 = node[i + 1].at_depth, w2 = node[i + 2].at_depth,
-                                w3 = node[i + 3].at_depth;
-            const std::uint32_t o0 = w0 >> depth_bits, o1 = w1 >> depth_bits, o2 = w2 >> depth_bits, o3 = w3 >> depth_bits;
-            if ((flags[o0] | flags[o1] | flags[o2] | flags[o3]) & OccluderMap::has_span) break;
-            constexpr std::uint32_t d = (1u << depth_bits) - 1;
-            value[o0] = table[w0 & d];
-            value[o1] = table[w1 & d];
-            value[o2] = table[w2 & d];
-            value[o3] = table[w3 & d];
-            i += 4;
-        }
+        if (endless > d)  // nothing shaded: four nodes a step
+            while (i + 4 <= n) {
+                const std::uint32_t w0 = node[i].at_depth, w1 = node[i + 1].at_depth, w2 = node[i + 2].at_depth,
+                                    w3 = node[i + 3].at_depth;
+                const std::uint32_t o0 = w0 >> depth_bits, o1 = w1 >> depth_bits, o2 = w2 >> depth_bits, o3 = w3 >> depth_bits;
+                if ((flags[o0] | flags[o1] | flags[o2] | flags[o3]) & OccluderMap::has_span) break;
+                value[o0] = table[w0 & d];
+                value[o1] = table[w1 & d];
+                value[o2] = table[w2 & d];
+                value[o3] = table[w3 & d];
+                i += 4;
+            }
         if (i >= n) return n;
         const std::uint32_t w = node[i].at_depth;
         if (flags[w >> depth_bits] & OccluderMap::has_span) return i;
-        value[w >> depth_bits] = table[w & ((1u << depth_bits) - 1)];
+        if ((w & d) >= endless) {
+            i = node[i].end;
+            continue;
+        }
+        value[w >> depth_bits] = table[w & d];
         ++i;
     }
 }
 
-struct Shade {
-    double from, to;  // the depths [from, to) a span shades
-};
-
 }  // namespace
 
-bool occluder_tree_serves(const OccluderMap& occ, const LightMask& m, const Params& p) {
-    const Rect area{int(m.cx) - m.a, int(m.cy) - m.b, 2 * m.a + 1, 2 * m.b + 1};
-    return p.rays == Rays::border && m.a <= max_extent && m.b <= max_extent && m.clip == area &&
-           intersect(area, occ.rect) == area && occ.flags.size() == occ.low.size();
+bool occluder_tree_serves(const OccluderMap& occ, Rect area, const Params& p) {
+    return p.rays == Rays::border && area.w <= 2 * max_extent + 1 && area.h <= 2 * max_extent + 1 &&
+           intersect(area, occ.rect) == area && occ.flags.size() == occ.spans.size();
 }
 
 void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
@@ -146,82 +147,78 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
     const std::uint8_t* flags = area_flags(occ, m.clip, in);
     std::uint8_t* value = m.value.data();
     // Below a span: a stack of the subtrees whose shades differ from their
-    // parent's, each with its shades (those still ahead) and the depth from
-    // which everything is shaded to the border.
+    // parent's. A shade [from, to) shades the whole depths [ceil(from),
+    // ceil(to)), so a frame holds them as one bit per depth, and the depth
+    // from which everything is shaded to the border. Beyond the area's last
+    // depth a shade shades nothing (a canopy far out shades past the border).
+    const int last = std::max(m.a, m.b);
+    const double last_depth = double(last);
+    const int words = last / 64 + 1;
+    constexpr int none = std::numeric_limits<int>::max();
     struct Frame {
         std::int32_t end;
-        double endless;
-        std::size_t begin, count;  // its shades in `shades`
+        int endless;  // none, or the depth from which all is shaded
+        int reach;    // the bits end before it
     };
-    thread_local std::vector<Frame> stack;
-    thread_local std::vector<Shade> shades;
-    // A shade or an endless one that starts past the area's last depth
-    // shades nothing (a canopy far out shades beyond the border).
-    const double last_depth = double(std::max(m.a, m.b));
-    stack.assign(1, Frame{n, inf, 0, 0});
-    shades.clear();
+    thread_local std::vector<Frame> frames;
+    thread_local std::vector<std::uint64_t> bit_arena;
+    frames.resize(std::size_t(last) + 2);
+    bit_arena.assign(frames.size() * std::size_t(words), 0);
+    Frame* frame = frames.data();
+    std::uint64_t* bits = bit_arena.data();
+    int t = 0;
+    frame[0] = Frame{n, none, 0};
     for (std::int32_t i = 0; i < n;) {
-        while (stack.back().end <= i) {
-            shades.resize(stack.back().begin);
-            stack.pop_back();
+        while (frame[t].end <= i) --t;
+        const Frame top = frame[t];
+        const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
+        const int k = int(w & ((1u << depth_bits) - 1));
+        if (top.reach <= k && !(flags[o] & OccluderMap::has_span)) {
+            // No bit shades this node or any below it: lit unless past the
+            // endless shade, up to the next span (in its subtree, or after
+            // it when the frame is empty).
+            i = light_clear(node, i, top.reach == 0 && top.endless == none ? top.end : node[i].end, flags, table.data(),
+                            value, std::uint32_t(top.endless));
+            continue;
         }
-        const Frame top = stack.back();
-        if (top.count == 0 && top.endless == inf) {  // nothing shades these rays yet
-            i = light_clear(node, i, top.end, flags, table.data(), value);
-            if (i >= top.end) continue;
-        }
-        const std::uint32_t w = node[i].at_depth, o = w >> depth_bits, k = w & ((1u << depth_bits) - 1);
-        const double kd = double(k);
-        double endless = top.endless;
-        Shade own{0, 0};
+        int endless = top.endless, from = 0, to = 0;  // this node's shade: the depths [from, to)
         if (flags[o] & OccluderMap::has_span) {
-            const std::size_t g = in.map(o);
-            const float lo = occ.low[g], hi = occ.high[g];
+            const Span sp = occ.spans[in.map(o)];
+            const float lo = sp.low, hi = sp.high;
+            const double kd = double(k);
             if (lo < H) {
-                const double from = lo <= 0 ? kd : kd * H / (H - lo);
-                const double to = kd * H / (H - hi);
-                if (from > last_depth)
-                    ;
-                else if (hi >= H)
-                    endless = std::min(endless, from);
-                else
-                    own = {from, to};
+                const double f = lo <= 0 ? kd : kd * H / (H - lo);
+                if (f <= last_depth) {
+                    if (hi >= H) {
+                        endless = std::min(endless, int(std::ceil(f)));
+                    } else {
+                        const double e = kd * H / (H - hi);
+                        from = int(std::ceil(f));
+                        to = e > last_depth ? last + 1 : int(std::ceil(e));
+                    }
+                }
             }
         }
-        if (endless <= kd) {  // this node and its whole subtree are shaded
+        if (endless <= k) {  // this node and its whole subtree are shaded
             i = node[i].end;
             continue;
         }
-        // The frame's shades are disjoint and sorted: `own` is new to them
-        // unless one holds it.
-        bool shaded = own.from <= kd && kd < own.to, held = own.to <= kd + 1 || own.from >= endless;
-        for (std::size_t s = top.begin; s < top.begin + top.count; ++s) {
-            shaded = shaded || (shades[s].from <= kd && kd < shades[s].to);
-            held = held || (shades[s].from <= own.from && own.to <= shades[s].to);
-        }
-        if (!shaded) value[o] = table[k];
-        if ((!held || endless != top.endless) && node[i].end > i + 1) {
-            // The shades its subtree sees: those still ahead of depth k + 1
-            // and before `endless`, with `own` joined to them.
-            Frame f{node[i].end, endless, shades.size(), 0};
-            const double ahead = kd + 1;
-            if (held) own = {0, 0};
-            for (std::size_t s = top.begin; s < top.begin + top.count; ++s) {
-                const Shade c = shades[s];
-                if (c.to <= ahead || c.from >= endless) continue;
-                if (own.to > own.from && own.from <= c.to && c.from <= own.to) {  // overlapping: one
-                    own = {std::min(own.from, c.from), std::max(own.to, c.to)};
-                    continue;
-                }
-                if (own.to > own.from && own.to < c.from) {  // before c: in its place
-                    shades.push_back(own);
-                    own = {0, 0};
-                }
-                shades.push_back(c);
+        const std::uint64_t* at = bits + std::size_t(t) * words;
+        const bool shaded = (from <= k && k < to) || (k < top.reach && (at[k >> 6] >> (k & 63) & 1));
+        if (!shaded) value[o] = table[std::size_t(k)];
+        from = std::max(from, k + 1);
+        to = std::min(to, endless);
+        if ((from < to || endless < top.endless) && node[i].end > i + 1) {
+            std::uint64_t* mine = bits + std::size_t(t + 1) * words;
+            std::memcpy(mine, at, std::size_t(words) * sizeof(std::uint64_t));
+            for (int d = from; d < to;) {  // the depths [from, to), a word at a time
+                const int word_end = std::min(to, (d & ~63) + 64);
+                const int count = word_end - d;
+                mine[d >> 6] |= (count == 64 ? ~std::uint64_t(0) : ((std::uint64_t(1) << count) - 1)) << (d & 63);
+                d = word_end;
             }
-            if (own.to > ahead && own.from < endless) shades.push_back(own);
-            f.count = shades.size() - f.begin;
-            stack.push_back(f);
+            frame[t + 1] = Frame{node[i].end, endless, std::max(top.reach, from < to ? to : 0)};
+            ++t;
         }
         ++i;
     }
@@ -229,34 +226,39 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
 
 void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
                               const Params& p, int own_steps) {
-    const auto tree = tree_nodes(m.a, m.b, p.ray_skip);
+    // The rays' area: the light's, grown by the tallest point's rows above
+    // and below (light_sprite_points).
+    const int b = m.b + occ.tallest;
+    const Rect rays{int(m.cx) - m.a, int(m.cy) - b, 2 * m.a + 1, 2 * b + 1};
+    const auto tree = tree_nodes(m.a, b, p.ray_skip);
     const Node* node = tree->data();
     const std::int32_t n = std::int32_t(tree->size());
-    const AreaInMap in(occ, m.clip);
-    const std::uint8_t* flags = area_flags(occ, m.clip, in);
+    const AreaInMap in(occ, rays);
+    const std::uint8_t* flags = area_flags(occ, rays, in);
     std::uint8_t* value = m.value.data();
-    const std::uint32_t W = std::uint32_t(m.clip.w);
-    const std::size_t map_w = in.map_w;
-    // The sprite pixels standing over area pixel o (its map index g), lit
-    // unless `blocked(u)` for the descent u of the segment down to them.
+    const std::uint32_t W = std::uint32_t(rays.w);
+    const std::uint32_t first_row = std::uint32_t(occ.tallest), last_row = first_row + std::uint32_t(2 * m.b);
+    // The sprite pixels standing over ground pixel o of the rays' area (its
+    // map index g), lit unless `blocked(u)` for the descent u of the segment
+    // down to them; those in the light's area only.
     auto light_shown = [&](std::uint32_t o, std::uint32_t k, auto&& blocked) {
         const std::size_t g = in.map(o);
         const std::uint32_t r = in.row(o), c = o - r * W;
         for (std::uint32_t e = occ.shown_start[g]; e < occ.shown_start[g + 1]; ++e) {
-            const std::uint32_t rows = occ.shown[e];
-            if (rows > r) continue;  // above the area
-            std::uint8_t& v = value[o - rows * W];
+            const double h = occ.shown[e];
+            const std::uint32_t rows = std::uint32_t(rows_above(h));
+            if (rows > r || r - rows < first_row || r - rows > last_row) continue;  // outside the light's area
+            std::uint8_t& v = value[(r - rows - first_row) * W + c];
             if (v) continue;
-            const double h = occ.surface.height[g - rows * map_w];
             const double u = k > 0 ? (H - h) / double(k) : 0;
             if (int(k) <= own_steps || !blocked(u))
-                v = table[std::size_t(std::max(std::abs(int(c) - m.a), std::abs(int(r) - int(rows) - m.b)))];
+                v = table[std::size_t(std::max(std::abs(int(c) - m.a), std::abs(int(r) - int(rows) - b)))];
         }
     };
     // Below a span: per depth on the current path, the node's span and the
     // descents blocked there (a level's own set, or an ancestor's when no
     // span joined it).
-    const int depths = std::max(m.a, m.b) + 1;
+    const int depths = std::max(m.a, b) + 1;
     struct Blocked {  // disjoint (from, to], sorted: the union of what was added
         std::vector<std::pair<double, double>> iv;
         void add(double from, double to) {
@@ -295,8 +297,8 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
             const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
             const int k = int(w & ((1u << depth_bits) - 1));
             const std::uint8_t f = flags[o];
-            span[std::size_t(k)] = (f & OccluderMap::has_span) ? std::pair{occ.low[in.map(o)], occ.high[in.map(o)]}
-                                                                : std::pair{0.f, 0.f};
+            const Span sp = (f & OccluderMap::has_span) ? occ.spans[in.map(o)] : Span{};
+            span[std::size_t(k)] = {sp.low, sp.high};
             int at = k > first ? ref[std::size_t(k - 1)] : none;
             const int s = k - own_steps;
             if (s >= 0 && span[std::size_t(s)].second > span[std::size_t(s)].first) {

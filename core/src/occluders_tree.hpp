@@ -12,16 +12,19 @@
 
 namespace isolux {
 
-// Whether the tree passes serve this light: border rays, an area within the
-// tree's extent that is the mask's whole clip and lies inside the occluder map.
-bool occluder_tree_serves(const OccluderMap& occ, const LightMask& m, const Params& p);
+// Whether the tree passes serve a light's area: border rays, an area within
+// the trees' extent, lying inside the occluder map.
+bool occluder_tree_serves(const OccluderMap& occ, Rect area, const Params& p);
 
-// The ground pass (trace_light_solids) over the tree, into `m` as started.
+// The ground pass (trace_light_solids) over the tree, into `m` as started
+// with its clip the whole area.
 void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
                        const Params& p);
 
 // The sprite pass's rays (light_sprite_points, after its sprite pixels are
-// unlit) over the tree.
+// unlit) over the tree of its rays' area (the light's grown by occ.tallest
+// rows up and down, which the caller checks the tree serves), the mask's
+// clip the light's whole area.
 void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
                               const Params& p, int own_steps);
 

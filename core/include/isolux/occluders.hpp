@@ -27,15 +27,34 @@
 
 namespace isolux {
 
+// The heights [low, high) the solids fill over one ground pixel; high <= low: none.
+struct Span {
+    float low = 0, high = 0;
+    bool any() const { return high > low; }
+    bool operator==(const Span& o) const { return low == o.low && high == o.high; }
+};
+
+// The rows a point h high lies above its ground pixel on screen: h rounded
+// half away from zero, as std::llround (inline: the library call was a
+// sizeable share of the sprite pass).
+inline std::int64_t rows_above(double h) {
+    if (h < 0) return -rows_above(-h);
+    const std::int64_t r = std::int64_t(h);
+    return h - double(r) >= 0.5 ? r + 1 : r;
+}
+
 struct OccluderMap {
-    Rect rect;                       // world pixels, as the obstacle map's
-    std::vector<float> low, high;    // per ground pixel: the span filled; high <= low: none
-    Surface surface;                 // per pixel: what it shows (ground or an overlay) and its height
+    Rect rect;                // world pixels, as the obstacle map's
+    std::vector<Span> spans;  // per ground pixel (both ends on one cache line: a step reads both)
+    Surface surface;          // per pixel: what it shows (ground or an overlay) and its height
     // Per ground pixel g, the sprite pixels whose point stands over it (h
-    // rows above g): shown[shown_start[g] .. shown_start[g + 1]), each a
-    // pixel's index in `rect`. The sprite pass tests them where a ray meets g.
-    // Each entry is how many rows above g the pixel lies (its point's height, rounded).
-    std::vector<std::uint32_t> shown_start, shown;
+    // rows above g): shown[shown_start[g] .. shown_start[g + 1]). The sprite
+    // pass tests them where a ray meets g. Each entry is the height h of the
+    // point the pixel shows (the pixel lies rows_above(h) rows above g), so the
+    // pass reads nothing else of it.
+    std::vector<std::uint32_t> shown_start;
+    std::vector<float> shown;
+    int tallest = 0;  // the most rows any such pixel lies above its ground pixel
     // Per pixel: has_span | has_shown, one byte a step reads before the rest
     // (most steps of a ray cross bare ground that no sprite stands over).
     enum : std::uint8_t { has_span = 1, has_shown = 2 };
@@ -43,10 +62,10 @@ struct OccluderMap {
 
     bool span(std::int64_t x, std::int64_t y, float& z_low, float& z_high) const {
         if (!rect.contains(int(x), int(y))) return false;
-        const std::size_t i = std::size_t(y - rect.y) * rect.w + std::size_t(x - rect.x);
-        z_low = low[i];
-        z_high = high[i];
-        return z_high > z_low;
+        const Span& s = spans[std::size_t(y - rect.y) * rect.w + std::size_t(x - rect.x)];
+        z_low = s.low;
+        z_high = s.high;
+        return s.any();
     }
 };
 
