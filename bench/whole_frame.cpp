@@ -18,6 +18,7 @@
 #include "isolux/hash.hpp"
 #include "isolux/light_trace.hpp"
 #include "isolux/opacity_correction.hpp"
+#include "isolux/truth.hpp"
 #include "ratio.hpp"
 #include "scenes.hpp"
 
@@ -202,6 +203,15 @@ void register_whole_frames() {
                                              for (auto _ : st) box_blur_into(tex, radius, tex.rect, out);
                                          })
                 ->Unit(benchmark::kMillisecond);
+    // Beyond the paper: the blur within the surfaces the view shows (occluders
+    // solids or shapes), radius 2, grey.
+    benchmark::RegisterBenchmark("stage/blur_within/radius:2", [](benchmark::State& st) {
+        ScreenScene& s = screen("default", 1);
+        const Surface surface = build_surface(*s.world, s.frame.traced.rect, s.scene.params.opacity_threshold);
+        const SurfaceIds ids{s.frame.traced.rect, surface.instance};
+        LightTexture out(s.frame.traced.rect, s.frame.traced.channels);
+        for (auto _ : st) box_blur_within_into(s.frame.traced, 2, ids, s.frame.traced.rect, out);
+    })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("stage/composite", [](benchmark::State& st) {
         ScreenScene& s = screen("default", 1);
         Image out(s.frame.view.w, s.frame.view.h);
@@ -293,6 +303,15 @@ void print_floor_ratios() {
         print_ratio("blur_avx2_speedup",
                     interleaved(baseline, 5, [&] { box_blur_into(traced, 2, traced.rect, blurred); }, 5, pairs), nullptr, 2);
     }
+
+    // Beyond the paper: the blur within surfaces (occluders solids or shapes)
+    // over the plain blur, the same texture, the surfaces the view shows.
+    const Surface surface = build_surface(*one.world, traced.rect, one.scene.params.opacity_threshold);
+    const SurfaceIds ids{traced.rect, surface.instance};
+    print_ratio("blur_within_cost",
+                interleaved([&] { box_blur_within_into(traced, 2, ids, traced.rect, blurred); }, 2,
+                            [&] { box_blur_into(traced, 2, traced.rect, blurred); }, 5, pairs),
+                nullptr, 2);
 
     // The composite reads the view's sprites (RGBA) and the light at the view
     // (grey here, the frame's lights being white: one byte a texel).

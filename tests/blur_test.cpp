@@ -168,3 +168,116 @@ TEST(FastBlur, SparseLitBytesEqualTheReference) {
             expect_blur_is_reference(t, radius, std::to_string(channels) + " channels");
         }
 }
+
+namespace {
+
+// Surfaces in blobs: rectangles of overlay ids over the ground (-1), some
+// overlapping, so ids change along rows and columns at every distance.
+SurfaceIds random_surfaces(Rect r, std::uint64_t seed) {
+    SurfaceIds ids;
+    ids.rect = r;
+    ids.id.assign(std::size_t(r.w) * r.h, -1);
+    Pcg32 rng(seed);
+    const int blobs = 1 + int(rng.below(12));
+    for (int b = 0; b < blobs; ++b) {
+        const int w = 1 + int(rng.below(std::uint32_t(std::max(1, r.w / 2)))), h = 1 + int(rng.below(std::uint32_t(std::max(1, r.h / 2))));
+        const int x = int(rng.below(std::uint32_t(r.w))), y = int(rng.below(std::uint32_t(r.h)));
+        for (int yy = y; yy < std::min(r.h, y + h); ++yy)
+            for (int xx = x; xx < std::min(r.w, x + w); ++xx) ids.id[std::size_t(yy) * r.w + xx] = b;
+    }
+    return ids;
+}
+
+}  // namespace
+
+TEST(BlurWithinSurfaces, EqualsItsReferenceForEveryRadiusSizeAndLayout) {
+    const Rect sizes[] = {{0, 0, 1, 1}, {-3, 5, 2, 7}, {10, -4, 17, 5}, {0, 0, 40, 30}};
+    int checked = 0;
+    for (const Rect& r : sizes)
+        for (int radius : {0, 1, 2, 3, 5, 9, 40})
+            for (int channels : {1, 3}) {
+                LightTexture t = random_texture(r, std::uint64_t(r.w * 17 + radius));
+                if (channels == 1) {
+                    LightTexture g(r, 1);
+                    for (std::size_t i = 0; i < g.texels.size(); ++i) g.texels[i] = t.texels[i * 3];
+                    t = g;
+                }
+                // Ids over a rectangle that covers only part of the texture: outside, the ground.
+                SurfaceIds ids = random_surfaces(Rect{r.x + 1, r.y, std::max(1, r.w - 1), r.h}, std::uint64_t(radius * 7 + r.h));
+                EXPECT_EQ(box_blur_within(t, radius, ids).texels, box_blur_within_reference(t, radius, ids).texels)
+                    << r.w << "x" << r.h << " r " << radius << " channels " << channels;
+                ++checked;
+            }
+    EXPECT_EQ(checked, 56);
+}
+
+TEST(BlurWithinSurfaces, LightNeverBleedsOntoAnotherSurface) {
+    // Lit ground (255) around a dark sprite (0): the plain blur lights the
+    // sprite's edge, the blur within surfaces leaves every sprite texel dark
+    // and the ground's lit.
+    const Rect r{0, 0, 20, 20};
+    LightTexture t(r);
+    SurfaceIds ids{r, std::vector<std::int32_t>(400, -1)};
+    for (int y = 0; y < 20; ++y)
+        for (int x = 0; x < 20; ++x) {
+            const bool sprite = x >= 6 && x < 14 && y >= 6 && y < 14;
+            ids.id[std::size_t(y) * 20 + x] = sprite ? 3 : -1;
+            for (int k = 0; k < 3; ++k) t.texels[(std::size_t(y) * 20 + x) * 3 + k] = sprite ? 0 : 255;
+        }
+    const LightTexture plain = box_blur(t, 2), within = box_blur_within(t, 2, ids);
+    int plain_lit_sprite = 0;
+    for (int y = 0; y < 20; ++y)
+        for (int x = 0; x < 20; ++x) {
+            const bool sprite = ids.at(x, y) == 3;
+            plain_lit_sprite += sprite && plain.at(x, y)[0] > 0;
+            EXPECT_EQ(within.at(x, y)[0], sprite ? 0 : 255) << x << ", " << y;
+        }
+    EXPECT_GT(plain_lit_sprite, 0);  // what the plain blur does there
+}
+
+TEST(BlurWithinSurfaces, ARegionWritesTheWholeBlursTexels) {
+    const Rect r{-7, 3, 61, 45};
+    const LightTexture t = random_texture(r, 99);
+    const SurfaceIds ids = random_surfaces(r, 5);
+    const LightTexture whole = box_blur_within(t, 3, ids);
+    LightTexture out(r);
+    std::fill(out.texels.begin(), out.texels.end(), std::uint8_t(7));
+    const Rect region{5, 10, 20, 9};
+    box_blur_within_into(t, 3, ids, region, out);
+    for (int y = r.y; y < r.y + r.h; ++y)
+        for (int x = r.x; x < r.x + r.w; ++x)
+            for (int k = 0; k < 3; ++k)
+                EXPECT_EQ(out.at(x, y)[k], region.contains(x, y) ? whole.at(x, y)[k] : 7) << x << ", " << y;
+}
+
+TEST(BlurWithinSurfaces, TheFrameBlursWithinTheSurfacesWithSolidsOnly) {
+    // With occluders solids the frame's blurred texture is box_blur_within of
+    // its trace over the surfaces it shows; with footprints, box_blur's.
+    Scene s;
+    s.width = 8;
+    s.height = 8;
+    const World w = make_world(test::default_tileset(), s);
+    s.params.falloff_scale = 8;
+    s.params.blur_radius = 2;
+    s.lights = {Light{500, 300}, Light{700, 420}};
+    for (Occluders o : {Occluders::footprints, Occluders::solids}) {
+        s.params.occluders = o;
+        FrameState st;
+        st.options.grey_when_lights_are = false;
+        render_frame(st, w, s, Camera{100, 60, 700, 420}, 0);
+        if (o == Occluders::footprints) {
+            EXPECT_TRUE(st.surface_ids.id.empty());
+            EXPECT_EQ(st.cache.blurred.texels, box_blur(st.traced, 2).texels);
+            continue;
+        }
+        ASSERT_EQ(st.surface_ids.rect, st.traced.rect);
+        const long sprites = std::count_if(st.surface_ids.id.begin(), st.surface_ids.id.end(), [](std::int32_t i) { return i >= 0; });
+        EXPECT_GT(sprites, 1000);
+        EXPECT_EQ(st.cache.blurred.texels, box_blur_within(st.traced, 2, st.surface_ids).texels);
+        EXPECT_NE(st.cache.blurred.texels, box_blur(st.traced, 2).texels);
+        // A light moved: the blur redone where it changed is the whole blur's.
+        s.lights[0].x += 9;
+        render_frame(st, w, s, Camera{100, 60, 700, 420}, 1);
+        EXPECT_EQ(st.cache.blurred.texels, box_blur_within(st.traced, 2, st.surface_ids).texels);
+    }
+}

@@ -107,9 +107,13 @@ TEST(Gl, blurAndCompositeMatchTheCpuReference) {
         const Camera cam{100, 60, 600, 380};
         render_frame(cpu, world(), s, cam, 0);
         renderer_upload_light(r, cpu.traced, cpu.traced.rect);
+        renderer_upload_surface_ids(r, cpu.surface_ids, cpu.surface_ids_revision);
         renderer_draw_with_colour(r, cpu.sprites, cpu.view, s.params, CompositeOptions{});
-        // The blurred light texture: exactly box_blur's 8-bit values.
-        const LightTexture ref = rgb_texture(box_blur(cpu.traced, s.params.blur_radius));
+        // The blurred light texture: exactly box_blur's 8-bit values (within
+        // surfaces where the preset's occluders say so, as the game preset's).
+        const LightTexture ref = rgb_texture(blur_within_surfaces(s.params)
+                                                 ? box_blur_within(cpu.traced, s.params.blur_radius, cpu.surface_ids)
+                                                 : box_blur(cpu.traced, s.params.blur_radius));
         Image blurred = renderer_read_blurred(r);
         int worst_blur = 0;
         for (std::size_t i = 0; i < ref.texels.size() / 3; ++i)
@@ -119,6 +123,55 @@ TEST(Gl, blurAndCompositeMatchTheCpuReference) {
         const int worst = max_diff(renderer_read_final(r), cpu.final);
         EXPECT_LE(worst, 2) << c.name << ": GPU composite differs from core's by " << worst << "/255";
     }
+}
+
+TEST(Gl, theGpuBlursWithinSurfacesAsTheCpuDoes) {
+    // With occluders solids the frame's blur stays within the surface each
+    // texel shows (box_blur_within): the GPU's blurred texture has its bytes,
+    // at several radii and in shadow mode; footprints go back to box_blur.
+    ASSERT_NE(gl().window, nullptr) << gl().error;
+    Renderer& r = gl().renderer;
+    int checked = 0;
+    for (int radius : {1, 2, 5}) {
+        for (Mode mode : {Mode::light, Mode::shadow}) {
+            Scene s = lit_scene();
+            s.params.occluders = Occluders::solids;
+            s.params.blur_radius = radius;
+            s.params.mode = mode;
+            FrameState cpu;
+            cpu.options.grey_when_lights_are = false;
+            const Camera cam{100, 60, 600, 380};
+            render_frame(cpu, world(), s, cam, 0);
+            ASSERT_FALSE(cpu.surface_ids.id.empty());
+            renderer_upload_light(r, cpu.traced, cpu.traced.rect);
+            renderer_upload_surface_ids(r, cpu.surface_ids, cpu.surface_ids_revision);
+            renderer_draw_with_colour(r, cpu.sprites, cpu.view, s.params, CompositeOptions{});
+            const LightTexture want = box_blur_within(cpu.traced, radius, cpu.surface_ids);
+            ASSERT_NE(want.texels, box_blur(cpu.traced, radius).texels);  // the case tells the two apart
+            const Image blurred = renderer_read_blurred(r);
+            int worst = 0;
+            for (std::size_t i = 0; i < want.texels.size() / 3; ++i)
+                for (int k = 0; k < 3; ++k)
+                    worst = std::max(worst, std::abs(int(blurred.rgba[i * 4 + k]) - int(want.texels[i * 3 + k])));
+            EXPECT_EQ(worst, 0) << "radius " << radius << ": the GPU blur differs from box_blur_within";
+            EXPECT_LE(max_diff(renderer_read_final(r), cpu.final), 2) << "radius " << radius;
+            ++checked;
+        }
+    }
+    EXPECT_EQ(checked, 6);
+    // Back to footprints: the plain blur again.
+    Scene s = lit_scene();
+    FrameState cpu;
+    render_frame(cpu, world(), s, Camera{100, 60, 600, 380}, 0);
+    renderer_upload_light(r, cpu.traced, cpu.traced.rect);
+    renderer_upload_surface_ids(r, cpu.surface_ids, cpu.surface_ids_revision);
+    renderer_draw_with_colour(r, cpu.sprites, cpu.view, s.params, CompositeOptions{});
+    const LightTexture want = rgb_texture(box_blur(cpu.traced, s.params.blur_radius));
+    const Image blurred = renderer_read_blurred(r);
+    int worst = 0;
+    for (std::size_t i = 0; i < want.texels.size() / 3; ++i)
+        for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(int(blurred.rgba[i * 4 + k]) - int(want.texels[i * 3 + k])));
+    EXPECT_EQ(worst, 0);
 }
 
 TEST(Gl, theLightTextureShiftsWithTheCameraOnTheGpuToo) {

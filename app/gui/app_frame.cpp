@@ -242,6 +242,7 @@ FrameReport render_app_frame(App& app, bool screenshot_mode) {
         rep = render_frame(e.frame, e.world, scene, cam, e.frame_number);
     }
     if (rep.retraced) renderer_upload_light(app.renderer, e.frame.traced, rep.dirty);  // only what changed
+    renderer_upload_surface_ids(app.renderer, e.frame.surface_ids, e.frame.surface_ids_revision);
     CompositeOptions opts;
     opts.show_light = e.overlays.raw_light;
     const Overlays& ov = e.overlays;

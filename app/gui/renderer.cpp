@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gui/shader_sources.hpp"
+#include "isolux/frame.hpp"
 
 namespace fs = std::filesystem;
 
@@ -116,6 +117,11 @@ void blur_and_composite(Renderer& r, Rect view, const Params& p, const Composite
         glActiveTexture(GL_TEXTURE0);
         uniform_i(r.blur.id, "u_source", 0);
         uniform_i(r.blur.id, "u_radius", p.blur_radius);
+        uniform_i(r.blur.id, "u_surface", 1);
+        uniform_i(r.blur.id, "u_within_surfaces", r.surface_revision != 0 && blur_within_surfaces(p) ? 1 : 0);
+        glActiveTexture(GL_TEXTURE1);
+        glBindTexture(GL_TEXTURE_2D, r.surface_tex);
+        glActiveTexture(GL_TEXTURE0);
         // Pass 1: horizontal sums in 0..255 units, unrounded (float target).
         glBindFramebuffer(GL_FRAMEBUFFER, r.blur_sums.fbo);
         glViewport(0, 0, w, h);
@@ -222,6 +228,9 @@ bool renderer_init(Renderer& r, std::string& error) {
     r.atlas = make_texture();
     r.light_tex = make_texture();
     r.flat_tex = make_texture();
+    r.surface_tex = make_texture();
+    const std::int32_t ground = -1;
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32I, 1, 1, 0, GL_RED_INTEGER, GL_INT, &ground);
     r.overlay_tex = make_texture();
     glBindTexture(GL_TEXTURE_2D, r.overlay_tex);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -236,8 +245,8 @@ bool renderer_init(Renderer& r, std::string& error) {
 void renderer_shutdown(Renderer& r) {
     for (GpuProgram* p : {&r.sprites, &r.blur, &r.composite, &r.present})
         if (p->id) glDeleteProgram(p->id);
-    GLuint textures[] = {r.atlas, r.light_tex, r.flat_tex, r.overlay_tex};
-    glDeleteTextures(4, textures);
+    GLuint textures[] = {r.atlas, r.light_tex, r.flat_tex, r.overlay_tex, r.surface_tex};
+    glDeleteTextures(5, textures);
     for (GpuTarget* t : {&r.color, &r.blur_sums, &r.blurred, &r.final}) {
         if (t->tex) glDeleteTextures(1, &t->tex);
         if (t->fbo) glDeleteFramebuffers(1, &t->fbo);
@@ -340,6 +349,18 @@ double renderer_upload_light(Renderer& r, const LightTexture& tex, Rect dirty) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     r.times.upload = ms;
     return ms;
+}
+
+void renderer_upload_surface_ids(Renderer& r, const SurfaceIds& ids, std::uint64_t revision) {
+    if (ids.id.empty()) revision = 0;
+    if (revision == r.surface_revision) return;
+    r.surface_revision = revision;
+    r.light_dirty = true;  // blurred within other surfaces, or none
+    if (!revision) return;
+    glBindTexture(GL_TEXTURE_2D, r.surface_tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32I, std::max(1, ids.rect.w), std::max(1, ids.rect.h), 0, GL_RED_INTEGER, GL_INT,
+                 ids.id.data());
 }
 
 void renderer_upload_flat_light(Renderer& r, const LightTexture& tex) {

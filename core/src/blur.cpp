@@ -469,4 +469,134 @@ LightTexture box_blur_reference(const LightTexture& tex, int radius) {
     return out;
 }
 
+namespace {
+
+// box_blur_within_into's work over z (inside the texture), with `id` the
+// surfaces over the texture's own rectangle: per row, prefix sums cut into
+// runs of one surface give each texel's row sum and count in O(1); then per
+// output row, the rows above and below are added while every texel's column
+// stays on its surface (flags, r rows each way: O(r) per texel, branch-free).
+template <int C>
+void blur_within_region(const LightTexture& tex, int radius, const std::int32_t* id, Rect z, LightTexture& out) {
+    const Rect t = tex.rect;
+    const int w = t.w;
+    const int y0 = std::max(t.y, z.y - radius), y1 = std::min(t.y + t.h, z.y + z.h + radius);
+    const int zx = z.x - t.x, zw = z.w;
+    const int xa = std::max(0, zx - radius), xb = std::min(w, zx + zw + radius);
+    std::vector<std::uint32_t> sums(std::size_t(y1 - y0) * zw * C), counts(std::size_t(y1 - y0) * zw);
+    std::vector<std::uint32_t> prefix(std::size_t(xb - xa + 1) * C);
+    std::vector<int> left(std::size_t(xb - xa)), right(std::size_t(xb - xa));
+    for (int y = y0; y < y1; ++y) {
+        const std::int32_t* ids = id + std::size_t(y - t.y) * w;
+        const std::uint8_t* v = &tex.texels[std::size_t(y - t.y) * w * C];
+        for (int k = 0; k < C; ++k) prefix[std::size_t(k)] = 0;
+        for (int x = xa; x < xb; ++x)
+            for (int k = 0; k < C; ++k)
+                prefix[std::size_t(x - xa + 1) * C + k] = prefix[std::size_t(x - xa) * C + k] + v[std::size_t(x) * C + k];
+        for (int x = xa; x < xb; ++x)
+            left[std::size_t(x - xa)] = x > xa && ids[x - 1] == ids[x] ? left[std::size_t(x - xa - 1)] : x;
+        for (int x = xb - 1; x >= xa; --x)
+            right[std::size_t(x - xa)] = x + 1 < xb && ids[x + 1] == ids[x] ? right[std::size_t(x - xa + 1)] : x;
+        std::uint32_t* s = &sums[std::size_t(y - y0) * zw * C];
+        std::uint32_t* n = &counts[std::size_t(y - y0) * zw];
+        for (int i = 0; i < zw; ++i) {
+            const int x = zx + i;
+            const int lo = std::max(left[std::size_t(x - xa)], x - radius), hi = std::min(right[std::size_t(x - xa)], x + radius);
+            for (int k = 0; k < C; ++k)
+                s[std::size_t(i) * C + k] = prefix[std::size_t(hi - xa + 1) * C + k] - prefix[std::size_t(lo - xa) * C + k];
+            n[i] = std::uint32_t(hi - lo + 1);
+        }
+    }
+    std::vector<std::uint32_t> sum(std::size_t(zw) * C), count(std::size_t(zw), 0u);
+    std::vector<std::uint8_t> on(std::size_t(zw), std::uint8_t(1));
+    for (int y = z.y; y < z.y + z.h; ++y) {
+        const std::int32_t* own = id + std::size_t(y - t.y) * w + zx;
+        std::copy_n(&sums[std::size_t(y - y0) * zw * C], std::size_t(zw) * C, sum.begin());
+        std::copy_n(&counts[std::size_t(y - y0) * zw], std::size_t(zw), count.begin());
+        for (int dir : {-1, 1}) {
+            std::fill(on.begin(), on.end(), std::uint8_t(1));
+            for (int k = 1; k <= radius; ++k) {
+                const int yy = y + dir * k;
+                if (yy < y0 || yy >= y1) break;
+                const std::int32_t* ids = id + std::size_t(yy - t.y) * w + zx;
+                const std::uint32_t* s = &sums[std::size_t(yy - y0) * zw * C];
+                const std::uint32_t* n = &counts[std::size_t(yy - y0) * zw];
+                for (int i = 0; i < zw; ++i) {
+                    on[std::size_t(i)] &= std::uint8_t(ids[i] == own[i]);
+                    const std::uint32_t m = 0u - std::uint32_t(on[std::size_t(i)]);
+                    for (int c = 0; c < C; ++c) sum[std::size_t(i) * C + c] += s[std::size_t(i) * C + c] & m;
+                    count[std::size_t(i)] += n[i] & m;
+                }
+            }
+        }
+        std::uint8_t* o = &out.texels[(std::size_t(y - t.y) * w + std::size_t(zx)) * C];
+        for (int i = 0; i < zw; ++i)
+            for (int c = 0; c < C; ++c)
+                o[std::size_t(i) * C + c] = std::uint8_t((sum[std::size_t(i) * C + c] + count[std::size_t(i)] / 2) / count[std::size_t(i)]);
+    }
+}
+
+}  // namespace
+
+void box_blur_within_into(const LightTexture& tex, int radius, const SurfaceIds& ids, Rect region, LightTexture& out) {
+    assert(radius >= 0 && valid(tex));
+    if (!(out.rect == tex.rect) || out.channels != tex.channels || !valid(out)) out = LightTexture(tex.rect, tex.channels);
+    const Rect z = intersect(region, tex.rect);
+    if (z.empty()) return;
+    // Surfaces over the texture's rectangle (the frame's are: no copy).
+    std::vector<std::int32_t> own;
+    const std::int32_t* id = ids.id.data();
+    if (!(ids.rect == tex.rect) || ids.id.size() != std::size_t(tex.rect.w) * tex.rect.h) {
+        own.resize(std::size_t(tex.rect.w) * tex.rect.h);
+        for (int y = 0; y < tex.rect.h; ++y)
+            for (int x = 0; x < tex.rect.w; ++x) own[std::size_t(y) * tex.rect.w + x] = ids.at(tex.rect.x + x, tex.rect.y + y);
+        id = own.data();
+    }
+    // A radius past the texture reaches no further than its size.
+    const int r = std::min(radius, std::max(tex.rect.w, tex.rect.h));
+    tex.channels == 1 ? blur_within_region<1>(tex, r, id, z, out) : blur_within_region<3>(tex, r, id, z, out);
+}
+
+LightTexture box_blur_within(const LightTexture& tex, int radius, const SurfaceIds& ids) {
+    assert(radius >= 0 && valid(tex));
+    LightTexture out(tex.rect, tex.channels);
+    box_blur_within_into(tex, radius, ids, tex.rect, out);
+    return out;
+}
+
+LightTexture box_blur_within_reference(const LightTexture& tex, int radius, const SurfaceIds& ids) {
+    assert(radius >= 0 && valid(tex));
+    const Rect t = tex.rect;
+    LightTexture out(t, tex.channels);
+    // Whether (x, y + dy) is reached along the column from (x, y) without
+    // leaving the texture or the surface; the same along a row.
+    auto column_reaches = [&](int x, int y, int dy) {
+        const int step = dy < 0 ? -1 : 1;
+        for (int i = step; i != dy + step; i += step)
+            if (!t.contains(x, y + i) || ids.at(x, y + i) != ids.at(x, y)) return false;
+        return true;
+    };
+    auto row_reaches = [&](int x, int y, int dx) {
+        const int step = dx < 0 ? -1 : 1;
+        for (int i = step; i != dx + step; i += step)
+            if (!t.contains(x + i, y) || ids.at(x + i, y) != ids.at(x, y)) return false;
+        return true;
+    };
+    for (int y = t.y; y < t.y + t.h; ++y)
+        for (int x = t.x; x < t.x + t.w; ++x)
+            for (int k = 0; k < tex.channels; ++k) {
+                std::uint64_t sum = 0, n = 0;
+                for (int dy = -radius; dy <= radius; ++dy) {
+                    if (dy != 0 && !column_reaches(x, y, dy)) continue;
+                    for (int dx = -radius; dx <= radius; ++dx) {
+                        if (dx != 0 && !row_reaches(x, y + dy, dx)) continue;
+                        sum += tex.at(x + dx, y + dy)[k];
+                        ++n;
+                    }
+                }
+                out.texels[(std::size_t(y - t.y) * t.w + std::size_t(x - t.x)) * tex.channels + k] = std::uint8_t((sum + n / 2) / n);
+            }
+    return out;
+}
+
 }  // namespace isolux

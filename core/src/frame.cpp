@@ -576,8 +576,10 @@ std::vector<Rect> blur_step(FrameState& st, const Params& p, FrameReport& rep) {
     std::vector<Rect> changed;
     const bool radius_changed = c.blur_params.blur_radius != p.blur_radius;
     if (c.has_blur && !radius_changed) return changed;
+    const bool within = blur_within_surfaces(p);
     const bool whole = radius_changed || !(c.blurred.rect == tex) || (p.blur_radius > 0 && c.blurred.texels.empty()) ||
-                       (p.blur_radius > 0 && c.blurred.channels != st.traced.channels);
+                       (p.blur_radius > 0 && c.blurred.channels != st.traced.channels) ||
+                       c.blur_surface_ids != (within ? st.surface_ids_revision : 0);
     if (whole) {
         changed = {tex};
     } else {
@@ -588,7 +590,10 @@ std::vector<Rect> blur_step(FrameState& st, const Params& p, FrameReport& rep) {
         Timer t{rep, Stage::blur};
         if (!(c.blurred.rect == tex) || c.blurred.channels != st.traced.channels || c.blurred.texels.size() != st.traced.texels.size())
             c.blurred = LightTexture(tex, st.traced.channels);
-        in_row_bands(changed, threads_wanted(st.options), [&](Rect band) { box_blur_into(st.traced, p.blur_radius, band, c.blurred); });
+        in_row_bands(changed, threads_wanted(st.options), [&](Rect band) {
+            if (within) box_blur_within_into(st.traced, p.blur_radius, st.surface_ids, band, c.blurred);
+            else box_blur_into(st.traced, p.blur_radius, band, c.blurred);
+        });
         touch(rep, Stage::blur, changed);
     } else if (p.blur_radius == 0) {
         c.blurred = LightTexture{};
@@ -597,6 +602,7 @@ std::vector<Rect> blur_step(FrameState& st, const Params& p, FrameReport& rep) {
     c.has_blur = true;
     c.blur_params = p;
     c.blur_pending = {};
+    c.blur_surface_ids = within ? st.surface_ids_revision : 0;
     return changed;
 }
 
@@ -645,6 +651,25 @@ bool redo_only_dirty(bool fresh, const TraceDecision& trace, const std::vector<R
     for (const Rect& c : to_clear) whole += area(c);
     for (const TracedLight& t : plan.traced) whole += area(t.mask.clip), part += area(intersect(t.mask.clip, dirty));
     return part < whole;
+}
+
+// Beyond the paper: which surface each texel of the traced texture shows,
+// for the blur within surfaces; kept while the texture and the occluders are.
+void surface_ids_step(FrameState& st, const Params& p) {
+    if (!blur_within_surfaces(p)) {
+        st.surface_ids = SurfaceIds{};
+        return;
+    }
+    const Rect r = st.traced.rect;
+    if (st.surface_ids.rect == r && st.surface_ids_revision == st.obstacles_revision) return;
+    const Surface& s = st.occluders.surface;
+    st.surface_ids.rect = r;
+    st.surface_ids.id.assign(std::size_t(std::max(0, r.w)) * std::max(0, r.h), -1);
+    const Rect both = intersect(r, s.rect);
+    for (int y = both.y; y < both.y + both.h; ++y)
+        std::copy_n(&s.instance[std::size_t(y - s.rect.y) * s.rect.w + std::size_t(both.x - s.rect.x)], both.w,
+                    &st.surface_ids.id[std::size_t(y - r.y) * r.w + std::size_t(both.x - r.x)]);
+    st.surface_ids_revision = st.obstacles_revision;
 }
 
 // Paper 3.2 and Algorithm 2: the lights that need it traced, corrected and
@@ -702,6 +727,7 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_
     const ObstacleChange obstacles = update_obstacle_map(st, world, scene.params, needed, delta, rep);
     const TraceDecision trace = decide_retrace(st, scene, view, frame, obstacles);
     if (trace.retrace) trace_step(st, world, scene, tex_rect, trace, obstacles, rep);
+    surface_ids_step(st, scene.params);
     if (st.options.cpu_blur_and_composite) {
         const std::vector<Rect> changed = blur_step(st, scene.params, rep);
         shift_step(st, scene.params, view, changed, rep);

@@ -1,6 +1,9 @@
 // Paper 3.2: "a simple box-blur algorithm is applied" to the light texture,
 // hiding the gaps skipped rays leave. The CPU reference of shaders/blur.frag.
 #pragma once
+#include <cstdint>
+#include <vector>
+
 #include "isolux/light_texture.hpp"
 
 namespace isolux {
@@ -21,5 +24,31 @@ void box_blur_into(const LightTexture& tex, int radius, Rect region, LightTextur
 // its clamped window and one rounded division. The oracle box_blur is tested
 // against.
 LightTexture box_blur_reference(const LightTexture& tex, int radius);
+
+// Beyond the paper: the blur within surfaces (with occluders solids or
+// shapes, docs/method.md). Which surface each pixel shows, over `rect`
+// (world pixels): the overlay instance (PlacedMap::instances' index), -1 the
+// ground; -1 outside `rect`.
+struct SurfaceIds {
+    Rect rect;
+    std::vector<std::int32_t> id;  // rect.w * rect.h, row by row
+    std::int32_t at(int wx, int wy) const {
+        return rect.contains(wx, wy) ? id[std::size_t(wy - rect.y) * rect.w + std::size_t(wx - rect.x)] : -1;
+    }
+};
+
+// Each texel becomes the mean, rounded to nearest, of the texels reached from
+// it by up to `radius` steps along its column and then up to `radius` along
+// their rows, never crossing into another surface (`ids`) nor past the
+// texture's edge (no clamping: a texel outside counts for nothing). So light
+// on the ground never bleeds onto a sprite in front of it, nor one sprite's
+// onto another's. Written into `out` for the texels of `region` only, as
+// box_blur_into. O(radius) per texel. shaders/blur.frag mirrors it
+// (u_within_surfaces).
+void box_blur_within_into(const LightTexture& tex, int radius, const SurfaceIds& ids, Rect region, LightTexture& out);
+LightTexture box_blur_within(const LightTexture& tex, int radius, const SurfaceIds& ids);
+
+// The same rule per texel, as plainly as possible: the oracle of the above.
+LightTexture box_blur_within_reference(const LightTexture& tex, int radius, const SurfaceIds& ids);
 
 }  // namespace isolux

@@ -14,6 +14,7 @@
 #include "isolux/image.hpp"
 #include "isolux/light_texture.hpp"
 #include "isolux/light_trace.hpp"
+#include "isolux/blur.hpp"
 #include "isolux/occluders.hpp"
 #include "isolux/opacity_correction.hpp"
 #include "isolux/scene.hpp"
@@ -139,11 +140,20 @@ struct FrameCache {
     Params blur_params;
     LightTexture blurred;
     std::vector<Rect> blur_pending;  // texels traced since the last blur
+    std::uint64_t blur_surface_ids = 0;  // the surface_ids_revision the blur stayed within
 
     // The final image's inputs.
     bool has_final = false;
     Params composite_params;
 };
+
+// Beyond the paper: whether the blur stays within surfaces (box_blur_within):
+// with occluders solids or shapes, each sprite pixel is lit by the 3D point it
+// shows, and averaging it with the ground or another sprite beside it on
+// screen mixes in the light of points far from it in depth (docs/method.md).
+inline bool blur_within_surfaces(const Params& p) {
+    return p.occluders != Occluders::footprints && p.mode != Mode::flat && p.blur_radius > 0;
+}
 
 // What a frame leaves for the caller, and its caches for the next frame.
 // Default-constructed: nothing built yet.
@@ -156,6 +166,10 @@ struct FrameState {
     std::vector<Mask> opacity;   // each tileset sprite's opacity map, by sprite index
     ObstacleHeights obstacle_heights;  // with rays_over_obstacles: the obstacles' estimated heights
     OccluderMap occluders;             // with occluders solids or shapes: spans and surface heights
+    // With blur_within_surfaces: which surface each texel of `traced` shows,
+    // what the blur stays within, and a new value whenever it changes.
+    SurfaceIds surface_ids;
+    std::uint64_t surface_ids_revision = 0;
     LightTexture traced;         // the last trace: corrected light texture, world-anchored
     Rect view;                   // what the view shows, world pixels
     Image sprites;               // the view's sprites (cpu_sprites)
