@@ -22,9 +22,9 @@ namespace {
 OccluderMap ground_with(Rect r, Rect where, float lo, float hi) {
     OccluderMap m;
     m.rect = r;
-    m.spans.assign(std::size_t(r.w) * r.h, Span{});
+    m.spans.assign(std::size_t(r.w) * r.h, Spans{});
     for (int y = where.y; y < where.y + where.h; ++y)
-        for (int x = where.x; x < where.x + where.w; ++x) m.spans[std::size_t(y - r.y) * r.w + (x - r.x)] = {lo, hi};
+        for (int x = where.x; x < where.x + where.w; ++x) m.spans[std::size_t(y - r.y) * r.w + (x - r.x)] = Spans{{lo, hi}, {}};
     m.surface.rect = r;
     m.surface.instance.assign(m.spans.size(), -1);
     m.surface.height.assign(m.spans.size(), 0.f);
@@ -54,6 +54,51 @@ TEST(Occluders, aCanopyShadesTheGroundBetweenItsTwoProjections) {
     for (int x : {45, 60, 80, 95}) EXPECT_FALSE(lit(l, x, 0)) << x;
     // On the other side of the light nothing is shaded.
     for (int x : {-30, -60, -90}) EXPECT_TRUE(lit(l, x, 0)) << x;
+}
+
+// A ground pixel keeps two spans with the gap between them; a third closes
+// the narrowest gap; spans that meet are one.
+TEST(Occluders, aGroundPixelKeepsTwoSpansAndClosesTheNarrowestGap) {
+    Spans s;
+    s.add(30, 80);  // a crown
+    s.add(0, 10);   // a bush under it
+    EXPECT_EQ(s.lower, (Span{0, 10}));
+    EXPECT_EQ(s.upper, (Span{30, 80}));
+    EXPECT_FALSE(s.holds(20));  // the gap
+    EXPECT_TRUE(s.holds(5));
+    EXPECT_TRUE(s.holds(50));
+    s.add(8, 12);  // meets the bush
+    EXPECT_EQ(s.lower, (Span{0, 12}));
+    s.add(90, 95);  // a third: the gap 80..90 is narrower than 12..30
+    EXPECT_EQ(s.lower, (Span{0, 12}));
+    EXPECT_EQ(s.upper, (Span{30, 95}));
+    s.add(14, 16);  // 12..14 is the narrowest now
+    EXPECT_EQ(s.lower, (Span{0, 16}));
+    EXPECT_EQ(s.upper, (Span{30, 95}));
+    Spans one;
+    one.add(5, 6);
+    EXPECT_TRUE(one.any());
+    EXPECT_FALSE(one.upper.any());
+}
+
+// A crown [40, 80) over a bush [0, 10) on the same ground pixels, 28 to 32
+// px out, a light 30 px high: the bush shades the ground from 28 to
+// 32 * 30 / 20 = 48 px out, the crown (above the light) nothing, so beyond
+// 48 px the ground is lit through the gap, where one span holding both,
+// [0, 80), would shade it to the border.
+TEST(Occluders, raysPassThroughTheGapBetweenTwoSpans) {
+    OccluderMap m = ground_with(area, Rect{28, -4, 5, 9}, 40, 80);
+    for (int y = -4; y < 5; ++y)
+        for (int x = 28; x < 33; ++x) m.spans[std::size_t(y - area.y) * area.w + std::size_t(x - area.x)].add(0, 10);
+    index_occluders(m);
+    const LightMask l = trace_light_solids(m, 0, 0, 150, 10, 30, wide(), area);
+    EXPECT_FALSE(lit(l, 40, 0));
+    EXPECT_TRUE(lit(l, 60, 0));
+    EXPECT_TRUE(lit(l, 120, 0));
+    // A single span holding both shades everything beyond it (its top is above the light).
+    const LightMask hull = trace_light_solids(ground_with(area, Rect{28, -4, 5, 9}, 0, 80), 0, 0, 150, 10, 30, wide(), area);
+    EXPECT_FALSE(lit(hull, 60, 0));
+    EXPECT_FALSE(lit(hull, 120, 0));
 }
 
 // A trunk standing on the ground: its shadow ends at s H / (H - top), shorter
@@ -123,7 +168,7 @@ TEST(Occluders, shapesAreRefusedByNameWhereASpriteHasNone) {
     }
     p.occluders = Occluders::solids;
     const OccluderMap m = build_occluders(w, p, w.placed.bounds);
-    EXPECT_GT(std::count_if(m.spans.begin(), m.spans.end(), [](const Span& s) { return s.high > 0; }), 100);
+    EXPECT_GT(std::count_if(m.spans.begin(), m.spans.end(), [](const Spans& s) { return s.lower.high > 0; }), 100);
 }
 
 // Against the 3D reference, on the default seed's map and on drawn seeds and

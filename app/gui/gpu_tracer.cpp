@@ -169,11 +169,15 @@ bool gpu_trace_solids(GpuTracer& t, const OccluderMap& occ, std::uint64_t occlud
     }  // earlier errors are not ours
     // The spans, uploaded when they changed (one empty pixel for none).
     const std::size_t pixels = occ.spans.size();
-    if (std::uint64_t(std::max<std::size_t>(pixels, 1)) * 2 * sizeof(float) > std::uint64_t(std::max(t.max_storage, 0)))
+    if (std::uint64_t(std::max<std::size_t>(pixels, 1)) * 4 * sizeof(float) > std::uint64_t(std::max(t.max_storage, 0)))
         return false;
     if (t.spans_revision != occluders_revision) {
-        std::vector<float> spans(std::max<std::size_t>(pixels, 1) * 2, 0.f);
-        for (std::size_t i = 0; i < pixels; ++i) spans[2 * i] = occ.spans[i].low, spans[2 * i + 1] = occ.spans[i].high;
+        std::vector<float> spans(std::max<std::size_t>(pixels, 1) * 4, 0.f);
+        for (std::size_t i = 0; i < pixels; ++i) {
+            const Spans& s = occ.spans[i];
+            spans[4 * i] = s.lower.low, spans[4 * i + 1] = s.lower.high;
+            spans[4 * i + 2] = s.upper.low, spans[4 * i + 3] = s.upper.high;
+        }
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, t.spans);
         glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(spans.size() * sizeof(float)), spans.data(), GL_STATIC_DRAW);
         t.spans_rect = pixels ? occ.rect : Rect{0, 0, 0, 0};

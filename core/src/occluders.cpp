@@ -16,6 +16,31 @@
 
 namespace isolux {
 
+void Spans::add(float lo, float hi) {
+    // The spans held and the new one, lowest first, those that meet joined;
+    // three left: the narrowest gap closed.
+    std::array<Span, 3> v{};
+    int n = 0;
+    for (const Span& s : {lower, upper, Span{lo, hi}})
+        if (s.any()) v[std::size_t(n++)] = s;
+    std::sort(v.begin(), v.begin() + n, [](const Span& a, const Span& b) { return a.low < b.low || (a.low == b.low && a.high < b.high); });
+    int kept = 0;
+    for (int k = 0; k < n; ++k) {
+        if (kept > 0 && v[std::size_t(k)].low <= v[std::size_t(kept - 1)].high)
+            v[std::size_t(kept - 1)].high = std::max(v[std::size_t(kept - 1)].high, v[std::size_t(k)].high);
+        else
+            v[std::size_t(kept++)] = v[std::size_t(k)];
+    }
+    if (kept == 3) {
+        const int j = v[1].low - v[0].high <= v[2].low - v[1].high ? 0 : 1;  // the narrower gap, the lower on a tie
+        v[std::size_t(j)].high = v[std::size_t(j + 1)].high;
+        if (j == 0) v[1] = v[2];
+        kept = 2;
+    }
+    lower = kept > 0 ? v[0] : Span{};
+    upper = kept > 1 ? v[1] : Span{};
+}
+
 namespace {
 
 constexpr double sqrt2 = 1.4142135623730951;
@@ -28,11 +53,7 @@ constexpr int own_steps = 3;
 void fill(OccluderMap& m, std::size_t i, double lo, double hi) {
     lo = std::max(0.0, lo);
     if (hi <= lo) return;
-    Span& s = m.spans[i];
-    if (!s.any())
-        s = {float(lo), float(hi)};
-    else
-        s = {std::min(s.low, float(lo)), std::max(s.high, float(hi))};
+    m.spans[i].add(float(lo), float(hi));
 }
 
 // The heights the solid fills on the vertical line through ground point (X, Y).
@@ -278,9 +299,8 @@ bool own_line_lit(const OccluderMap& occ, std::int64_t cx, std::int64_t cy, std:
     bool lit = true;
     walk_ray(cx, cy, gx, gy, occ.rect, occ.rect, [&](std::int64_t i, std::int64_t, std::int64_t, std::ptrdiff_t g, std::ptrdiff_t) {
         if (!lit || i > steps - own_steps || g < 0 || !(occ.flags[std::size_t(g)] & OccluderMap::has_span)) return;
-        const Span sp = occ.spans[std::size_t(g)];
         const double z = H + (h - H) * double(i) / double(steps);
-        lit = !(z >= sp.low && z < sp.high);
+        lit = !occ.spans[std::size_t(g)].holds(z);
     });
     return lit;
 }
@@ -291,7 +311,7 @@ OccluderMap build_occluders(const World& world, const Params& p, Rect region, So
     OccluderMap m;
     m.rect = region;
     const std::size_t n = std::size_t(std::max(0, region.w)) * std::max(0, region.h);
-    m.spans.assign(n, Span{});
+    m.spans.assign(n, Spans{});
     if (region.empty() || p.occluders == Occluders::footprints) {
         m.surface = build_surface(world, region, p.opacity_threshold);
         index_occluders(m);
@@ -350,24 +370,26 @@ by_rays:
     struct Shade { double from, to; };
     std::vector<Shade> shades;
     const double inf = std::numeric_limits<double>::infinity();
-    const Span* spans = occ.spans.data();
+    const Spans* spans = occ.spans.data();
     const std::uint8_t* flags = occ.flags.data();
     for_each_ray_target(cx, cy, a, b, p, [&](std::int64_t tx, std::int64_t ty) {
         shades.clear();
         double endless_from = inf;
         walk_ray(cx, cy, tx, ty, occ.rect, m.clip, [&](std::int64_t i, std::int64_t, std::int64_t, std::ptrdiff_t g, std::ptrdiff_t v) {
             const double k = double(i);
-            if (g >= 0 && (flags[g] & OccluderMap::has_span) && spans[g].low < H) {
-                const float lo = spans[g].low, hi = spans[g].high;
-                const double from = lo <= 0 ? k : k * H / (H - lo);
-                const double to = k * H / (H - hi);
-                if (hi >= H)
-                    endless_from = std::min(endless_from, from);
-                else if (!shades.empty() && from <= shades.back().to && shades.back().from <= to)
-                    shades.back() = {std::min(shades.back().from, from), std::max(shades.back().to, to)};
-                else
-                    shades.push_back({from, to});
-            }
+            if (g >= 0 && (flags[g] & OccluderMap::has_span))
+                for (const Span& sp : {spans[g].lower, spans[g].upper}) {  // the lower first, as the GPU
+                    if (!sp.any() || sp.low >= H) continue;
+                    const float lo = sp.low, hi = sp.high;
+                    const double from = lo <= 0 ? k : k * H / (H - lo);
+                    const double to = k * H / (H - hi);
+                    if (hi >= H)
+                        endless_from = std::min(endless_from, from);
+                    else if (!shades.empty() && from <= shades.back().to && shades.back().from <= to)
+                        shades.back() = {std::min(shades.back().from, from), std::max(shades.back().to, to)};
+                    else
+                        shades.push_back({from, to});
+                }
             bool shaded = endless_from <= k;
             for (std::size_t s = 0; s < shades.size();) {
                 if (shades[s].to <= k) {  // behind the ray's front: done with
@@ -440,25 +462,23 @@ void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, co
     // its height), then the points over this step's ground pixel.
     const std::vector<std::uint8_t> table = falloff_table(m.a, m.b, p.falloff_scale);
     BlockedDescents blocked;
-    std::array<std::pair<float, float>, own_steps + 1> passed{};  // the spans of the last steps (none: hi <= lo)
+    std::array<Spans, own_steps + 1> passed{};  // the spans of the last steps
     const double inf = std::numeric_limits<double>::infinity();
     auto sprite_ray = [&](std::int64_t tx, std::int64_t ty) {
         blocked.clear();
         walk_ray(cx, cy, tx, ty, occ.rect, m.clip, [&](std::int64_t i, std::int64_t x, std::int64_t y, std::ptrdiff_t g, std::ptrdiff_t) {
             const std::int64_t s = i - own_steps;
-            if (s >= 0) {
-                const auto [slo, shi] = passed[std::size_t(s) % passed.size()];
-                if (shi > slo) {
+            if (s >= 0)
+                for (const Span& sp : {passed[std::size_t(s) % passed.size()].lower, passed[std::size_t(s) % passed.size()].upper}) {
+                    if (!sp.any()) continue;
                     if (s == 0) {  // the light's own pixel: a light inside a solid is hidden from all
-                        if (slo <= H && H < shi) blocked.add(-inf, inf);
+                        if (sp.low <= H && H < sp.high) blocked.add(-inf, inf);
                     } else {
-                        blocked.add((H - shi) / double(s), (H - slo) / double(s));
+                        blocked.add((H - sp.high) / double(s), (H - sp.low) / double(s));
                     }
                 }
-            }
             const std::uint8_t f = g >= 0 ? occ.flags[std::size_t(g)] : 0;
-            const Span sp = f & OccluderMap::has_span ? occ.spans[std::size_t(g)] : Span{};
-            passed[std::size_t(i) % passed.size()] = {sp.low, sp.high};
+            passed[std::size_t(i) % passed.size()] = f & OccluderMap::has_span ? occ.spans[std::size_t(g)] : Spans{};
             if (!(f & OccluderMap::has_shown)) return;
             for (std::uint32_t k = occ.shown_start[std::size_t(g)]; k < occ.shown_start[std::size_t(g) + 1]; ++k) {
                 const double h = occ.shown[k];

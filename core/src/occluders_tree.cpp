@@ -8,6 +8,7 @@
 #include "occluders_tree.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -181,21 +182,23 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
                             value, std::uint32_t(top.endless));
             continue;
         }
-        int endless = top.endless, from = 0, to = 0;  // this node's shade: the depths [from, to)
+        // This node's shades (one per span below the light): the depths [from, to).
+        int endless = top.endless;
+        std::array<int, 2> from{0, 0}, to{0, 0};
         if (flags[o] & OccluderMap::has_span) {
-            const Span sp = occ.spans[in.map(o)];
-            const float lo = sp.low, hi = sp.high;
+            const Spans& sps = occ.spans[in.map(o)];
             const double kd = double(k);
-            if (lo < H) {
-                const double f = lo <= 0 ? kd : kd * H / (H - lo);
-                if (f <= last_depth) {
-                    if (hi >= H) {
-                        endless = std::min(endless, int(std::ceil(f)));
-                    } else {
-                        const double e = kd * H / (H - hi);
-                        from = int(std::ceil(f));
-                        to = e > last_depth ? last + 1 : int(std::ceil(e));
-                    }
+            for (int j = 0; j < 2; ++j) {
+                const Span sp = j == 0 ? sps.lower : sps.upper;
+                if (!sp.any() || sp.low >= H) continue;
+                const double f = sp.low <= 0 ? kd : kd * H / (H - sp.low);
+                if (f > last_depth) continue;
+                if (sp.high >= H) {
+                    endless = std::min(endless, int(std::ceil(f)));
+                } else {
+                    const double e = kd * H / (H - sp.high);
+                    from[std::size_t(j)] = int(std::ceil(f));
+                    to[std::size_t(j)] = e > last_depth ? last + 1 : int(std::ceil(e));
                 }
             }
         }
@@ -204,20 +207,27 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
             continue;
         }
         const std::uint64_t* at = bits + std::size_t(t) * words;
-        const bool shaded = (from <= k && k < to) || (k < top.reach && (at[k >> 6] >> (k & 63) & 1));
+        bool shaded = k < top.reach && (at[k >> 6] >> (k & 63) & 1);
+        int reach = top.reach;
+        bool any_shade = false;
+        for (std::size_t j = 0; j < 2; ++j) {
+            shaded = shaded || (from[j] <= k && k < to[j]);
+            from[j] = std::max(from[j], k + 1);
+            to[j] = std::min(to[j], endless);
+            if (from[j] < to[j]) any_shade = true, reach = std::max(reach, to[j]);
+        }
         if (!shaded) value[o] = table[std::size_t(k)];
-        from = std::max(from, k + 1);
-        to = std::min(to, endless);
-        if ((from < to || endless < top.endless) && node[i].end > i + 1) {
+        if ((any_shade || endless < top.endless) && node[i].end > i + 1) {
             std::uint64_t* mine = bits + std::size_t(t + 1) * words;
             std::memcpy(mine, at, std::size_t(words) * sizeof(std::uint64_t));
-            for (int d = from; d < to;) {  // the depths [from, to), a word at a time
-                const int word_end = std::min(to, (d & ~63) + 64);
-                const int count = word_end - d;
-                mine[d >> 6] |= (count == 64 ? ~std::uint64_t(0) : ((std::uint64_t(1) << count) - 1)) << (d & 63);
-                d = word_end;
-            }
-            frame[t + 1] = Frame{node[i].end, endless, std::max(top.reach, from < to ? to : 0)};
+            for (std::size_t j = 0; j < 2; ++j)
+                for (int d = from[j]; d < to[j];) {  // the depths [from, to), a word at a time
+                    const int word_end = std::min(to[j], (d & ~63) + 64);
+                    const int count = word_end - d;
+                    mine[d >> 6] |= (count == 64 ? ~std::uint64_t(0) : ((std::uint64_t(1) << count) - 1)) << (d & 63);
+                    d = word_end;
+                }
+            frame[t + 1] = Frame{node[i].end, endless, reach};
             ++t;
         }
         ++i;
@@ -279,10 +289,10 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     };
     thread_local std::vector<Blocked> level;
     thread_local std::vector<int> ref;
-    thread_local std::vector<std::pair<float, float>> span;  // hi <= lo: none
+    thread_local std::vector<Spans> span;
     level.resize(std::size_t(depths) + 1);
     ref.assign(std::size_t(depths), 0);
-    span.assign(std::size_t(depths), {0.f, 0.f});
+    span.assign(std::size_t(depths), Spans{});
     const int none = depths;  // the empty set
     level[std::size_t(none)].iv.clear();
     for (std::int32_t i = 0; i < n;) {
@@ -292,27 +302,25 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
         // Node i holds a span and no node before it on its rays does.
         const std::int32_t last = node[i].end;
         const int first = int(node[i].at_depth & ((1u << depth_bits) - 1));
-        for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = {0.f, 0.f};
+        for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = Spans{};
         for (; i < last; ++i) {
             const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
             const int k = int(w & ((1u << depth_bits) - 1));
             const std::uint8_t f = flags[o];
-            const Span sp = (f & OccluderMap::has_span) ? occ.spans[in.map(o)] : Span{};
-            span[std::size_t(k)] = {sp.low, sp.high};
+            span[std::size_t(k)] = (f & OccluderMap::has_span) ? occ.spans[in.map(o)] : Spans{};
             int at = k > first ? ref[std::size_t(k - 1)] : none;
             const int s = k - own_steps;
-            if (s >= 0 && span[std::size_t(s)].second > span[std::size_t(s)].first) {
-                const auto [slo, shi] = span[std::size_t(s)];
-                if (s > 0 || (slo <= H && H < shi)) {
+            if (s >= 0)
+                for (const Span& sp : {span[std::size_t(s)].lower, span[std::size_t(s)].upper}) {
+                    if (!sp.any() || (s == 0 && !(sp.low <= H && H < sp.high))) continue;
                     Blocked& b = level[std::size_t(k)];
                     if (at != k) b.iv = level[std::size_t(at)].iv;
                     if (s == 0)  // the light's own pixel: a light inside a solid is hidden from all
                         b.add(-inf, inf);
                     else
-                        b.add((H - shi) / double(s), (H - slo) / double(s));
+                        b.add((H - sp.high) / double(s), (H - sp.low) / double(s));
                     at = k;
                 }
-            }
             ref[std::size_t(k)] = at;
             if (f & OccluderMap::has_shown) {
                 const Blocked& b = level[std::size_t(at)];

@@ -27,11 +27,26 @@
 
 namespace isolux {
 
-// The heights [low, high) the solids fill over one ground pixel; high <= low: none.
+// The heights [low, high) one solid, or several that meet, fill over a
+// ground pixel; high <= low: none.
 struct Span {
     float low = 0, high = 0;
     bool any() const { return high > low; }
     bool operator==(const Span& o) const { return low == o.low && high == o.high; }
+};
+
+// What stands over one ground pixel: up to two spans, `lower` below `upper`
+// with a gap between them (a canopy over a bush, a crown over the ground
+// beside a trunk: one span holding both would shade the gap). A third
+// solid's span closes the narrowest gap. upper.any() implies lower.any().
+struct Spans {
+    Span lower, upper;
+    bool any() const { return lower.any(); }
+    bool operator==(const Spans& o) const { return lower == o.lower && upper == o.upper; }
+    // Adds the heights [lo, hi) (lo < hi).
+    void add(float lo, float hi);
+    // Whether height z lies inside a span.
+    bool holds(double z) const { return (z >= lower.low && z < lower.high) || (z >= upper.low && z < upper.high); }
 };
 
 // The rows a point h high lies above its ground pixel on screen: h rounded
@@ -45,7 +60,7 @@ inline std::int64_t rows_above(double h) {
 
 struct OccluderMap {
     Rect rect;                // world pixels, as the obstacle map's
-    std::vector<Span> spans;  // per ground pixel (both ends on one cache line: a step reads both)
+    std::vector<Spans> spans;  // per ground pixel (16 bytes, on one cache line: a step reads them at once)
     Surface surface;          // per pixel: what it shows (ground or an overlay) and its height
     // Per ground pixel g, the sprite pixels whose point stands over it (h
     // rows above g): shown[shown_start[g] .. shown_start[g + 1]). The sprite
@@ -60,12 +75,10 @@ struct OccluderMap {
     enum : std::uint8_t { has_span = 1, has_shown = 2 };
     std::vector<std::uint8_t> flags;
 
-    bool span(std::int64_t x, std::int64_t y, float& z_low, float& z_high) const {
-        if (!rect.contains(int(x), int(y))) return false;
-        const Span& s = spans[std::size_t(y - rect.y) * rect.w + std::size_t(x - rect.x)];
-        z_low = s.low;
-        z_high = s.high;
-        return s.any();
+    // The spans over ground pixel (x, y); none outside the map.
+    Spans spans_at(std::int64_t x, std::int64_t y) const {
+        if (!rect.contains(int(x), int(y))) return {};
+        return spans[std::size_t(y - rect.y) * rect.w + std::size_t(x - rect.x)];
     }
 };
 
