@@ -2,6 +2,8 @@
 // spans worked out by hand, and the model measured against the 3D reference.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,6 +14,7 @@
 #include "isolux/hash.hpp"
 #include "isolux/frame.hpp"
 #include "isolux/occluders.hpp"
+#include "isolux/scene_file.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -178,8 +181,37 @@ TEST(Occluders, shapesAreRefusedByNameWhereASpriteHasNone) {
 // tracer never more than the footprints (the tracer's own error is small).
 // The sprites: not asserted, as solids mislight more of them than
 // footprints on some drawn scenes (docs/accuracy.md has the figures).
-TEST(Occluders, solidsMislightLessGroundThanFootprintsAgainst3d) {
-    for (std::uint64_t seed = 0; seed < 3; ++seed) {
+namespace {
+
+// Lit mismatch against 3D, summed over scenes as pixels (a scene with few
+// sprite pixels in its lights' areas counts as little as it weighs).
+struct Pooled {
+    double floor_wrong = 0, floor_pixels = 0, sprite_wrong = 0, sprite_pixels = 0;
+    void add(const SweepPoint& pt) {
+        floor_wrong += pt.floor.lit_mismatch * double(pt.floor.pixels);
+        floor_pixels += double(pt.floor.pixels);
+        sprite_wrong += pt.sprite.lit_mismatch * double(pt.sprite.pixels);
+        sprite_pixels += double(pt.sprite.pixels);
+    }
+    double floor() const { return floor_pixels ? floor_wrong / floor_pixels : 0; }
+    double sprites() const { return sprite_pixels ? sprite_wrong / sprite_pixels : 0; }
+};
+
+}  // namespace
+
+TEST(Occluders, solidsMislightAtMostHalfWhatFootprintsDoAgainst3d) {
+    // The default seed, and seeds and lights drawn here (pooled: two lights
+    // on an 8x8 map may meet a handful of sprites), at four light heights:
+    // solids mislight at most half the sprite pixels and the ground pixels
+    // footprints do at every height, but on the default seed's ground at 4
+    // px (a light that low sees only what stands lowest, where a sprite
+    // cannot show whether a skirt of foliage hangs over a thin trunk or
+    // reaches the ground: docs/method.md).
+    // The true shapes through the same tracer mislight less ground than the
+    // estimate.
+    const std::vector<std::string> heights = {"4", "16", "32", "64"};
+    std::vector<Pooled> paper_drawn(heights.size()), solids_drawn(heights.size()), shapes_drawn(heights.size());
+    for (std::uint64_t seed = 0; seed < 7; ++seed) {
         Scene s;
         s.width = s.height = 8;
         s.seed = seed == 0 ? "isolux" : "drawn-" + std::to_string(seed);
@@ -197,21 +229,61 @@ TEST(Occluders, solidsMislightLessGroundThanFootprintsAgainst3d) {
         o.repeats = 1;
         o.carry_light = false;
         o.references = {Reference::three_d};
-        const auto points =
-            run_sweep(w, s, {{"occluders", {"footprints", "solids", "shapes"}}, {"light_height", {"16", "32", "64"}}}, o);
-        ASSERT_EQ(points.size(), 9u);
-        for (int h = 0; h < 3; ++h) {
-            const SweepPoint &paper = points[std::size_t(h)], &solids = points[std::size_t(3 + h)],
-                             &shapes = points[std::size_t(6 + h)];
-            const std::string where = "seed " + s.seed + ", light height " + paper.values[1];
+        const auto points = run_sweep(w, s, {{"occluders", {"footprints", "solids", "shapes"}}, {"light_height", heights}}, o);
+        ASSERT_EQ(points.size(), 12u);
+        for (std::size_t h = 0; h < heights.size(); ++h) {
+            const SweepPoint &paper = points[h], &solids = points[4 + h], &shapes = points[8 + h];
+            std::printf("seed %s, light height %s: ground %.1f%% -> %.1f%% (shapes %.1f%%), sprites %.1f%% -> %.1f%% (shapes %.1f%%)\n",
+                        s.seed.c_str(), heights[h].c_str(), 100 * paper.floor.lit_mismatch,
+                        100 * solids.floor.lit_mismatch, 100 * shapes.floor.lit_mismatch,
+                        100 * paper.sprite.lit_mismatch, 100 * solids.sprite.lit_mismatch,
+                        100 * shapes.sprite.lit_mismatch);
             if (seed == 0) {
-                EXPECT_LT(solids.floor.lit_mismatch, paper.floor.lit_mismatch / 2) << where;
-                EXPECT_LT(shapes.floor.lit_mismatch, paper.floor.lit_mismatch / 4) << where;
-                // The sprites too: so the game preset takes solids (below).
-                EXPECT_LT(solids.sprite.lit_mismatch, paper.sprite.lit_mismatch * 0.8) << where;
+                const std::string where = "the default seed, light height " + heights[h];
+                EXPECT_LE(solids.sprite.lit_mismatch, paper.sprite.lit_mismatch / 2) << where;
+                if (h > 0) EXPECT_LE(solids.floor.lit_mismatch, paper.floor.lit_mismatch / 2) << where;
+                EXPECT_LE(shapes.floor.lit_mismatch, solids.floor.lit_mismatch) << where;
+                continue;
             }
-            EXPECT_LE(solids.floor.lit_mismatch, paper.floor.lit_mismatch + 0.01) << where;
-            EXPECT_LE(shapes.floor.lit_mismatch, paper.floor.lit_mismatch) << where;
+            paper_drawn[h].add(paper);
+            solids_drawn[h].add(solids);
+            shapes_drawn[h].add(shapes);
+        }
+    }
+    for (std::size_t h = 0; h < heights.size(); ++h) {
+        const std::string where = "drawn seeds, light height " + heights[h];
+        std::printf("%s: ground %.1f%% -> %.1f%% (shapes %.1f%%), sprites %.1f%% -> %.1f%% (shapes %.1f%%)\n", where.c_str(),
+                    100 * paper_drawn[h].floor(), 100 * solids_drawn[h].floor(), 100 * shapes_drawn[h].floor(),
+                    100 * paper_drawn[h].sprites(), 100 * solids_drawn[h].sprites(), 100 * shapes_drawn[h].sprites());
+        EXPECT_LE(solids_drawn[h].sprites(), paper_drawn[h].sprites() / 2) << where;
+        EXPECT_LE(solids_drawn[h].floor(), paper_drawn[h].floor() / 2) << where;
+        EXPECT_LE(shapes_drawn[h].floor(), solids_drawn[h].floor()) << where;
+    }
+}
+
+// The scenes docs/accuracy.md measures (assets/scenes/default.json and
+// forest.json, their own settings, 8 frames with the camera moving and a
+// light carried, as `isolux-cli sweep` runs them): solids mislight at most
+// half the sprite pixels footprints do at 4, 16, 32 and 64 px, and half the
+// ground from 16 px up; at 4 px less ground than footprints.
+TEST(Occluders, solidsHalveThePapersErrorOnTheAccuracyScenes) {
+    for (const char* name : {"default", "forest"}) {
+        const Scene s = load_scene(std::string(ISOLUX_ASSETS_DIR) + "/scenes/" + name + ".json");
+        const World w = make_world(test::default_tileset(), s);
+        SweepOptions o;
+        o.repeats = 1;
+        o.references = {Reference::three_d};
+        const std::vector<std::string> heights = {"4", "16", "32", "64"};
+        const auto points = run_sweep(w, s, {{"occluders", {"footprints", "solids"}}, {"light_height", heights}}, o);
+        ASSERT_EQ(points.size(), 8u);
+        for (std::size_t h = 0; h < heights.size(); ++h) {
+            const SweepPoint &paper = points[h], &solids = points[4 + h];
+            const std::string where = std::string(name) + ", light height " + heights[h];
+            std::printf("%s: ground %.1f%% -> %.1f%%, sprites %.1f%% -> %.1f%%\n", where.c_str(),
+                        100 * paper.floor.lit_mismatch, 100 * solids.floor.lit_mismatch, 100 * paper.sprite.lit_mismatch,
+                        100 * solids.sprite.lit_mismatch);
+            EXPECT_LE(solids.sprite.lit_mismatch, paper.sprite.lit_mismatch / 2) << where;
+            EXPECT_LE(solids.floor.lit_mismatch, paper.floor.lit_mismatch / (h > 0 ? 2 : 1)) << where;
         }
     }
 }

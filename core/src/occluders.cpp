@@ -47,7 +47,7 @@ constexpr double sqrt2 = 1.4142135623730951;
 // A sprite pixel's own line is not tested over its last steps: its point
 // stands at its own solid's surface, and the ground pixels just before it
 // hold that solid's span at about its height.
-constexpr int own_steps = 3;
+constexpr int own_steps = 2;
 
 // Widens the span at ground pixel i to hold [lo, hi).
 void fill(OccluderMap& m, std::size_t i, double lo, double hi) {
