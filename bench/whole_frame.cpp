@@ -208,7 +208,8 @@ void register_whole_frames() {
     benchmark::RegisterBenchmark("stage/blur_within/radius:2", [](benchmark::State& st) {
         ScreenScene& s = screen("default", 1);
         const Surface surface = build_surface(*s.world, s.frame.traced.rect, s.scene.params.opacity_threshold);
-        const SurfaceIds ids{s.frame.traced.rect, surface.instance};
+        SurfaceIds ids{s.frame.traced.rect, surface.instance, {}};
+        index_surfaces(ids);
         LightTexture out(s.frame.traced.rect, s.frame.traced.channels);
         for (auto _ : st) box_blur_within_into(s.frame.traced, 2, ids, s.frame.traced.rect, out);
     })->Unit(benchmark::kMillisecond);
@@ -307,7 +308,8 @@ void print_floor_ratios() {
     // Beyond the paper: the blur within surfaces (occluders solids or shapes)
     // over the plain blur, the same texture, the surfaces the view shows.
     const Surface surface = build_surface(*one.world, traced.rect, one.scene.params.opacity_threshold);
-    const SurfaceIds ids{traced.rect, surface.instance};
+    SurfaceIds ids{traced.rect, surface.instance, {}};
+    index_surfaces(ids);
     print_ratio("blur_within_cost",
                 interleaved([&] { box_blur_within_into(traced, 2, ids, traced.rect, blurred); }, 2,
                             [&] { box_blur_into(traced, 2, traced.rect, blurred); }, 5, pairs),

@@ -7,8 +7,9 @@
 // Uniforms:
 //   sampler2D u_source   texture unit 0: the light texture (pass 1) or the
 //                        horizontal sums (pass 2)
-//   isampler2D u_surface texture unit 1: which surface each texel shows
-//                        (read only with u_within_surfaces)
+//   isampler2D u_surface texture unit 1: which surface each pixel shows
+//                        (read only with u_within_surfaces); -1 outside it
+//   ivec2 u_surface_origin where u_surface's texel (0, 0) lies, in light texels
 //   int u_radius         r, the blur radius in texels
 //   ivec2 u_direction    (1, 0) for the horizontal pass, (0, 1) for the vertical
 //   int u_final_pass     0: write the horizontal sums in 0..255 units (and,
@@ -27,7 +28,14 @@ uniform ivec2 u_direction;
 uniform int u_final_pass;
 uniform float u_input_scale;
 uniform int u_within_surfaces;
+uniform ivec2 u_surface_origin;
 out vec4 o_color;
+
+int surface_at(ivec2 q) {
+    ivec2 s = q - u_surface_origin;
+    if (any(lessThan(s, ivec2(0))) || any(greaterThanEqual(s, textureSize(u_surface, 0)))) return -1;
+    return texelFetch(u_surface, s, 0).r;
+}
 
 // A texel's sums and count: a light texel counts once, a pass-1 sum its count.
 vec4 summand(ivec2 q) {
@@ -40,16 +48,16 @@ void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec4 sum = vec4(0.0);
     if (u_within_surfaces == 1) {
-        int own = texelFetch(u_surface, p, 0).r;
+        int own = surface_at(p);
         sum = summand(p);
         for (int i = 1; i <= u_radius; ++i) {
             ivec2 q = p - u_direction * i;
-            if (any(lessThan(q, ivec2(0))) || texelFetch(u_surface, q, 0).r != own) break;
+            if (any(lessThan(q, ivec2(0))) || surface_at(q) != own) break;
             sum += summand(q);
         }
         for (int i = 1; i <= u_radius; ++i) {
             ivec2 q = p + u_direction * i;
-            if (any(greaterThanEqual(q, size)) || texelFetch(u_surface, q, 0).r != own) break;
+            if (any(greaterThanEqual(q, size)) || surface_at(q) != own) break;
             sum += summand(q);
         }
     } else {

@@ -270,7 +270,8 @@ TEST(BlurWithinSurfaces, TheFrameBlursWithinTheSurfacesWithSolidsOnly) {
             EXPECT_EQ(st.cache.blurred.texels, box_blur(st.traced, 2).texels);
             continue;
         }
-        ASSERT_EQ(st.surface_ids.rect, st.traced.rect);
+        ASSERT_EQ(st.surface_ids.rect, st.occluders.surface.rect);
+        ASSERT_EQ(st.surface_ids.reach.size(), st.surface_ids.id.size());
         const long sprites = std::count_if(st.surface_ids.id.begin(), st.surface_ids.id.end(), [](std::int32_t i) { return i >= 0; });
         EXPECT_GT(sprites, 1000);
         EXPECT_EQ(st.cache.blurred.texels, box_blur_within(st.traced, 2, st.surface_ids).texels);
@@ -279,5 +280,33 @@ TEST(BlurWithinSurfaces, TheFrameBlursWithinTheSurfacesWithSolidsOnly) {
         s.lights[0].x += 9;
         render_frame(st, w, s, Camera{100, 60, 700, 420}, 1);
         EXPECT_EQ(st.cache.blurred.texels, box_blur_within(st.traced, 2, st.surface_ids).texels);
+    }
+}
+
+TEST(BlurWithinSurfaces, ReachIsTheChebyshevDistanceToAnotherSurface) {
+    // Every pixel's reach against a brute-force search, the outside counting
+    // as the ground; and the blur gives the same bytes with ids over any
+    // rectangle, indexed or not.
+    for (std::uint64_t seed : {1, 2, 3}) {
+        SurfaceIds ids = random_surfaces(Rect{-4, 7, 37, 23}, seed);
+        index_surfaces(ids);
+        const Rect r = ids.rect;
+        for (int y = r.y; y < r.y + r.h; ++y)
+            for (int x = r.x; x < r.x + r.w; ++x) {
+                int best = 255;
+                for (int d = 1; d < 255 && best == 255; ++d)
+                    for (int dy = -d; dy <= d && best == 255; ++dy)
+                        for (int dx = -d; dx <= d; ++dx)
+                            if ((std::abs(dx) == d || std::abs(dy) == d) && ids.at(x + dx, y + dy) != ids.at(x, y)) {
+                                best = d;
+                                break;
+                            }
+                ASSERT_EQ(int(ids.reach[std::size_t(y - r.y) * r.w + (x - r.x)]), best) << x << ", " << y;
+            }
+        const LightTexture t = random_texture(Rect{-10, 0, 50, 40}, seed);
+        SurfaceIds bare{ids.rect, ids.id, {}};
+        for (int radius : {1, 2, 4, 7, 8})
+            for (const SurfaceIds* s : {&ids, &bare})
+                EXPECT_EQ(box_blur_within(t, radius, *s).texels, box_blur_within_reference(t, radius, *s).texels) << radius;
     }
 }

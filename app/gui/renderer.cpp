@@ -119,6 +119,7 @@ void blur_and_composite(Renderer& r, Rect view, const Params& p, const Composite
         uniform_i(r.blur.id, "u_radius", p.blur_radius);
         uniform_i(r.blur.id, "u_surface", 1);
         uniform_i(r.blur.id, "u_within_surfaces", r.surface_revision != 0 && blur_within_surfaces(p) ? 1 : 0);
+        uniform_2i(r.blur.id, "u_surface_origin", r.surface_rect.x - r.light_rect.x, r.surface_rect.y - r.light_rect.y);
         glActiveTexture(GL_TEXTURE1);
         glBindTexture(GL_TEXTURE_2D, r.surface_tex);
         glActiveTexture(GL_TEXTURE0);
@@ -357,6 +358,7 @@ void renderer_upload_surface_ids(Renderer& r, const SurfaceIds& ids, std::uint64
     r.surface_revision = revision;
     r.light_dirty = true;  // blurred within other surfaces, or none
     if (!revision) return;
+    r.surface_rect = ids.rect;
     glBindTexture(GL_TEXTURE_2D, r.surface_tex);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R32I, std::max(1, ids.rect.w), std::max(1, ids.rect.h), 0, GL_RED_INTEGER, GL_INT,

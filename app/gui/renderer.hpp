@@ -61,9 +61,10 @@ struct Renderer {
     Params blur_params;  // what `blurred` was made with
     bool light_dirty = true;
     // With the blur within surfaces (isolux::blur_within_surfaces): which
-    // surface each texel of the light texture shows (R32I, light_rect), and
+    // surface each pixel of surface_rect shows (R32I, world pixels), and
     // the FrameState::surface_ids_revision it holds; 0: the plain blur.
     GLuint surface_tex = 0;
+    Rect surface_rect;
     std::uint64_t surface_revision = 0;
 
     // What the last renderer_draw ran: a pass is skipped when its inputs did
@@ -100,9 +101,9 @@ void renderer_set_world(Renderer& r, const World& world);
 // rectangle is unchanged. Returns the upload's CPU time in ms.
 double renderer_upload_light(Renderer& r, const LightTexture& tex, Rect dirty);
 void renderer_upload_flat_light(Renderer& r, const LightTexture& tex);
-// Uploads which surface each light texel shows (FrameState::surface_ids, over
-// the light texture's rectangle) when `revision` is new; empty ids (revision
-// 0): the plain blur. The blur runs again when they change.
+// Uploads which surface each pixel shows (FrameState::surface_ids, over the
+// occluders' region) when `revision` is new; empty ids (revision 0): the
+// plain blur. The blur runs again when they change.
 void renderer_upload_surface_ids(Renderer& r, const SurfaceIds& ids, std::uint64_t revision);
 // Uploads an RGBA overlay (premultiplied) covering `rect` in world pixels.
 void renderer_upload_overlay(Renderer& r, const Image& overlay, Rect rect);

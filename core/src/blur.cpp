@@ -471,13 +471,81 @@ LightTexture box_blur_reference(const LightTexture& tex, int radius) {
 
 namespace {
 
-// box_blur_within_into's work over z (inside the texture), with `id` the
-// surfaces over the texture's own rectangle: per row, prefix sums cut into
+// box_blur_within_into's work over z (inside the texture) for radii the
+// plain blur fuses. Where a texel's whole window lies inside the texture and
+// on its own surface (its reach exceeds r), the rule is the plain box
+// blur's, whose clamping never applies there: so the plain blur first, at
+// its speed, then each texel whose window meets another surface or the
+// edge summed as the rule says, walking its column and then each row.
+template <int C>
+void blur_within_region(const LightTexture& tex, int r, const SurfaceIds& ids, Rect z, LightTexture& out) {
+    box_blur_into(tex, r, z, out);
+    const Rect t = tex.rect, s = ids.rect;
+    const int w = t.w;
+    // The columns whose windows lie inside the texture.
+    const int inside_x0 = t.x + r, inside_x1 = t.x + t.w - r;
+    for (int y = z.y; y < z.y + z.h; ++y) {
+        const bool rows_inside = y - r >= t.y && y + r < t.y + t.h;
+        const bool on_surfaces = y >= s.y && y < s.y + s.h;
+        const std::uint8_t* reach = on_surfaces ? &ids.reach[std::size_t(y - s.y) * s.w] - s.x : nullptr;
+        for (int x = z.x; x < z.x + z.w; ++x) {
+            if (rows_inside && x >= inside_x0 && x < inside_x1) {
+                // Inside the texture: plain where the surface reaches past r.
+                if (on_surfaces && x >= s.x && x < s.x + s.w) {
+                    if (reach[x] > r) continue;
+                } else if (intersect(Rect{x - r, y - r, 2 * r + 1, 2 * r + 1}, s).empty()) {
+                    continue;  // the ground all round, outside the surfaces' rectangle
+                }
+            }
+            const std::int32_t surface = ids.at(x, y);
+            std::uint32_t sum[C] = {};
+            std::uint32_t n = 0;
+            if (rows_inside && x - r >= t.x && x + r < t.x + t.w && x - r >= s.x && x + r < s.x + s.w && y - r >= s.y &&
+                y + r < s.y + s.h) {
+                // The window inside the texture and the surfaces: straight reads.
+                const std::int32_t* id0 = &ids.id[std::size_t(y - s.y) * s.w + std::size_t(x - s.x)];
+                const std::uint8_t* v0 = &tex.texels[(std::size_t(y - t.y) * w + std::size_t(x - t.x)) * C];
+                auto add_row = [&](int dy) {
+                    const std::int32_t* row = id0 + std::ptrdiff_t(dy) * s.w;
+                    const std::uint8_t* v = v0 + std::ptrdiff_t(dy) * w * C;
+                    int lo = 0, hi = 0;
+                    while (lo > -r && row[lo - 1] == surface) --lo;
+                    while (hi < r && row[hi + 1] == surface) ++hi;
+                    for (int i = lo; i <= hi; ++i)
+                        for (int k = 0; k < C; ++k) sum[k] += v[std::ptrdiff_t(i) * C + k];
+                    n += std::uint32_t(hi - lo + 1);
+                };
+                add_row(0);
+                for (int k = 1; k <= r && id0[-std::ptrdiff_t(k) * s.w] == surface; ++k) add_row(-k);
+                for (int k = 1; k <= r && id0[std::ptrdiff_t(k) * s.w] == surface; ++k) add_row(k);
+                std::uint8_t* o = &out.texels[(std::size_t(y - t.y) * w + std::size_t(x - t.x)) * C];
+                for (int k = 0; k < C; ++k) o[k] = std::uint8_t((sum[k] + n / 2) / n);
+                continue;
+            }
+            auto add_row = [&](int yy) {
+                const std::uint8_t* v = &tex.texels[std::size_t(yy - t.y) * w * C];
+                int lo = x, hi = x;
+                while (lo > t.x && x - lo < r && ids.at(lo - 1, yy) == surface) --lo;
+                while (hi + 1 < t.x + w && hi - x < r && ids.at(hi + 1, yy) == surface) ++hi;
+                for (int xx = lo; xx <= hi; ++xx)
+                    for (int k = 0; k < C; ++k) sum[k] += v[std::size_t(xx - t.x) * C + k];
+                n += std::uint32_t(hi - lo + 1);
+            };
+            add_row(y);
+            for (int k = 1; k <= r && y - k >= t.y && ids.at(x, y - k) == surface; ++k) add_row(y - k);
+            for (int k = 1; k <= r && y + k < t.y + t.h && ids.at(x, y + k) == surface; ++k) add_row(y + k);
+            std::uint8_t* o = &out.texels[(std::size_t(y - t.y) * w + std::size_t(x - t.x)) * C];
+            for (int k = 0; k < C; ++k) o[k] = std::uint8_t((sum[k] + n / 2) / n);
+        }
+    }
+}
+
+// The same for any radius, O(radius) per texel: per row, prefix sums cut into
 // runs of one surface give each texel's row sum and count in O(1); then per
 // output row, the rows above and below are added while every texel's column
 // stays on its surface (flags, r rows each way: O(r) per texel, branch-free).
 template <int C>
-void blur_within_region(const LightTexture& tex, int radius, const std::int32_t* id, Rect z, LightTexture& out) {
+void blur_within_separable(const LightTexture& tex, int radius, const std::int32_t* id, Rect z, LightTexture& out) {
     const Rect t = tex.rect;
     const int w = t.w;
     const int y0 = std::max(t.y, z.y - radius), y1 = std::min(t.y + t.h, z.y + z.h + radius);
@@ -538,23 +606,67 @@ void blur_within_region(const LightTexture& tex, int radius, const std::int32_t*
 
 }  // namespace
 
+void index_surfaces(SurfaceIds& ids) {
+    const Rect s = ids.rect;
+    const int w = std::max(0, s.w), h = std::max(0, s.h);
+    ids.reach.assign(std::size_t(w) * h, 255);
+    auto id = [&](int x, int y) { return x < 0 || y < 0 || x >= w || y >= h ? -1 : ids.id[std::size_t(y) * w + x]; };
+    // A pixel with a neighbour of another surface reaches 1; the rest one
+    // more than their nearest neighbour of the same surface (a Chebyshev
+    // distance transform: a forward and a backward pass over 8-neighbours).
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::int32_t own = id(x, y);
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                    if (id(x + dx, y + dy) != own) ids.reach[std::size_t(y) * w + x] = 1;
+        }
+    auto relax = [&](int x, int y, int dx, int dy) {
+        if (x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h) return;
+        std::uint8_t& d = ids.reach[std::size_t(y) * w + x];
+        const std::uint8_t n = ids.reach[std::size_t(y + dy) * w + (x + dx)];
+        if (n < 255 && n + 1 < d) d = std::uint8_t(n + 1);
+    };
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            relax(x, y, -1, -1), relax(x, y, 0, -1), relax(x, y, 1, -1), relax(x, y, -1, 0);
+    for (int y = h - 1; y >= 0; --y)
+        for (int x = w - 1; x >= 0; --x)
+            relax(x, y, 1, 1), relax(x, y, 0, 1), relax(x, y, -1, 1), relax(x, y, 1, 0);
+}
+
 void box_blur_within_into(const LightTexture& tex, int radius, const SurfaceIds& ids, Rect region, LightTexture& out) {
     assert(radius >= 0 && valid(tex));
+    assert(ids.id.size() == std::size_t(std::max(0, ids.rect.w)) * std::max(0, ids.rect.h));
     if (!(out.rect == tex.rect) || out.channels != tex.channels || !valid(out)) out = LightTexture(tex.rect, tex.channels);
     const Rect z = intersect(region, tex.rect);
     if (z.empty()) return;
-    // Surfaces over the texture's rectangle (the frame's are: no copy).
-    std::vector<std::int32_t> own;
-    const std::int32_t* id = ids.id.data();
-    if (!(ids.rect == tex.rect) || ids.id.size() != std::size_t(tex.rect.w) * tex.rect.h) {
-        own.resize(std::size_t(tex.rect.w) * tex.rect.h);
-        for (int y = 0; y < tex.rect.h; ++y)
-            for (int x = 0; x < tex.rect.w; ++x) own[std::size_t(y) * tex.rect.w + x] = ids.at(tex.rect.x + x, tex.rect.y + y);
-        id = own.data();
-    }
     // A radius past the texture reaches no further than its size.
     const int r = std::min(radius, std::max(tex.rect.w, tex.rect.h));
-    tex.channels == 1 ? blur_within_region<1>(tex, r, id, z, out) : blur_within_region<3>(tex, r, id, z, out);
+    if (r <= max_fused_radius) {
+        const SurfaceIds* indexed = &ids;
+        SurfaceIds own;
+        if (ids.reach.size() != ids.id.size()) {  // not indexed yet
+            own.rect = ids.rect;
+            own.id = ids.id;
+            index_surfaces(own);
+            indexed = &own;
+        }
+        tex.channels == 1 ? blur_within_region<1>(tex, r, *indexed, z, out) : blur_within_region<3>(tex, r, *indexed, z, out);
+        return;
+    }
+    // Past the plain blur's fused radii a window off its surface costs r^2:
+    // the separable sums instead, over surfaces on the texture's rectangle.
+    std::vector<std::int32_t> on_texture;
+    const std::int32_t* id = ids.id.data();
+    if (!(ids.rect == tex.rect)) {
+        on_texture.resize(std::size_t(tex.rect.w) * tex.rect.h);
+        for (int y = 0; y < tex.rect.h; ++y)
+            for (int x = 0; x < tex.rect.w; ++x)
+                on_texture[std::size_t(y) * tex.rect.w + x] = ids.at(tex.rect.x + x, tex.rect.y + y);
+        id = on_texture.data();
+    }
+    tex.channels == 1 ? blur_within_separable<1>(tex, r, id, z, out) : blur_within_separable<3>(tex, r, id, z, out);
 }
 
 LightTexture box_blur_within(const LightTexture& tex, int radius, const SurfaceIds& ids) {

@@ -653,22 +653,19 @@ bool redo_only_dirty(bool fresh, const TraceDecision& trace, const std::vector<R
     return part < whole;
 }
 
-// Beyond the paper: which surface each texel of the traced texture shows,
-// for the blur within surfaces; kept while the texture and the occluders are.
+// Beyond the paper: which surface each pixel of the occluder map's region
+// shows, for the blur within surfaces; remade only with the occluders (a
+// moving camera keeps them, as it keeps the region).
 void surface_ids_step(FrameState& st, const Params& p) {
     if (!blur_within_surfaces(p)) {
         st.surface_ids = SurfaceIds{};
+        st.surface_ids_revision = 0;
         return;
     }
-    const Rect r = st.traced.rect;
-    if (st.surface_ids.rect == r && st.surface_ids_revision == st.obstacles_revision) return;
-    const Surface& s = st.occluders.surface;
-    st.surface_ids.rect = r;
-    st.surface_ids.id.assign(std::size_t(std::max(0, r.w)) * std::max(0, r.h), -1);
-    const Rect both = intersect(r, s.rect);
-    for (int y = both.y; y < both.y + both.h; ++y)
-        std::copy_n(&s.instance[std::size_t(y - s.rect.y) * s.rect.w + std::size_t(both.x - s.rect.x)], both.w,
-                    &st.surface_ids.id[std::size_t(y - r.y) * r.w + std::size_t(both.x - r.x)]);
+    if (st.surface_ids_revision == st.obstacles_revision && !st.surface_ids.id.empty()) return;
+    st.surface_ids.rect = st.occluders.surface.rect;
+    st.surface_ids.id = st.occluders.surface.instance;
+    index_surfaces(st.surface_ids);
     st.surface_ids_revision = st.obstacles_revision;
 }
 

@@ -32,10 +32,18 @@ LightTexture box_blur_reference(const LightTexture& tex, int radius);
 struct SurfaceIds {
     Rect rect;
     std::vector<std::int32_t> id;  // rect.w * rect.h, row by row
+    // Per pixel, how far its surface reaches around it: the Chebyshev
+    // distance to the nearest pixel of another surface (outside `rect`
+    // counting as the ground), capped at 255; index_surfaces fills it. A
+    // texel whose distance exceeds the blur's radius blurs as box_blur does.
+    std::vector<std::uint8_t> reach;
     std::int32_t at(int wx, int wy) const {
         return rect.contains(wx, wy) ? id[std::size_t(wy - rect.y) * rect.w + std::size_t(wx - rect.x)] : -1;
     }
 };
+
+// Fills `ids.reach` from `ids.id` (two passes, O(1) per pixel).
+void index_surfaces(SurfaceIds& ids);
 
 // Each texel becomes the mean, rounded to nearest, of the texels reached from
 // it by up to `radius` steps along its column and then up to `radius` along
@@ -43,8 +51,10 @@ struct SurfaceIds {
 // texture's edge (no clamping: a texel outside counts for nothing). So light
 // on the ground never bleeds onto a sprite in front of it, nor one sprite's
 // onto another's. Written into `out` for the texels of `region` only, as
-// box_blur_into. O(radius) per texel. shaders/blur.frag mirrors it
-// (u_within_surfaces).
+// box_blur_into. `ids` may cover any rectangle; with `reach` filled
+// (index_surfaces) a texel far from other surfaces costs what box_blur's do,
+// one near them O(radius^2) up to radius 7, O(radius) past it.
+// shaders/blur.frag mirrors it (u_within_surfaces).
 void box_blur_within_into(const LightTexture& tex, int radius, const SurfaceIds& ids, Rect region, LightTexture& out);
 LightTexture box_blur_within(const LightTexture& tex, int radius, const SurfaceIds& ids);
 

@@ -166,8 +166,9 @@ struct FrameState {
     std::vector<Mask> opacity;   // each tileset sprite's opacity map, by sprite index
     ObstacleHeights obstacle_heights;  // with rays_over_obstacles: the obstacles' estimated heights
     OccluderMap occluders;             // with occluders solids or shapes: spans and surface heights
-    // With blur_within_surfaces: which surface each texel of `traced` shows,
-    // what the blur stays within, and a new value whenever it changes.
+    // With blur_within_surfaces: which surface each pixel of the occluders'
+    // region shows (world pixels, as `occluders`), what the blur stays
+    // within, and a new value whenever it changes (0: none).
     SurfaceIds surface_ids;
     std::uint64_t surface_ids_revision = 0;
     LightTexture traced;         // the last trace: corrected light texture, world-anchored
