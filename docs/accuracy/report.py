@@ -166,6 +166,15 @@ for scene in SCENES:
             f"{pct(f['sprite_lit_mismatch'])} | {pct(so['sprite_lit_mismatch'])} | {pct(sh['sprite_lit_mismatch'])} | "
             f"{f3(f['ms_app_cpu'])} | {f3(so['ms_app_cpu'])} | {f3(sh['ms_app_cpu'])} |")
     out("")
+    # Where solids mislight at most half what footprints do (the target), and where not.
+    met, missed = [], []
+    for h in ["4", "16", "32", "64"]:
+        f, so = (one(rs, light_height=h, occluders=o) for o in ("footprints", "solids"))
+        for part, key in (("ground", "floor_lit_mismatch"), ("sprites", "sprite_lit_mismatch")):
+            (met if float(so[key]) <= float(f[key]) / 2 else missed).append(
+                f"{part} at {h} px" + ("" if float(so[key]) <= float(f[key]) / 2 else f" ({pct(so[key])} against {pct(f[key])})"))
+    out(f"At most half the paper's error with `solids`: {len(met)} of 8 ({', '.join(met) if met else 'none'})."
+        + (f" Not yet: {', '.join(missed)}." if missed else ""), "")
 
 out("## Beyond the paper: rays over low obstacles", "",
     "`rays_over_obstacles` (off by default): each obstacle pixel carries the estimated height of its sprite (its",
