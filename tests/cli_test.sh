@@ -195,5 +195,19 @@ check threads_two 0 "" -- render --size 8x8 --view 100,50,400,300 --light 200,15
 if cmp -s "$tmp/s1.png" "$tmp/s2.png"; then pass=$((pass + 1)); else echo "FAIL threads_same_pixels"; fail=$((fail + 1)); fi
 check threads_range 2 "threads" -- render --size 3x3 --threads 999 --out "$tmp/x.png"
 
+# Endless worlds: a view far out renders at its size; the same place from a
+# scene file with "endless" sides and a camera gives the same pixels; an
+# endless scene is refused where a map with an edge is needed.
+check endless_far 0 "" -- render --size endless --view 64000000000,32000000000,400,300 --light 64000000200,32000000150 \
+  --preset game --out "$tmp/e1.png"
+if grep -q "(400x300," "$tmp/out"; then pass=$((pass + 1)); else echo "FAIL endless_far_size"; cat "$tmp/out"; fail=$((fail + 1)); fi
+cat > "$tmp/endless.json" <<'JSON'
+{"schema_version": 1, "width": "endless", "height": "endless", "preset": "game",
+ "lights": [{"x": 64000000200, "y": 32000000150}], "camera": {"x": 64000000000, "y": 32000000000, "width": 400, "height": 300}}
+JSON
+check endless_scene 0 "" -- render --scene "$tmp/endless.json" --out "$tmp/e2.png"
+if cmp -s "$tmp/e1.png" "$tmp/e2.png"; then pass=$((pass + 1)); else echo "FAIL endless_scene_same_pixels"; fail=$((fail + 1)); fi
+check endless_export_refused 2 "endless world" -- export-tiled --scene "$tmp/endless.json" --out "$tmp/endless_export/level.tmx"
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -112,7 +112,7 @@ bool parse_ints(const std::string& s, char sep, std::vector<long long>& out) {
     while (true) {
         std::size_t end = s.find(sep, pos);
         std::string part = s.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
-        if (part.empty() || part.size() > 12) return false;
+        if (part.empty() || part.size() > 20) return false;
         std::size_t used = 0;
         try {
             out.push_back(std::stoll(part, &used));
@@ -165,8 +165,8 @@ Light parse_light(const std::string& text) {
         l.height = p.light_height;
     }
     std::vector<double> xy;
-    if (!parse_reals(parts[0] + "," + parts[1], xy) || std::abs(xy[0]) > 1e9 || std::abs(xy[1]) > 1e9)
-        throw Error(where + ": X and Y must be numbers within ±1e9");
+    if (!parse_reals(parts[0] + "," + parts[1], xy) || std::abs(xy[0]) > 1e15 || std::abs(xy[1]) > 1e15)
+        throw Error(where + ": X and Y must be numbers within ±1e15 (an endless world's pixels reach that far)");
     l.x = xy[0];
     l.y = xy[1];
     if (parts.size() >= 4) {
@@ -190,10 +190,12 @@ Scene scene_from_args(const RenderArgs& a) {
         for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << printable(w) << "\n";
     }
     if (!a.seed.empty()) s.seed = a.seed;
-    if (!a.size.empty()) {
+    if (a.size == "endless") {
+        s.endless = true;
+    } else if (!a.size.empty()) {
         std::vector<long long> v;
         if (!parse_ints(a.size, 'x', v) || v.size() != 2)
-            throw Error("--size \"" + a.size + "\": expected WxH, e.g. 16x16");
+            throw Error("--size \"" + a.size + "\": expected WxH, e.g. 16x16, or endless");
         if (v[0] < 1 || v[1] < 1 || v[0] > max_map_side || v[1] > max_map_side)
             throw Error("--size " + a.size + ": each side must be in [1, " + std::to_string(max_map_side) + "] tiles");
         s.width = int(v[0]);
@@ -204,6 +206,22 @@ Scene scene_from_args(const RenderArgs& a) {
     s.params = params_from_args(a.params, s.params);
     for (const std::string& text : a.lights) s.lights.push_back(parse_light(text));
     return s;
+}
+
+// An endless world's view, in its 64-bit pixels: --view, else the scene's
+// camera with a size.
+WorldRect endless_view_from_args(const RenderArgs& a, const Scene& s) {
+    if (a.view.empty()) {
+        if (s.camera.width < 1 || s.camera.height < 1)
+            throw Error("an endless world has no whole picture: give --view X,Y,W,H (or a scene camera with a size)");
+        return WorldRect{std::int64_t(std::floor(s.camera.x)), std::int64_t(std::floor(s.camera.y)), s.camera.width,
+                         s.camera.height};
+    }
+    std::vector<long long> v;
+    if (!parse_ints(a.view, ',', v) || v.size() != 4 || v[2] < 1 || v[3] < 1 || v[2] > max_image_side ||
+        v[3] > max_image_side)
+        throw Error("--view \"" + a.view + "\": expected X,Y,W,H with W and H in [1, " + std::to_string(max_image_side) + "]");
+    return WorldRect{v[0], v[1], int(v[2]), int(v[3])};
 }
 
 Rect view_from_args(const RenderArgs& a, const Scene& s, const World& w) {
@@ -369,9 +387,19 @@ int run_render(const RenderArgs& a) {
         std::tie(s, w) = tiled_from_args(a);
     } else {
         s = scene_from_args(a);
-        w = build_world(s, a.scene.empty() ? "scene" : a.scene);
+        if (!s.endless) w = build_world(s, a.scene.empty() ? "scene" : a.scene);
     }
-    Rect view = view_from_args(a, s, w);
+    Rect view;
+    if (s.endless) {
+        // No edge: the window of chunks around the view, the scene moved into it.
+        const WorldRect v = endless_view_from_args(a, s);
+        EndlessWindow win = build_endless_window(s, v, a.scene.empty() ? "--size endless" : a.scene);
+        s = scene_in_window(s, win, v);
+        view = rect_in_window(win, v);
+        w = std::move(win.world);
+    } else {
+        view = view_from_args(a, s, w);
+    }
     // Every frame's trace and pixels, and the reference's own work where one is drawn.
     const bool reference_drawn = a.layer == "truth" || a.layer == "difference";
     check_work(render_work(s, view, a.frames) +
@@ -541,7 +569,7 @@ int isolux_cli_main(int argc, char** argv) {
     RenderArgs ra;
     CLI::App* render = app.add_subcommand("render", "Render a seeded map (or a scene) to an image");
     render->add_option("--seed", ra.seed, "Map seed text (default \"isolux\")");
-    render->add_option("--size", ra.size, "Map size in tiles, WxH (default 16x16)");
+    render->add_option("--size", ra.size, "Map size in tiles, WxH (default 16x16), or endless (needs --view or a scene camera with a size)");
     render->add_option("--layout", ra.layout, "paper, diamond or staggered (default diamond)");
     render->add_option("--tileset", ra.tileset, "Tileset manifest (default: assets/default/tileset.json)");
     render->add_option("--scene", ra.scene, "Scene JSON file; other flags override its fields");

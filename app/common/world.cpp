@@ -9,6 +9,26 @@
 
 namespace isolux::app {
 
+namespace {
+
+Tileset scene_tileset(const Scene& scene) {
+    std::filesystem::path manifest = scene.tileset;
+    if (manifest.empty()) {
+        manifest = default_tileset_manifest();
+        if (manifest.empty())
+            throw Error("default tileset not found: set ISOLUX_ASSETS to the assets/ folder or pass --tileset");
+    }
+    return load_tileset(manifest);
+}
+
+}  // namespace
+
+EndlessWindow build_endless_window(const Scene& scene, WorldRect view, std::string_view source) {
+    Tileset tileset = scene_tileset(scene);
+    const ChunkRange chunks = endless_chunks(tileset, scene.layout, view, endless_reach(scene, tileset), source);
+    return make_endless_window(std::move(tileset), scene, chunks, source);
+}
+
 World build_world(const Scene& scene, std::string_view source, std::vector<std::string>* warnings) {
     if (!scene.map.empty()) {
         // A Tiled map: its own tileset and sprites (tiled.hpp).
@@ -19,14 +39,8 @@ World build_world(const Scene& scene, std::string_view source, std::vector<std::
         }
         return std::move(t.world);
     }
-    std::filesystem::path manifest = scene.tileset;
-    if (manifest.empty()) {
-        manifest = default_tileset_manifest();
-        if (manifest.empty())
-            throw Error("default tileset not found: set ISOLUX_ASSETS to the assets/ folder or pass --tileset");
-    }
     std::vector<std::string> own;
-    World w = make_world(load_tileset(manifest), scene, source, warnings ? warnings : &own);
+    World w = make_world(scene_tileset(scene), scene, source, warnings ? warnings : &own);
     for (const std::string& line : own) std::cerr << "isolux: warning: " << printable(line) << "\n";
     return w;
 }

@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "isolux/endless.hpp"
 #include "isolux/scene.hpp"
 #include "isolux/world.hpp"
 
@@ -14,5 +15,10 @@ namespace isolux::app {
 // file) and the entry for a bad edit. Warnings (edits outside the map) are
 // printed to stderr when `warnings` is null.
 World build_world(const Scene& scene, std::string_view source = "scene", std::vector<std::string>* warnings = nullptr);
+
+// An endless scene's window around `view` (endless pixels): the chunks its
+// lights need, generated (endless.hpp). Errors as build_world's, and one
+// naming `source` for a view beyond the world's reach.
+EndlessWindow build_endless_window(const Scene& scene, WorldRect view, std::string_view source = "scene");
 
 }  // namespace isolux::app

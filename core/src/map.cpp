@@ -68,11 +68,11 @@ namespace {
 
 enum class Biome { water, sand, meadow, forest, dirt, stone };
 
-Biome biome_at(std::uint64_t seed, int col, int row) {
+Biome biome_at(std::uint64_t seed, std::int64_t col, std::int64_t row) {
     // Two independent noise fields, sampled per tile so a tile's content does
     // not depend on the map's size: a larger map extends a smaller one.
-    double e = fractal_noise(mix64(seed ^ 0x656C6576ull), col / 9.0, row / 9.0, 4);
-    double m = fractal_noise(mix64(seed ^ 0x6D6F6973ull), col / 7.0, row / 7.0, 3);
+    double e = fractal_noise(mix64(seed ^ 0x656C6576ull), double(col) / 9.0, double(row) / 9.0, 4);
+    double m = fractal_noise(mix64(seed ^ 0x6D6F6973ull), double(col) / 7.0, double(row) / 7.0, 3);
     if (e < 0.33) return Biome::water;
     if (e < 0.39) return Biome::sand;
     if (e > 0.70) return Biome::stone;
@@ -95,7 +95,8 @@ void add_overlay(Tile& t, int sprite, const Map& m, Pcg32& rng) {
 
 }  // namespace
 
-Map generate_map(std::string_view seed, int width, int height, Layout layout, const Tileset& ts) {
+Map generate_map(std::string_view seed, int width, int height, Layout layout, const Tileset& ts, std::int64_t col0,
+                 std::int64_t row0) {
     if (width < 1 || height < 1 || width > max_map_side || height > max_map_side)
         throw Error("map size " + std::to_string(width) + "x" + std::to_string(height) +
                     " is out of range: each side must be in [1, " + std::to_string(max_map_side) +
@@ -112,10 +113,11 @@ Map generate_map(std::string_view seed, int width, int height, Layout layout, co
     for (int row = 0; row < height; ++row) {
         for (int col = 0; col < width; ++col) {
             Tile& t = m.tiles[std::size_t(row) * width + col];
-            Pcg32 rng(hash_point(s, col, row, 0x74696C65ull));
+            const std::int64_t gc = col0 + col, gr = row0 + row;  // the tile's own coordinates: its content
+            Pcg32 rng(hash_point(s, gc, gr, 0x74696C65ull));
             auto chance = [&](int percent) { return int(rng.below(100)) < percent; };
             const SpriteKind F = SpriteKind::floor, O = SpriteKind::overlay;
-            switch (biome_at(s, col, row)) {
+            switch (biome_at(s, gc, gr)) {
                 case Biome::water:
                     t.floor = pick(ts, F, "water", rng);
                     break;

@@ -141,8 +141,17 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
         warnings);
     Scene s;
     if (f.has("seed")) s.seed = f.text("seed");
-    if (f.has("width")) s.width = int(f.integer("width", 1, max_map_side));
-    if (f.has("height")) s.height = int(f.integer("height", 1, max_map_side));
+    // A side is a number of tiles, or "endless" (both sides or neither).
+    auto endless_side = [&](const char* k) { return f.has(k) && j[k].is_string(); };
+    if (endless_side("width") || endless_side("height")) {
+        for (const char* k : {"width", "height"})
+            if (!endless_side(k) || j[k].get<std::string>() != "endless")
+                f.fail(k, "must be \"endless\" on both sides, or a number of tiles on both (an endless world has no edge in either direction)");
+        s.endless = true;
+    } else {
+        if (f.has("width")) s.width = int(f.integer("width", 1, max_map_side));
+        if (f.has("height")) s.height = int(f.integer("height", 1, max_map_side));
+    }
     if (f.has("layout")) s.layout = parse_layout(f.text("layout"), src + ": layout");
     if (f.has("tileset")) s.tileset = f.text("tileset");
     if (f.has("map")) s.map = f.text("map");
@@ -170,7 +179,7 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
             if (!lf.has("x") || !lf.has("y")) lf.fail("x, y", "are required");
             l.x = lf.real("x");
             l.y = lf.real("y");
-            if (std::abs(l.x) > 1e9 || std::abs(l.y) > 1e9) lf.fail("x, y", "must be within ±1e9 pixels");
+            if (std::abs(l.x) > 1e15 || std::abs(l.y) > 1e15) lf.fail("x, y", "must be within ±1e15 pixels");
             if (lf.has("a")) l.area_a = int(lf.integer("a", 0, max_area));
             if (lf.has("b")) l.area_b = int(lf.integer("b", 0, max_area));
             if (lf.has("color") && !parse_hex_color(lf.text("color"), l.r, l.g, l.b))
@@ -219,8 +228,8 @@ std::string scene_to_json(const Scene& s) {
     }
     json j{{"schema_version", scene_schema_version},
            {"seed", s.seed},
-           {"width", s.width},
-           {"height", s.height},
+           {"width", s.endless ? json("endless") : json(s.width)},
+           {"height", s.endless ? json("endless") : json(s.height)},
            {"layout", std::string(to_string(s.layout))},
            {"tileset", s.tileset},
            {"preset", params_json(s.params)},

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <atomic>
 #include <map>
+#include <string>
 
 #include "isolux/edits.hpp"
+#include "isolux/error.hpp"
 
 namespace isolux {
 
@@ -24,6 +26,9 @@ void touch(World& w) {
 }
 
 World make_world(Tileset tileset, const Scene& scene, std::string_view source, std::vector<std::string>* warnings) {
+    if (scene.endless)
+        throw Error(std::string(source) + ": an endless world is lit around a view (render --view, or the scene's camera "
+                                          "with a size); this needs a map with an edge");
     World w;
     w.tileset = std::move(tileset);
     w.seeded = generate_map(scene.seed, scene.width, scene.height, scene.layout, w.tileset);

@@ -64,6 +64,8 @@ for name, args, frag in [
     ("view_far", ["render", "--size", "3x3", "--view", "1000000000000,0,10,10"], "--view"),
     ("light_text", ["render", "--size", "3x3", "--light", "a,b"], "--light"),
     ("light_far", ["render", "--size", "3x3", "--light", "1e18,0"], "--light"),
+    ("endless_view_far", ["render", "--size", "endless", "--view", "200000000000000,0,10,10"], "beyond"),
+    ("endless_no_view", ["render", "--size", "endless"], "--view"),
     ("light_colour", ["render", "--size", "3x3", "--light", "1,2,3,4,zzzzzz"], "colour"),
     ("light_height_text", ["render", "--size", "3x3", "--light", "1,2,h=tall"], "light_height"),
     ("area_negative", ["render", "--size", "3x3", "--area", "-1,5"], "area_a"),

@@ -46,8 +46,12 @@ inline constexpr int max_map_side = 1024;  // tiles; 256 x 256 is the documented
 // Generates the map for `seed` deterministically: biome noise (elevation and
 // moisture) picks water, sand, meadow, forest, dirt and stone regions; each
 // biome picks its floor and 0 to 3 overlays. Throws Error on a size outside
-// 1..max_map_side or a tileset without floors.
-Map generate_map(std::string_view seed, int width, int height, Layout layout, const Tileset& tileset);
+// 1..max_map_side or a tileset without floors. Tile (col, row) holds what
+// the seed gives tile (col0 + col, row0 + row): a tile's content depends on
+// the seed and its own coordinates only, so a larger map extends a smaller
+// one and an endless world is any window of tiles (endless.hpp).
+Map generate_map(std::string_view seed, int width, int height, Layout layout, const Tileset& tileset,
+                 std::int64_t col0 = 0, std::int64_t row0 = 0);
 
 struct Pcg32;
 // The overlay generate_map puts on a tile as its `index`-th (0, 1, 2): one of

@@ -49,6 +49,7 @@ inline constexpr int default_map_side = 16;
 struct Scene {
     std::string seed = default_seed;
     int width = default_map_side, height = default_map_side;
+    bool endless = false;  // no edge: width and height unused, lit around a view (endless.hpp)
     Layout layout = Layout::diamond;
     std::string tileset;  // manifest path; empty: the default tileset
     std::string map;      // a Tiled map (.tmx) this scene lights instead of a seeded one; empty: seeded

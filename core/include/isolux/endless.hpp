@@ -1,0 +1,70 @@
+// Beyond the paper: endless seeded worlds. The paper's case is terrain made
+// at run time, and a tile's content depends only on the seed and the tile's
+// own coordinates (generate_map), so a world needs no edge: what a view
+// shows is lit from a window of whole chunks of tiles around it, made on
+// demand, and its cost and memory follow the view and the lights' reach,
+// never the world (docs/method.md, "Endless worlds").
+//
+// Coordinates: an endless world's tiles and pixels are 64-bit. Its pixel
+// frame puts tile (0, 0)'s centre at the layout's origin (tile_center), so a
+// tile's pixels never depend on which window holds it. A window is a finite
+// World whose pixel (0, 0) lies at `origin` in that frame.
+#pragma once
+#include <cstdint>
+#include <string_view>
+
+#include "isolux/scene.hpp"
+#include "isolux/world.hpp"
+
+namespace isolux {
+
+inline constexpr int chunk_tiles = 32;                            // a chunk's side, tiles
+inline constexpr std::int64_t max_endless_tile = 1'000'000'000'000;  // |col|, |row| of any tile shown
+
+// A rectangle of an endless world's pixels.
+struct WorldRect {
+    std::int64_t x = 0, y = 0;
+    int w = 0, h = 0;
+    friend bool operator==(const WorldRect&, const WorldRect&) = default;
+};
+
+// Tile (col, row)'s centre in the endless frame (tile_center's, 64-bit).
+void endless_tile_center(Layout layout, int tile_w, int tile_h, std::int64_t col, std::int64_t row, std::int64_t& x,
+                         std::int64_t& y);
+
+// Whole chunks of tiles: [col0, col0 + cols) x [row0, row0 + rows).
+struct ChunkRange {
+    std::int64_t col0 = 0, row0 = 0;
+    int cols = 0, rows = 0;
+    friend bool operator==(const ChunkRange&, const ChunkRange&) = default;
+};
+
+// The chunks whose tiles light `view`: every tile whose sprites or floor may
+// show in it, or stand where a light that reaches it traces (the lights'
+// areas, `reach` pixels: endless_reach), grown by a chunk. Throws Error
+// naming `source` when a tile beyond +-max_endless_tile would be needed.
+ChunkRange endless_chunks(const Tileset& tileset, Layout layout, WorldRect view, int reach, std::string_view source);
+
+// How far past a view an endless world must be built for `scene`: a light
+// whose area meets the view stands up to its half-extent outside it, and its
+// rays reach as far again; plus the tallest sprite and Algorithm 1's lines.
+int endless_reach(const Scene& scene, const Tileset& tileset);
+
+// A finite window onto an endless world: the scene's seed, layout and edits
+// (in the world's own tile coordinates) over `chunks`, placed so that its
+// world pixel (x, y) is the endless frame's (origin_x + x, origin_y + y).
+struct EndlessWindow {
+    ChunkRange chunks;
+    std::int64_t origin_x = 0, origin_y = 0;
+    World world;
+};
+EndlessWindow make_endless_window(Tileset tileset, const Scene& scene, ChunkRange chunks,
+                                  std::string_view source = "scene");
+
+// The scene's lights and camera moved into the window's pixels (lights whose
+// area cannot meet `view` are left out: the window may not hold what they
+// stand on), and `view` with them.
+Scene scene_in_window(const Scene& scene, const EndlessWindow& window, WorldRect view);
+Rect rect_in_window(const EndlessWindow& window, WorldRect view);
+
+}  // namespace isolux

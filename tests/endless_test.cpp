@@ -1,0 +1,138 @@
+// Endless worlds (endless.hpp): windows of chunks around a view show what a
+// finite map shows there, far from the origin as near it, whichever window
+// holds a place.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "isolux/endless.hpp"
+#include "isolux/error.hpp"
+#include "isolux/frame.hpp"
+#include "isolux/scene_file.hpp"
+#include "test_util.hpp"
+
+using namespace isolux;
+
+namespace {
+
+// The final frame of `view` (endless pixels) lit by the scene's lights, from
+// the window of chunks endless_chunks gives for it.
+Image endless_frame(const Scene& s, WorldRect view, EndlessWindow* out_window = nullptr) {
+    const Tileset ts = test::default_tileset();
+    const ChunkRange c = endless_chunks(ts, s.layout, view, endless_reach(s, ts), "test");
+    EndlessWindow win = make_endless_window(ts, s, c);
+    const Scene local = scene_in_window(s, win, view);
+    const Rect v = rect_in_window(win, view);
+    FrameState st;
+    render_frame(st, win.world, local, Camera{double(v.x), double(v.y), v.w, v.h}, 0);
+    if (out_window) *out_window = std::move(win);
+    return st.final;
+}
+
+Scene lit(std::int64_t x, std::int64_t y, const Params& p) {
+    Scene s;
+    s.endless = true;
+    s.params = p;
+    s.params.falloff_scale = 8;
+    s.lights = {Light{double(x) + 200.5, double(y) + 150.5}, Light{double(x) + 430.5, double(y) + 260.5}};
+    s.lights[1].r = 255, s.lights[1].g = 180, s.lights[1].b = 90;
+    return s;
+}
+
+int differing(const Image& a, int ax, int ay, const Image& b, int bx, int by, int w, int h) {
+    int n = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int k = 0; k < 4; ++k) n += a.at(ax + x, ay + y)[k] != b.at(bx + x, by + y)[k];
+    return n;
+}
+
+}  // namespace
+
+TEST(Endless, aWindowShowsWhatAFiniteMapShowsThere) {
+    // A 40x40 map is the endless world's tiles (0..39, 0..39): a view in its
+    // middle, lit by the same lights, has the same pixels from both, with the
+    // paper's tracer and with solids.
+    for (const char* preset : {"paper", "game"}) {
+        Scene finite;
+        finite.width = finite.height = 40;
+        const World w = make_world(test::default_tileset(), finite);
+        // World pixel p of the finite map is endless pixel p - shift.
+        const Rect fv{w.placed.bounds.x + w.placed.bounds.w / 2 - 300, w.placed.bounds.y + w.placed.bounds.h / 2 - 200, 600, 400};
+        const WorldRect ev{fv.x - w.placed.shift_x, fv.y - w.placed.shift_y, fv.w, fv.h};
+        Scene e = lit(ev.x, ev.y, builtin_preset(preset));
+        finite.params = e.params;
+        for (const Light& l : e.lights) {
+            Light f = l;
+            f.x += w.placed.shift_x;
+            f.y += w.placed.shift_y;
+            finite.lights.push_back(f);
+        }
+        FrameState st;
+        render_frame(st, w, finite, Camera{double(fv.x), double(fv.y), fv.w, fv.h}, 0);
+        const Image got = endless_frame(e, ev);
+        ASSERT_EQ(got.width, 600);
+        EXPECT_EQ(differing(got, 0, 0, st.final, 0, 0, 600, 400), 0) << preset;
+    }
+}
+
+TEST(Endless, onePlaceFarAwayHasTheSamePixelsFromEveryWindowThatHoldsIt) {
+    // Near tile (1e9, 1e9): two views that overlap, each lit from its own
+    // window of chunks (a different one), agree where they overlap; so do
+    // two views reached from either side, with solids.
+    const Tileset ts = test::default_tileset();
+    std::int64_t x = 0, y = 0;
+    endless_tile_center(Layout::diamond, ts.tile_width, ts.tile_height, 1'000'000'000, 1'000'000'000, x, y);
+    for (const char* preset : {"paper", "game"}) {
+        const Scene s = lit(x, y, builtin_preset(preset));
+        EndlessWindow wa, wb;
+        const WorldRect a{x, y, 640, 400}, b{x + 300 - 1024 * 2, y + 170, 640 + 2048, 400};
+        const Image ia = endless_frame(s, a, &wa), ib = endless_frame(s, b, &wb);
+        EXPECT_FALSE(wa.chunks == wb.chunks);  // two windows
+        EXPECT_EQ(differing(ia, 300, 170, ib, 2048, 0, 340, 230), 0) << preset;
+        int lit_pixels = 0;
+        for (std::size_t i = 0; i < ia.rgba.size(); i += 4) lit_pixels += ia.rgba[i] > 60;
+        EXPECT_GT(lit_pixels, 1000) << preset;  // the lights are there
+    }
+}
+
+TEST(Endless, chunksAreWholeAndTheWorldEndsAtItsBound) {
+    const Tileset ts = test::default_tileset();
+    Scene s;
+    s.endless = true;
+    const ChunkRange c = endless_chunks(ts, Layout::diamond, WorldRect{-1234567, 7654321, 900, 500}, endless_reach(s, ts), "t");
+    EXPECT_EQ(((c.col0 % chunk_tiles) + chunk_tiles) % chunk_tiles, 0);
+    EXPECT_EQ(((c.row0 % chunk_tiles) + chunk_tiles) % chunk_tiles, 0);
+    EXPECT_EQ(c.cols % chunk_tiles, 0);
+    EXPECT_LE(c.cols, 4 * chunk_tiles);  // a view's worth, not a world's
+    std::int64_t x = 0, y = 0;
+    endless_tile_center(Layout::diamond, ts.tile_width, ts.tile_height, max_endless_tile + 10, 0, x, y);
+    try {
+        endless_chunks(ts, Layout::diamond, WorldRect{x, y, 100, 100}, 0, "far.json");
+        FAIL() << "a view past the bound was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("far.json"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("1000000000000"), std::string::npos) << e.what();
+    }
+    // A finite map's builder refuses an endless scene by name.
+    EXPECT_THROW(make_world(ts, s, "level.json"), Error);
+}
+
+TEST(Endless, editsApplyWhereverTheyAreAndScenesSayEndless) {
+    // An edit far out clears its tile in the window that holds it.
+    const Tileset ts = test::default_tileset();
+    Scene s;
+    s.endless = true;
+    s.edits.push_back(TileEdit{1'000'000'005, -1'000'000'003, std::string("water"), std::vector<std::string>{}});
+    std::int64_t x = 0, y = 0;
+    endless_tile_center(Layout::diamond, ts.tile_width, ts.tile_height, 1'000'000'005, -1'000'000'003, x, y);
+    const ChunkRange c = endless_chunks(ts, Layout::diamond, WorldRect{x - 100, y - 100, 200, 200}, 0, "t");
+    const EndlessWindow win = make_endless_window(ts, s, c);
+    const Tile& t = win.world.map.at(int(1'000'000'005 - c.col0), int(-1'000'000'003 - c.row0));
+    EXPECT_EQ(ts.sprites[std::size_t(t.floor)].name, "water");
+    EXPECT_EQ(t.overlay_count, 0);
+    // The scene file says "endless" for both sides, and refuses one alone.
+    const Scene back = scene_from_json(scene_to_json(s), "round trip");
+    EXPECT_TRUE(back.endless);
+    EXPECT_THROW(scene_from_json(R"({"width": "endless", "height": 12})", "half.json"), Error);
+}
