@@ -18,6 +18,7 @@
 #include "isolux/light_trace.hpp"
 #include "isolux/truth.hpp"
 #include "edits.hpp"
+#include "endless.hpp"
 #include "gpu_trace.hpp"
 #include "ratio.hpp"
 #include "whole_frame.hpp"
@@ -452,6 +453,7 @@ int ratios() {
 
     bench::print_floor_ratios();
     bench::print_edit_ratios();
+    bench::print_endless_ratios();
     bench::print_gpu_figures();
 
     std::printf("ns_per_area_pixel %.3f (median of %d runs of 10)\n", [&] {
@@ -479,6 +481,7 @@ int main(int argc, char** argv) {
     bench::register_whole_frames();
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--ratios") == 0) return ratios();
+        else if (std::strcmp(argv[i], "--endless-ratios") == 0) return bench::print_endless_ratios(), 0;  // those alone
     benchmark::Initialize(&argc, argv);
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();

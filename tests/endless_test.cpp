@@ -136,3 +136,27 @@ TEST(Endless, editsApplyWhereverTheyAreAndScenesSayEndless) {
     EXPECT_TRUE(back.endless);
     EXPECT_THROW(scene_from_json(R"({"width": "endless", "height": 12})", "half.json"), Error);
 }
+
+TEST(Endless, aWalkKeepsItsWindowAChunkAtATimeAndEveryFrameIsTheSame) {
+    // A camera walking 120 px a frame for 60 frames far out: each frame has
+    // the pixels of a fresh window around its view; the window is remade
+    // once a chunk or so, not once a frame.
+    const Tileset ts = test::default_tileset();
+    std::int64_t x = 0, y = 0;
+    endless_tile_center(Layout::diamond, ts.tile_width, ts.tile_height, 3'000'000, -7'000'000, x, y);
+    Scene s = lit(x, y, builtin_preset("game"));
+    EndlessState st;
+    int checked = 0;
+    for (int f = 0; f < 60; ++f) {
+        const WorldRect view{x + 120 * f, y + 60 * f, 480, 320};
+        for (Light& l : s.lights) l.x += 120, l.y += 60;  // carried with the camera
+        render_endless_frame(st, ts, s, view, f);
+        if (f % 15 == 14) {
+            EXPECT_EQ(differing(st.frame.final, 0, 0, endless_frame(s, view), 0, 0, 480, 320), 0) << "frame " << f;
+            ++checked;
+        }
+    }
+    EXPECT_EQ(checked, 4);
+    EXPECT_GE(st.windows_built, 2u);   // it walked out of the first window
+    EXPECT_LE(st.windows_built, 8u);  // 7200 px: a few chunks' worth (a chunk spans 2048 px)
+}

@@ -168,4 +168,25 @@ Scene scene_in_window(const Scene& scene, const EndlessWindow& window, WorldRect
     return s;
 }
 
+FrameReport render_endless_frame(EndlessState& st, const Tileset& tileset, const Scene& scene, WorldRect view,
+                                 long frame, std::string_view source) {
+    const ChunkRange need = endless_chunks(tileset, scene.layout, view, endless_reach(scene, tileset), source);
+    const ChunkRange& have = st.window.chunks;
+    const bool holds = st.has_window && need.col0 >= have.col0 && need.row0 >= have.row0 &&
+                       need.col0 + need.cols <= have.col0 + have.cols && need.row0 + need.rows <= have.row0 + have.rows;
+    if (!holds) {
+        ChunkRange grown = need;
+        if (need.cols + 2 * chunk_tiles <= max_map_side && need.rows + 2 * chunk_tiles <= max_map_side)
+            grown = ChunkRange{need.col0 - chunk_tiles, need.row0 - chunk_tiles, need.cols + 2 * chunk_tiles,
+                               need.rows + 2 * chunk_tiles};
+        st.window = make_endless_window(tileset, scene, grown, source);
+        st.has_window = true;
+        st.frame = FrameState{st.frame.options};
+        ++st.windows_built;
+    }
+    const Rect v = rect_in_window(st.window, view);
+    return render_frame(st.frame, st.window.world, scene_in_window(scene, st.window, view), Camera{double(v.x), double(v.y), v.w, v.h},
+                        frame);
+}
+
 }  // namespace isolux

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "isolux/frame.hpp"
 #include "isolux/scene.hpp"
 #include "isolux/world.hpp"
 
@@ -66,5 +67,23 @@ EndlessWindow make_endless_window(Tileset tileset, const Scene& scene, ChunkRang
 // stand on), and `view` with them.
 Scene scene_in_window(const Scene& scene, const EndlessWindow& window, WorldRect view);
 Rect rect_in_window(const EndlessWindow& window, WorldRect view);
+
+// A walk through an endless world: the window and the frame state lit from
+// it. Default-constructed: nothing built yet.
+struct EndlessState {
+    EndlessWindow window;
+    bool has_window = false;
+    FrameState frame;       // its options are the caller's
+    std::uint64_t windows_built = 0;
+};
+
+// One frame of `view` (endless pixels): the window is kept while it holds
+// every chunk the view needs, else made anew around them with a chunk to
+// spare on every side (so a walking camera remakes it once a chunk, not
+// once a frame), and the frame state starts afresh on it. The frame's
+// pixels do not depend on which window holds the view. `tileset` is copied
+// into each window.
+FrameReport render_endless_frame(EndlessState& st, const Tileset& tileset, const Scene& scene, WorldRect view,
+                                 long frame, std::string_view source = "scene");
 
 }  // namespace isolux
