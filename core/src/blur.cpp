@@ -471,73 +471,106 @@ LightTexture box_blur_reference(const LightTexture& tex, int radius) {
 
 namespace {
 
+// A texel whose window lies inside the texture and the surfaces' rectangle,
+// summed as box_blur_within's rule says: straight reads, and no branch on
+// the runs' lengths (a flag carried outwards from the centre along the
+// column and each row). R is the radius, known when compiled.
+template <int C, int R>
+void blur_within_texel(const LightTexture& tex, const SurfaceIds& ids, int x, int y, LightTexture& out) {
+    const Rect t = tex.rect, s = ids.rect;
+    const std::int32_t* id0 = &ids.id[std::size_t(y - s.y) * s.w + std::size_t(x - s.x)];
+    const std::uint8_t* v0 = &tex.texels[(std::size_t(y - t.y) * t.w + std::size_t(x - t.x)) * C];
+    const std::int32_t surface = *id0;
+    std::uint32_t sum[C] = {};
+    std::uint32_t n = 0;
+    auto add_row = [&](int dy, std::uint32_t on) {
+        const std::int32_t* row = id0 + std::ptrdiff_t(dy) * s.w;
+        const std::uint8_t* v = v0 + std::ptrdiff_t(dy) * t.w * C;
+        for (int k = 0; k < C; ++k) sum[k] += v[k] & (0u - on);
+        n += on;
+        std::uint32_t left = on, right = on;
+        for (int i = 1; i <= R; ++i) {
+            left &= std::uint32_t(row[-i] == surface);
+            right &= std::uint32_t(row[i] == surface);
+            for (int k = 0; k < C; ++k) sum[k] += (v[-i * C + k] & (0u - left)) + (v[i * C + k] & (0u - right));
+            n += left + right;
+        }
+    };
+    add_row(0, 1);
+    std::uint32_t up = 1, down = 1;
+    for (int k = 1; k <= R; ++k) {
+        up &= std::uint32_t(id0[-std::ptrdiff_t(k) * s.w] == surface);
+        down &= std::uint32_t(id0[std::ptrdiff_t(k) * s.w] == surface);
+        add_row(-k, up);
+        add_row(k, down);
+    }
+    std::uint8_t* o = &out.texels[(std::size_t(y - t.y) * t.w + std::size_t(x - t.x)) * C];
+    for (int k = 0; k < C; ++k) o[k] = std::uint8_t((sum[k] + n / 2) / n);
+}
+
+// The same for any texel: the texture's edge bounds the walks, and pixels
+// outside the surfaces' rectangle are the ground.
+template <int C>
+void blur_within_texel_any(const LightTexture& tex, int r, const SurfaceIds& ids, int x, int y, LightTexture& out) {
+    const Rect t = tex.rect;
+    const std::int32_t surface = ids.at(x, y);
+    std::uint32_t sum[C] = {};
+    std::uint32_t n = 0;
+    auto add_row = [&](int yy) {
+        const std::uint8_t* v = &tex.texels[std::size_t(yy - t.y) * t.w * C];
+        int lo = x, hi = x;
+        while (lo > t.x && x - lo < r && ids.at(lo - 1, yy) == surface) --lo;
+        while (hi + 1 < t.x + t.w && hi - x < r && ids.at(hi + 1, yy) == surface) ++hi;
+        for (int xx = lo; xx <= hi; ++xx)
+            for (int k = 0; k < C; ++k) sum[k] += v[std::size_t(xx - t.x) * C + k];
+        n += std::uint32_t(hi - lo + 1);
+    };
+    add_row(y);
+    for (int k = 1; k <= r && y - k >= t.y && ids.at(x, y - k) == surface; ++k) add_row(y - k);
+    for (int k = 1; k <= r && y + k < t.y + t.h && ids.at(x, y + k) == surface; ++k) add_row(y + k);
+    std::uint8_t* o = &out.texels[(std::size_t(y - t.y) * t.w + std::size_t(x - t.x)) * C];
+    for (int k = 0; k < C; ++k) o[k] = std::uint8_t((sum[k] + n / 2) / n);
+}
+
 // box_blur_within_into's work over z (inside the texture) for radii the
 // plain blur fuses. Where a texel's whole window lies inside the texture and
-// on its own surface (its reach exceeds r), the rule is the plain box
-// blur's, whose clamping never applies there: so the plain blur first, at
-// its speed, then each texel whose window meets another surface or the
-// edge summed as the rule says, walking its column and then each row.
-template <int C>
-void blur_within_region(const LightTexture& tex, int r, const SurfaceIds& ids, Rect z, LightTexture& out) {
-    box_blur_into(tex, r, z, out);
+// on its own surface (its reach exceeds R), the rule is the plain box blur's,
+// whose clamping never applies there: so the plain blur first, at its speed,
+// then only the texels near another surface or the edge summed by the rule.
+template <int C, int R>
+void blur_within_region(const LightTexture& tex, const SurfaceIds& ids, Rect z, LightTexture& out) {
+    box_blur_into(tex, R, z, out);
     const Rect t = tex.rect, s = ids.rect;
-    const int w = t.w;
-    // The columns whose windows lie inside the texture.
-    const int inside_x0 = t.x + r, inside_x1 = t.x + t.w - r;
+    // Where a window lies inside both the texture and the surfaces' rectangle.
+    const Rect inner = intersect(Rect{t.x + R, t.y + R, t.w - 2 * R, t.h - 2 * R}, Rect{s.x + R, s.y + R, s.w - 2 * R, s.h - 2 * R});
     for (int y = z.y; y < z.y + z.h; ++y) {
-        const bool rows_inside = y - r >= t.y && y + r < t.y + t.h;
-        const bool on_surfaces = y >= s.y && y < s.y + s.h;
-        const std::uint8_t* reach = on_surfaces ? &ids.reach[std::size_t(y - s.y) * s.w] - s.x : nullptr;
-        for (int x = z.x; x < z.x + z.w; ++x) {
-            if (rows_inside && x >= inside_x0 && x < inside_x1) {
-                // Inside the texture: plain where the surface reaches past r.
-                if (on_surfaces && x >= s.x && x < s.x + s.w) {
-                    if (reach[x] > r) continue;
-                } else if (intersect(Rect{x - r, y - r, 2 * r + 1, 2 * r + 1}, s).empty()) {
-                    continue;  // the ground all round, outside the surfaces' rectangle
-                }
-            }
-            const std::int32_t surface = ids.at(x, y);
-            std::uint32_t sum[C] = {};
-            std::uint32_t n = 0;
-            if (rows_inside && x - r >= t.x && x + r < t.x + t.w && x - r >= s.x && x + r < s.x + s.w && y - r >= s.y &&
-                y + r < s.y + s.h) {
-                // The window inside the texture and the surfaces: straight reads.
-                const std::int32_t* id0 = &ids.id[std::size_t(y - s.y) * s.w + std::size_t(x - s.x)];
-                const std::uint8_t* v0 = &tex.texels[(std::size_t(y - t.y) * w + std::size_t(x - t.x)) * C];
-                auto add_row = [&](int dy) {
-                    const std::int32_t* row = id0 + std::ptrdiff_t(dy) * s.w;
-                    const std::uint8_t* v = v0 + std::ptrdiff_t(dy) * w * C;
-                    int lo = 0, hi = 0;
-                    while (lo > -r && row[lo - 1] == surface) --lo;
-                    while (hi < r && row[hi + 1] == surface) ++hi;
-                    for (int i = lo; i <= hi; ++i)
-                        for (int k = 0; k < C; ++k) sum[k] += v[std::ptrdiff_t(i) * C + k];
-                    n += std::uint32_t(hi - lo + 1);
-                };
-                add_row(0);
-                for (int k = 1; k <= r && id0[-std::ptrdiff_t(k) * s.w] == surface; ++k) add_row(-k);
-                for (int k = 1; k <= r && id0[std::ptrdiff_t(k) * s.w] == surface; ++k) add_row(k);
-                std::uint8_t* o = &out.texels[(std::size_t(y - t.y) * w + std::size_t(x - t.x)) * C];
-                for (int k = 0; k < C; ++k) o[k] = std::uint8_t((sum[k] + n / 2) / n);
-                continue;
-            }
-            auto add_row = [&](int yy) {
-                const std::uint8_t* v = &tex.texels[std::size_t(yy - t.y) * w * C];
-                int lo = x, hi = x;
-                while (lo > t.x && x - lo < r && ids.at(lo - 1, yy) == surface) --lo;
-                while (hi + 1 < t.x + w && hi - x < r && ids.at(hi + 1, yy) == surface) ++hi;
-                for (int xx = lo; xx <= hi; ++xx)
-                    for (int k = 0; k < C; ++k) sum[k] += v[std::size_t(xx - t.x) * C + k];
-                n += std::uint32_t(hi - lo + 1);
-            };
-            add_row(y);
-            for (int k = 1; k <= r && y - k >= t.y && ids.at(x, y - k) == surface; ++k) add_row(y - k);
-            for (int k = 1; k <= r && y + k < t.y + t.h && ids.at(x, y + k) == surface; ++k) add_row(y + k);
-            std::uint8_t* o = &out.texels[(std::size_t(y - t.y) * w + std::size_t(x - t.x)) * C];
-            for (int k = 0; k < C; ++k) o[k] = std::uint8_t((sum[k] + n / 2) / n);
+        const bool row_inner = y >= inner.y && y < inner.y + inner.h;
+        const int xa = row_inner ? std::clamp(inner.x, z.x, z.x + z.w) : z.x + z.w;
+        const int xb = row_inner ? std::clamp(inner.x + inner.w, xa, z.x + z.w) : z.x + z.w;
+        auto edge = [&](int x) {
+            // Inside the texture and outside the surfaces' rectangle, with no
+            // surface in reach: the ground all round, plain.
+            const bool texture_inside = x - R >= t.x && x + R < t.x + t.w && y - R >= t.y && y + R < t.y + t.h;
+            if (texture_inside && intersect(Rect{x - R, y - R, 2 * R + 1, 2 * R + 1}, s).empty()) return;
+            if (texture_inside && s.contains(x, y) && ids.reach[std::size_t(y - s.y) * s.w + std::size_t(x - s.x)] > R &&
+                intersect(Rect{x - R, y - R, 2 * R + 1, 2 * R + 1}, s) == Rect{x - R, y - R, 2 * R + 1, 2 * R + 1})
+                return;
+            blur_within_texel_any<C>(tex, R, ids, x, y, out);
+        };
+        for (int x = z.x; x < xa; ++x) edge(x);
+        if (xa < xb) {
+            const std::uint8_t* reach = &ids.reach[std::size_t(y - s.y) * s.w];
+            for (int x = xa; x < xb; ++x)
+                if (reach[x - s.x] <= R) blur_within_texel<C, R>(tex, ids, x, y, out);
         }
+        for (int x = std::max(xb, xa); x < z.x + z.w; ++x) edge(x);
     }
+}
+
+template <int C, int... R>
+void blur_within_fused(int r, const LightTexture& tex, const SurfaceIds& ids, Rect z, LightTexture& out,
+                       std::integer_sequence<int, R...>) {
+    ((r == R ? blur_within_region<C, R>(tex, ids, z, out) : void()), ...);
 }
 
 // The same for any radius, O(radius) per texel: per row, prefix sums cut into
@@ -652,7 +685,11 @@ void box_blur_within_into(const LightTexture& tex, int radius, const SurfaceIds&
             index_surfaces(own);
             indexed = &own;
         }
-        tex.channels == 1 ? blur_within_region<1>(tex, r, *indexed, z, out) : blur_within_region<3>(tex, r, *indexed, z, out);
+        using radii = std::integer_sequence<int, 1, 2, 3, 4, 5, 6, 7>;
+        static_assert(max_fused_radius == 7);
+        if (r == 0) return box_blur_into(tex, 0, z, out);
+        tex.channels == 1 ? blur_within_fused<1>(r, tex, *indexed, z, out, radii{})
+                          : blur_within_fused<3>(r, tex, *indexed, z, out, radii{});
         return;
     }
     // Past the plain blur's fused radii a window off its surface costs r^2:
