@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cli/contact_sheet.hpp"
+#include "cli/export_tiled.hpp"
 #include "common/world.hpp"
 #include "isolux/accuracy.hpp"
 #include "isolux/error.hpp"
@@ -643,14 +644,14 @@ int isolux_cli_main(int argc, char** argv) {
                       "What the error is measured against: every_pixel (default; the model's own 4ab rays), "
                       "exact_line, 3d (the sprites' true shapes) or 3d_facing; a comma list measures each");
 
-    std::string export_scene, export_out;
-    bool export_images = false;
-    int export_chunk = 0;
+    cli::ExportArgs ea;
     CLI::App* export_tiled_cmd = app.add_subcommand("export-tiled", "Write a scene's level as a Tiled map (TMX, TSX, images)");
-    export_tiled_cmd->add_option("--scene", export_scene, "Scene JSON file")->required();
-    export_tiled_cmd->add_option("--out", export_out, "The map to write: DIR/NAME.tmx")->required();
-    export_tiled_cmd->add_flag("--images", export_images, "Also the light texture and the final frame as (hidden) image layers");
-    export_tiled_cmd->add_option("--infinite", export_chunk,
+    export_tiled_cmd->add_option("--scene", ea.scene, "Scene JSON file")->required();
+    export_tiled_cmd->add_option("--out", ea.out, "The map to write: DIR/NAME.tmx")->required();
+    export_tiled_cmd->add_flag("--images", ea.images, "Also the light texture and the final frame as (hidden) image layers");
+    export_tiled_cmd->add_option("--view", ea.view,
+                                 "An endless world's view, X,Y,W,H: the window of chunks it needs is the map written");
+    export_tiled_cmd->add_option("--infinite", ea.chunk,
                                  "Write an infinite map: tile layers as chunks of N x N tiles (Tiled's own: 16)")
         ->check(CLI::Range(1, 1024))
         ->expected(0, 1)
@@ -671,18 +672,8 @@ int isolux_cli_main(int argc, char** argv) {
         if (*sweep) return run_sweep_command(sa);
         if (*check) return run_check_tileset(ca);
         if (*export_tiled_cmd) {
-            std::vector<std::string> warnings;
-            const Scene scene = load_scene(export_scene, &warnings);
-            for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << printable(w) << "\n";
-            const World world = build_world(scene, export_scene);
-            TiledExport opt;
-            opt.images = export_images;
-            opt.chunk = export_tiled_cmd->count("--infinite") ? (export_chunk > 0 ? export_chunk : 16) : 0;
-            const auto [ox, oy] = export_tiled(world, scene, export_out, opt);
-            std::cout << "wrote " << export_out << " (" << world.map.width << "x" << world.map.height << " "
-                      << (world.map.layout == Layout::staggered ? "staggered" : "isometric") << ", " << scene.lights.size()
-                      << " lights; Tiled's pixel (0, 0) is world (" << ox << ", " << oy << "))\n";
-            return 0;
+            ea.chunk = export_tiled_cmd->count("--infinite") ? (ea.chunk > 0 ? ea.chunk : 16) : 0;
+            return cli::run_export_tiled(ea);
         }
         if (*preset) {
             save_preset(preset_out, params_from_args(pa, Params{}));

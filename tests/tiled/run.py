@@ -116,6 +116,33 @@ for name, scene in scenes.items():
     check(os.path.exists(c) and open(a, "rb").read() == open(c, "rb").read(),
           name + ": exported as an infinite map and imported, --layer final differs")
 
+# An endless world's region: the window of chunks a view far out needs, as an
+# infinite map; tmxrasterizer draws it as isolux reads it, and it reads back
+# to the endless render's pixels of that view.
+endless = os.path.join(tmp, "endless.json")
+X, Y = 64000000000, 32000000000
+with open(endless, "w") as f:
+    json.dump({"schema_version": 2, "seed": "tiled", "width": "endless", "height": "endless",
+               "lights": [{"x": X + 300, "y": Y + 200, "color": "ffd8a0"}]}, f)
+etmx = os.path.join(tmp, "out_endless", "endless.tmx")
+p = run(cli, "export-tiled", "--scene", endless, "--view", f"{X},{Y},600,400", "--infinite", "16", "--out", etmx)
+text = open(etmx).read() if os.path.exists(etmx) else ""
+check(p.returncode == 0 and 'infinite="1"' in text and text.count("<chunk") >= 16, "endless: export-tiled --view --infinite")
+judge(etmx, "export_endless")
+m = re.search(r"world \((-?\d+), (-?\d+)\).*the world's \((-?\d+) \+ x, (-?\d+) \+ y\)", p.stdout)
+q = run(cli, "render", "--map", etmx, "--layer", "map", "--out", os.path.join(tmp, "probe.png"))
+n = re.search(r"world \((-?\d+), (-?\d+)\)", q.stdout)
+check(bool(m and n), "endless: the export and the import say where Tiled's (0, 0) is\n" + p.stdout + q.stdout)
+if m and n:
+    ox, oy, wx, wy = (int(v) for v in m.groups())
+    lx, ly = int(n.group(1)), int(n.group(2))
+    vx, vy = X - wx - ox + lx, Y - wy - oy + ly  # the endless view's pixels in the imported map
+    a, b = os.path.join(tmp, "endless.render.png"), os.path.join(tmp, "endless.map.png")
+    run(cli, "render", "--scene", endless, "--view", f"{X},{Y},600,400", "--out", a)
+    run(cli, "render", "--map", etmx, "--view", f"{vx},{vy},600,400", "--out", b)
+    check(os.path.exists(a) and os.path.exists(b) and open(a, "rb").read() == open(b, "rb").read(),
+          "endless: the exported region read back differs from the endless render of its view")
+
 # ---------------------------------------------------------------- 3: maps by hand
 art = os.path.join(src, "assets", "default")
 hand = os.path.join(tmp, "hand")
