@@ -241,7 +241,9 @@ TEST(Occluders, solidsMislightAtMostHalfWhatFootprintsDoAgainst3d) {
             if (seed == 0) {
                 const std::string where = "the default seed, light height " + heights[h];
                 EXPECT_LE(solids.sprite.lit_mismatch, paper.sprite.lit_mismatch / 2) << where;
-                if (h > 0) EXPECT_LE(solids.floor.lit_mismatch, paper.floor.lit_mismatch / 2) << where;
+                if (h > 0) {
+                    EXPECT_LE(solids.floor.lit_mismatch, paper.floor.lit_mismatch / 2) << where;
+                }
                 EXPECT_LE(shapes.floor.lit_mismatch, solids.floor.lit_mismatch) << where;
                 continue;
             }

@@ -39,21 +39,7 @@ void tile_of(Layout layout, int tw, int th, double x, double y, double& col, dou
 
 void endless_tile_center(Layout layout, int tw, int th, std::int64_t col, std::int64_t row, std::int64_t& x,
                          std::int64_t& y) {
-    const std::int64_t hw = tw / 2, hh = th / 2;
-    switch (layout) {
-        case Layout::paper:
-            x = col * tw + row * hw;
-            y = row * hh;
-            return;
-        case Layout::diamond:
-            x = (col - row) * hw;
-            y = (col + row) * hh;
-            return;
-        case Layout::staggered:
-            x = col * tw + (row & 1) * hw;
-            y = row * hh;
-            return;
-    }
+    tile_center(layout, tw, th, col, row, x, y);
 }
 
 int endless_reach(const Scene& scene, const Tileset& tileset) {

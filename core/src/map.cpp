@@ -29,8 +29,8 @@ Layout parse_layout(std::string_view s, std::string_view source) {
                 "\" is not one of paper, diamond, staggered");
 }
 
-void tile_center(Layout layout, int tw, int th, int col, int row, int& x, int& y) {
-    const int hw = tw / 2, hh = th / 2;
+void tile_center(Layout layout, int tw, int th, std::int64_t col, std::int64_t row, std::int64_t& x, std::int64_t& y) {
+    const std::int64_t hw = tw / 2, hh = th / 2;
     switch (layout) {
         case Layout::paper:
             // Block n sits right of block n-1; after a line break it goes below
@@ -49,6 +49,13 @@ void tile_center(Layout layout, int tw, int th, int col, int row, int& x, int& y
             y = row * hh;
             return;
     }
+}
+
+void tile_center(Layout layout, int tw, int th, int col, int row, int& x, int& y) {
+    std::int64_t x64 = 0, y64 = 0;
+    tile_center(layout, tw, th, std::int64_t(col), std::int64_t(row), x64, y64);
+    x = int(x64);
+    y = int(y64);
 }
 
 Overlay make_overlay(int sprite, int index, int tile_width, int tile_height, Pcg32& rng) {

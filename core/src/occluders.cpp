@@ -23,7 +23,9 @@ void Spans::add(float lo, float hi) {
     int n = 0;
     for (const Span& s : {lower, upper, Span{lo, hi}})
         if (s.any()) v[std::size_t(n++)] = s;
-    std::sort(v.begin(), v.begin() + n, [](const Span& a, const Span& b) { return a.low < b.low || (a.low == b.low && a.high < b.high); });
+    auto before = [](const Span& a, const Span& b) { return a.low < b.low || (a.low == b.low && a.high < b.high); };
+    for (int i = 1; i < n; ++i)  // three at most: by insertion
+        for (int k = i; k > 0 && before(v[std::size_t(k)], v[std::size_t(k - 1)]); --k) std::swap(v[std::size_t(k)], v[std::size_t(k - 1)]);
     int kept = 0;
     for (int k = 0; k < n; ++k) {
         if (kept > 0 && v[std::size_t(k)].low <= v[std::size_t(kept - 1)].high)

@@ -175,6 +175,9 @@ Rect replace_tile(PlacedMap& placed, const Map& map, const Tileset& tileset, int
 
 // The centre of tile (col, row) in layout pixels, before PlacedMap's shift.
 void tile_center(Layout layout, int tile_w, int tile_h, int col, int row, int& x, int& y);
+// The same for any tile of an endless world (endless.hpp), 64-bit.
+void tile_center(Layout layout, int tile_w, int tile_h, std::int64_t col, std::int64_t row, std::int64_t& x,
+                 std::int64_t& y);
 
 // The tile whose floor diamond holds world pixel (wx, wy); false when none does.
 bool tile_at(const Map& map, const PlacedMap& placed, double wx, double wy, int& col, int& row);
