@@ -116,6 +116,12 @@ env -u DISPLAY timeout 60 "$app" --scene "$tmp/bigcam.json" --screenshot "$tmp/b
 if [ "$code" -eq 2 ] && grep -q "bigcam.json: camera: the view is 65536x65536 pixels" "$tmp/log" && [ ! -e "$tmp/bigcam.png" ]; then ok
 else bad "huge camera without a display: exit $code"; cat "$tmp/log"; fi
 
+# An endless world: the editor does not open one yet, and says so by name.
+echo '{"schema_version": 2, "width": "endless", "height": "endless"}' > "$tmp/endless.json"
+timeout 60 "$app" --scene "$tmp/endless.json" >"$tmp/log" 2>&1; code=$?
+if [ "$code" -eq 2 ] && grep -q "endless.json: the editor does not open endless worlds yet" "$tmp/log"; then ok
+else bad "endless scene: exit $code"; cat "$tmp/log"; fi
+
 # 2. Scripted input: place a light, move a slider, undo it, save.
 cat >"$tmp/edit.script" <<SCRIPT
 wait 2

@@ -130,6 +130,9 @@ int main(int argc, char** argv) {
     Scene scene;
     try {
         if (!scene_file.empty()) scene = load_scene(scene_file);
+        if (scene.endless)
+            throw Error(scene_file + ": the editor does not open endless worlds yet; isolux-cli render --scene " +
+                        scene_file + " lights one around its camera (or --view X,Y,W,H)");
         if (!seed.empty()) scene.seed = seed;
         if (!size.empty()) {
             int w = 0, h = 0;
