@@ -391,11 +391,23 @@ int run_render(const RenderArgs& a) {
         if (!s.endless) w = build_world(s, a.scene.empty() ? "scene" : a.scene);
     }
     Rect view;
+    WorldRect path;
     if (s.endless) {
         // No edge: the window of chunks around the view, the scene moved into it.
+        // With --frames, the window holds the camera's whole straight path.
         const WorldRect v = endless_view_from_args(a, s);
-        EndlessWindow win = build_endless_window(s, v, a.scene.empty() ? "--size endless" : a.scene);
-        s = scene_in_window(s, win, v);
+        std::vector<double> step{0, 0};
+        if (!a.camera_step.empty() && parse_reals(a.camera_step, step) && step.size() == 2 && a.frames > 1) {
+            const double dx = step[0] * (a.frames - 1), dy = step[1] * (a.frames - 1);
+            if (std::abs(dx) > 65536 || std::abs(dy) > 65536)
+                throw Error("--camera-step with --frames: an endless render walks at most 65536 pixels each way");
+            path = WorldRect{v.x + std::int64_t(std::floor(std::min(0.0, dx))), v.y + std::int64_t(std::floor(std::min(0.0, dy))),
+                             v.w + int(std::ceil(std::abs(dx))) + 1, v.h + int(std::ceil(std::abs(dy))) + 1};
+        } else {
+            path = v;
+        }
+        EndlessWindow win = build_endless_window(s, path, a.scene.empty() ? "--size endless" : a.scene);
+        s = scene_in_window(s, win, path);
         view = rect_in_window(win, v);
         w = std::move(win.world);
     } else {
