@@ -215,6 +215,9 @@ WorldRect endless_view_from_args(const RenderArgs& a, const Scene& s) {
     if (a.view.empty()) {
         if (s.camera.width < 1 || s.camera.height < 1)
             throw Error("an endless world has no whole picture: give --view X,Y,W,H (or a scene camera with a size)");
+        if (!(std::abs(s.camera.x) <= 1e15 && std::abs(s.camera.y) <= 1e15))
+            throw Error((a.scene.empty() ? std::string("camera") : a.scene + ": camera") +
+                        ": x and y must be within ±1e15 pixels in an endless world");
         return WorldRect{std::int64_t(std::floor(s.camera.x)), std::int64_t(std::floor(s.camera.y)), s.camera.width,
                          s.camera.height};
     }
