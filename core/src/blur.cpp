@@ -643,29 +643,39 @@ void index_surfaces(SurfaceIds& ids) {
     const Rect s = ids.rect;
     const int w = std::max(0, s.w), h = std::max(0, s.h);
     ids.reach.assign(std::size_t(w) * h, 255);
-    auto id = [&](int x, int y) { return x < 0 || y < 0 || x >= w || y >= h ? -1 : ids.id[std::size_t(y) * w + x]; };
+    if (w == 0 || h == 0) return;
+    // The ids and reaches framed by one pixel of ground (-1) whose reach is
+    // never lowered (255: it passes nothing on), so no step tests an edge.
+    const std::size_t W = std::size_t(w) + 2;
+    std::vector<std::int32_t> id(W * (std::size_t(h) + 2), -1);
+    std::vector<std::uint8_t> reach(id.size(), 255);
+    for (int y = 0; y < h; ++y)
+        std::copy_n(&ids.id[std::size_t(y) * w], w, &id[(std::size_t(y) + 1) * W + 1]);
     // A pixel with a neighbour of another surface reaches 1; the rest one
     // more than their nearest neighbour of the same surface (a Chebyshev
     // distance transform: a forward and a backward pass over 8-neighbours).
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const std::int32_t own = id(x, y);
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx)
-                    if (id(x + dx, y + dy) != own) ids.reach[std::size_t(y) * w + x] = 1;
+    const std::ptrdiff_t n8[8] = {-std::ptrdiff_t(W) - 1, -std::ptrdiff_t(W), -std::ptrdiff_t(W) + 1, -1, 1,
+                                  std::ptrdiff_t(W) - 1, std::ptrdiff_t(W), std::ptrdiff_t(W) + 1};
+    for (int y = 1; y <= h; ++y)
+        for (std::size_t i = std::size_t(y) * W + 1, end = i + std::size_t(w); i < end; ++i) {
+            bool edge = false;
+            for (std::ptrdiff_t d : n8) edge |= id[i + std::size_t(d)] != id[i];
+            if (edge) reach[i] = 1;
         }
-    auto relax = [&](int x, int y, int dx, int dy) {
-        if (x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h) return;
-        std::uint8_t& d = ids.reach[std::size_t(y) * w + x];
-        const std::uint8_t n = ids.reach[std::size_t(y + dy) * w + (x + dx)];
-        if (n < 255 && n + 1 < d) d = std::uint8_t(n + 1);
+    auto relax = [&](std::size_t i, std::ptrdiff_t d) {
+        const std::uint8_t n = reach[std::size_t(std::ptrdiff_t(i) + d)];
+        if (n < 255 && n + 1 < reach[i]) reach[i] = std::uint8_t(n + 1);
     };
+    for (int y = 1; y <= h; ++y)
+        for (std::size_t i = std::size_t(y) * W + 1, end = i + std::size_t(w); i < end; ++i)
+            relax(i, n8[0]), relax(i, n8[1]), relax(i, n8[2]), relax(i, n8[3]);
+    for (int y = h; y >= 1; --y)
+        for (std::size_t i = std::size_t(y) * W + std::size_t(w), first = std::size_t(y) * W + 1;; --i) {
+            relax(i, n8[7]), relax(i, n8[6]), relax(i, n8[5]), relax(i, n8[4]);
+            if (i == first) break;
+        }
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            relax(x, y, -1, -1), relax(x, y, 0, -1), relax(x, y, 1, -1), relax(x, y, -1, 0);
-    for (int y = h - 1; y >= 0; --y)
-        for (int x = w - 1; x >= 0; --x)
-            relax(x, y, 1, 1), relax(x, y, 0, 1), relax(x, y, -1, 1), relax(x, y, 1, 0);
+        std::copy_n(&reach[(std::size_t(y) + 1) * W + 1], w, &ids.reach[std::size_t(y) * w]);
 }
 
 void box_blur_within_into(const LightTexture& tex, int radius, const SurfaceIds& ids, Rect region, LightTexture& out) {

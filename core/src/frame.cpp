@@ -655,14 +655,15 @@ bool redo_only_dirty(bool fresh, const TraceDecision& trace, const std::vector<R
 
 // Beyond the paper: which surface each pixel of the occluder map's region
 // shows, for the blur within surfaces; remade only with the occluders (a
-// moving camera keeps them, as it keeps the region).
-void surface_ids_step(FrameState& st, const Params& p) {
+// moving camera keeps them, as it keeps the region), and timed with them.
+void surface_ids_step(FrameState& st, const Params& p, FrameReport& rep) {
     if (!blur_within_surfaces(p)) {
         st.surface_ids = SurfaceIds{};
         st.surface_ids_revision = 0;
         return;
     }
     if (st.surface_ids_revision == st.obstacles_revision && !st.surface_ids.id.empty()) return;
+    Timer t{rep, Stage::obstacle_map};
     st.surface_ids.rect = st.occluders.surface.rect;
     st.surface_ids.id = st.occluders.surface.instance;
     index_surfaces(st.surface_ids);
@@ -724,7 +725,7 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_
     const ObstacleChange obstacles = update_obstacle_map(st, world, scene.params, needed, delta, rep);
     const TraceDecision trace = decide_retrace(st, scene, view, frame, obstacles);
     if (trace.retrace) trace_step(st, world, scene, tex_rect, trace, obstacles, rep);
-    surface_ids_step(st, scene.params);
+    surface_ids_step(st, scene.params, rep);
     if (st.options.cpu_blur_and_composite) {
         const std::vector<Rect> changed = blur_step(st, scene.params, rep);
         shift_step(st, scene.params, view, changed, rep);
