@@ -366,11 +366,13 @@ TEST(Occluders, keptSolidsBuildTheSameMapAndFrameAsFreshOnes) {
     EXPECT_EQ(walked.light.texels, fresh_state.light.texels);
 }
 
-// The passes walk the border rays' prefix tree when the light's whole area is
-// its clip and lies in the map (occluders_tree.cpp), ray by ray otherwise: the
-// same bytes. A clip one pixel wider than the area takes the rays; both are
-// compared over the area, on drawn seeds, light positions and heights, every
-// ray skip and area shape, light and shadow modes, solids and shapes.
+// The passes walk the border rays' prefix tree when the light's area lies in
+// the map and its clip holds a good part of it (occluders_tree.cpp; a clip
+// past the area takes the whole area's and leaves the rest unlit), ray by
+// ray otherwise: the same bytes. A clip of under a quarter of the area takes
+// the rays, one a pixel wider than the area the tree; each is compared with
+// the area's own, on drawn seeds, light positions and heights, every ray
+// skip and area shape, light and shadow modes, solids and shapes.
 TEST(Occluders, theTreePassesGiveTheRaysBytes) {
     int compared = 0, lit_sprites = 0, shaded_ground = 0;
     for (const char* seed : {"isolux", "tree-walk", "forest-7"}) {
@@ -394,26 +396,32 @@ TEST(Occluders, theTreePassesGiveTheRaysBytes) {
                 p.mode = (h >> 56) % 2 ? Mode::shadow : Mode::light;
                 const Rect area{int(cx) - a, int(cy) - bb, 2 * a + 1, 2 * bb + 1};
                 const Rect wider{area.x - 1, area.y - 1, area.w + 2, area.h + 2};
+                const Rect part{area.x + 1, area.y, area.w / 2 - 1, area.h / 2 - 1};
                 LightMask tree = trace_light_solids(occ, cx, cy, a, bb, height, p, area);
-                LightMask rays = trace_light_solids(occ, cx, cy, a, bb, height, p, wider);
-                auto same = [&](const char* pass) {
-                    for (int y = 0; y < area.h; ++y)
-                        for (int x = 0; x < area.w; ++x) {
-                            const std::uint8_t t = tree.value[std::size_t(y) * area.w + x];
-                            const std::uint8_t r = rays.value[std::size_t(y + 1) * wider.w + (x + 1)];
+                LightMask rays = trace_light_solids(occ, cx, cy, a, bb, height, p, part);
+                LightMask wide = trace_light_solids(occ, cx, cy, a, bb, height, p, wider);
+                // Each clipped mask against the area's: the same inside it, unlit past it.
+                auto same_as_tree = [&](const LightMask& m, const char* pass) {
+                    for (int y = m.clip.y; y < m.clip.y + m.clip.h; ++y)
+                        for (int x = m.clip.x; x < m.clip.x + m.clip.w; ++x) {
+                            const std::uint8_t t = area.contains(x, y) ? tree.value[std::size_t(y - area.y) * area.w + std::size_t(x - area.x)] : 0;
+                            const std::uint8_t r = m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(x - m.clip.x)];
                             if (t != r) {
                                 ADD_FAILURE() << pass << ": seed " << seed << " draw " << draw << " pixel " << x << "," << y
-                                              << ": tree " << int(t) << ", rays " << int(r);
+                                              << ": area's " << int(t) << ", clipped " << int(r);
                                 return;
                             }
                         }
                     ++compared;
                 };
-                same("ground");
+                same_as_tree(rays, "ground, rays");
+                same_as_tree(wide, "ground, wider clip");
                 for (std::size_t i = 0; i < tree.value.size(); ++i) shaded_ground += tree.value[i] == 0;
                 light_sprite_points(tree, occ, height, p);
                 light_sprite_points(rays, occ, height, p);
-                same("sprites");
+                light_sprite_points(wide, occ, height, p);
+                same_as_tree(rays, "sprites, rays");
+                same_as_tree(wide, "sprites, wider clip");
                 for (std::size_t i = 0; i < tree.value.size(); ++i) {
                     const int px = area.x + int(i % std::size_t(area.w)), py = area.y + int(i / std::size_t(area.w));
                     lit_sprites += tree.value[i] && occ.surface.instance[std::size_t(py - occ.rect.y) * occ.rect.w +
@@ -422,7 +430,7 @@ TEST(Occluders, theTreePassesGiveTheRaysBytes) {
             }
         }
     }
-    EXPECT_EQ(compared, 96);
+    EXPECT_EQ(compared, 192);
     // The scenes hold both shaded ground and lit sprites, so the comparison can fail.
     EXPECT_GT(shaded_ground, 10000);
     EXPECT_GT(lit_sprites, 10000);

@@ -346,16 +346,18 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
     if (occluder_tree_serves(occ, area, p)) {
         if (m.clip == area) {
             trace_ground_tree(m, occ, H, table, p);
-        } else if (double(area.w) * area.h <= 4.0 * double(m.clip.w) * m.clip.h) {
-            // Clipped: the whole area over the tree, then the clip copied
-            // (rays run to the border whatever the clip).
+        } else if (const Rect inside = intersect(m.clip, area);
+                   double(area.w) * area.h <= 4.0 * double(inside.w) * inside.h) {
+            // Clipped: the whole area over the tree, then the part of it the
+            // clip holds copied (rays run to the border whatever the clip;
+            // past the area the clip stays unlit).
             thread_local LightMask whole;
             start_mask(whole, cx, cy, a, b, p, area);
             trace_ground_tree(whole, occ, H, table, p);
-            for (int y = 0; y < m.clip.h; ++y)
-                std::memcpy(&m.value[std::size_t(y) * m.clip.w],
-                            &whole.value[std::size_t(m.clip.y + y - area.y) * area.w + std::size_t(m.clip.x - area.x)],
-                            std::size_t(m.clip.w));
+            for (int y = inside.y; y < inside.y + inside.h; ++y)
+                std::memcpy(&m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(inside.x - m.clip.x)],
+                            &whole.value[std::size_t(y - area.y) * area.w + std::size_t(inside.x - area.x)],
+                            std::size_t(inside.w));
         } else {
             goto by_rays;
         }
