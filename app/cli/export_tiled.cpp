@@ -1,6 +1,5 @@
 #include "cli/export_tiled.hpp"
 
-#include <cstdio>
 #include <iostream>
 
 #include "common/world.hpp"
@@ -11,20 +10,6 @@
 #include "isolux/tiled.hpp"
 
 namespace isolux::cli {
-
-namespace {
-
-// --view X,Y,W,H: 64-bit X and Y, W and H in [1, 65536].
-WorldRect parse_view(const std::string& text) {
-    long long x = 0, y = 0, w = 0, h = 0;
-    char tail = 0;
-    if (std::sscanf(text.c_str(), "%lld,%lld,%lld,%lld%c", &x, &y, &w, &h, &tail) != 4 || w < 1 || h < 1 ||
-        w > 65536 || h > 65536)
-        throw Error("--view \"" + text + "\": expected X,Y,W,H with W and H in [1, 65536]");
-    return WorldRect{x, y, int(w), int(h)};
-}
-
-}  // namespace
 
 int run_export_tiled(const ExportArgs& a) {
     std::vector<std::string> warnings;
@@ -39,7 +24,7 @@ int run_export_tiled(const ExportArgs& a) {
         // An endless world has no whole map: the window of chunks a view needs.
         if (a.view.empty())
             throw Error(a.scene + ": an endless world is exported a region at a time: give --view X,Y,W,H");
-        const WorldRect v = parse_view(a.view);
+        const WorldRect v = app::parse_endless_view(a.view);
         EndlessWindow win = app::build_endless_window(scene, v, a.scene);
         scene = scene_in_window(scene, win, v);
         region = "; tiles " + std::to_string(win.chunks.col0) + ".." + std::to_string(win.chunks.col0 + win.chunks.cols - 1) +

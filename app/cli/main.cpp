@@ -221,11 +221,7 @@ WorldRect endless_view_from_args(const RenderArgs& a, const Scene& s) {
         return WorldRect{std::int64_t(std::floor(s.camera.x)), std::int64_t(std::floor(s.camera.y)), s.camera.width,
                          s.camera.height};
     }
-    std::vector<long long> v;
-    if (!parse_ints(a.view, ',', v) || v.size() != 4 || v[2] < 1 || v[3] < 1 || v[2] > max_image_side ||
-        v[3] > max_image_side)
-        throw Error("--view \"" + a.view + "\": expected X,Y,W,H with W and H in [1, " + std::to_string(max_image_side) + "]");
-    return WorldRect{v[0], v[1], int(v[2]), int(v[3])};
+    return parse_endless_view(a.view);
 }
 
 Rect view_from_args(const RenderArgs& a, const Scene& s, const World& w) {

@@ -1,10 +1,12 @@
 #include "common/world.hpp"
 
+#include <cstdio>
 #include <iostream>
 
 #include "common/assets.hpp"
 #include "isolux/error.hpp"
 #include "isolux/files.hpp"
+#include "isolux/image_file.hpp"
 #include "isolux/tiled.hpp"
 
 namespace isolux::app {
@@ -27,6 +29,15 @@ EndlessWindow build_endless_window(const Scene& scene, WorldRect view, std::stri
     Tileset tileset = scene_tileset(scene);
     const ChunkRange chunks = endless_chunks(tileset, scene.layout, view, endless_reach(scene, tileset), source);
     return make_endless_window(std::move(tileset), scene, chunks, source);
+}
+
+WorldRect parse_endless_view(const std::string& text) {
+    long long x = 0, y = 0, w = 0, h = 0;
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "%lld,%lld,%lld,%lld%c", &x, &y, &w, &h, &tail) != 4 || w < 1 || h < 1 ||
+        w > max_image_side || h > max_image_side)
+        throw Error("--view \"" + text + "\": expected X,Y,W,H with W and H in [1, " + std::to_string(max_image_side) + "]");
+    return WorldRect{x, y, int(w), int(h)};
 }
 
 World build_world(const Scene& scene, std::string_view source, std::vector<std::string>* warnings) {

@@ -21,4 +21,8 @@ World build_world(const Scene& scene, std::string_view source = "scene", std::ve
 // naming `source` for a view beyond the world's reach.
 EndlessWindow build_endless_window(const Scene& scene, WorldRect view, std::string_view source = "scene");
 
+// An endless world's --view X,Y,W,H: 64-bit X and Y, W and H in [1,
+// max_image_side]; Error naming the flag otherwise.
+WorldRect parse_endless_view(const std::string& text);
+
 }  // namespace isolux::app

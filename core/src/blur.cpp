@@ -548,13 +548,10 @@ void blur_within_region(const LightTexture& tex, const SurfaceIds& ids, Rect z, 
         const int xa = row_inner ? std::clamp(inner.x, z.x, z.x + z.w) : z.x + z.w;
         const int xb = row_inner ? std::clamp(inner.x + inner.w, xa, z.x + z.w) : z.x + z.w;
         auto edge = [&](int x) {
-            // Inside the texture and outside the surfaces' rectangle, with no
-            // surface in reach: the ground all round, plain.
+            // Off `inner`: plain only inside the texture with no surface's
+            // rectangle in reach (the ground all round); else by the rule.
             const bool texture_inside = x - R >= t.x && x + R < t.x + t.w && y - R >= t.y && y + R < t.y + t.h;
             if (texture_inside && intersect(Rect{x - R, y - R, 2 * R + 1, 2 * R + 1}, s).empty()) return;
-            if (texture_inside && s.contains(x, y) && ids.reach[std::size_t(y - s.y) * s.w + std::size_t(x - s.x)] > R &&
-                intersect(Rect{x - R, y - R, 2 * R + 1, 2 * R + 1}, s) == Rect{x - R, y - R, 2 * R + 1, 2 * R + 1})
-                return;
             blur_within_texel_any<C>(tex, R, ids, x, y, out);
         };
         for (int x = z.x; x < xa; ++x) edge(x);
