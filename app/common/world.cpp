@@ -11,9 +11,7 @@
 
 namespace isolux::app {
 
-namespace {
-
-Tileset scene_tileset(const Scene& scene) {
+Tileset load_scene_tileset(const Scene& scene) {
     std::filesystem::path manifest = scene.tileset;
     if (manifest.empty()) {
         manifest = default_tileset_manifest();
@@ -23,10 +21,8 @@ Tileset scene_tileset(const Scene& scene) {
     return load_tileset(manifest);
 }
 
-}  // namespace
-
 EndlessWindow build_endless_window(const Scene& scene, WorldRect view, std::string_view source) {
-    Tileset tileset = scene_tileset(scene);
+    Tileset tileset = load_scene_tileset(scene);
     const ChunkRange chunks = endless_chunks(tileset, scene.layout, view, endless_reach(scene, tileset), source);
     return make_endless_window(std::move(tileset), scene, chunks, source);
 }
@@ -51,7 +47,7 @@ World build_world(const Scene& scene, std::string_view source, std::vector<std::
         return std::move(t.world);
     }
     std::vector<std::string> own;
-    World w = make_world(scene_tileset(scene), scene, source, warnings ? warnings : &own);
+    World w = make_world(load_scene_tileset(scene), scene, source, warnings ? warnings : &own);
     for (const std::string& line : own) std::cerr << "isolux: warning: " << printable(line) << "\n";
     return w;
 }

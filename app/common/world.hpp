@@ -11,6 +11,10 @@
 
 namespace isolux::app {
 
+// The scene's tileset (the default one when its field is empty); throws
+// Error naming the manifest.
+Tileset load_scene_tileset(const Scene& scene);
+
 // Throws Error naming the tileset file on bad input, or `source` (the scene's
 // file) and the entry for a bad edit. Warnings (edits outside the map) are
 // printed to stderr when `warnings` is null.

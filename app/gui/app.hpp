@@ -77,6 +77,7 @@ struct App {
     Rect view;             // world pixels shown this frame
     double view_x = 0, view_y = 0;  // window position of the view's top-left
     int window_w = 0, window_h = 0;
+    double endless_zoom = 0;  // the last zoom whose view an endless world's window held
     bool overlay_dirty = true;
     Overlays overlay_key;
     Params overlay_params;

@@ -182,6 +182,39 @@ bool screenshot_view_fits(App& app) {
     return false;
 }
 
+// An endless world's window kept around the view (follow_view). A new
+// window is a new frame of reference: what was cached over the old one is
+// made again. A view the editor refuses (zoomed out too far) returns to the
+// last zoom that fitted.
+void follow_endless_view(App& app, bool screenshot_mode) {
+    Editor& e = app.editor;
+    if (e.stroke.active) return;  // a stroke's tiles stay in one frame
+    auto view_of = [&] {
+        if (screenshot_mode) {
+            const WorldRect& v = e.endless.last_view;
+            return Rect{int(std::floor(e.view.x)), int(std::floor(e.view.y)), e.view.width > 0 ? e.view.width : v.w,
+                        e.view.height > 0 ? e.view.height : v.h};
+        }
+        return Rect{int(std::floor(e.view.x)), int(std::floor(e.view.y)), int(std::ceil(app.window_w / e.view.zoom)) + 1,
+                    int(std::ceil(app.window_h / e.view.zoom)) + 1};
+    };
+    Follow f = follow_view(e, view_of());
+    if (f == Follow::refused && app.endless_zoom > 0 && app.endless_zoom != e.view.zoom) {
+        const double cx = e.view.x + app.window_w / 2.0 / e.view.zoom, cy = e.view.y + app.window_h / 2.0 / e.view.zoom;
+        e.view.zoom = app.endless_zoom;
+        e.view.x = cx - app.window_w / 2.0 / e.view.zoom;
+        e.view.y = cy - app.window_h / 2.0 / e.view.zoom;
+        f = follow_view(e, view_of());
+    }
+    if (f != Follow::refused) app.endless_zoom = e.view.zoom;
+    if (f != Follow::moved) return;
+    app.overlay_dirty = true;
+    app.truth.valid = false;
+    app.split_texture_holds = 0;
+    app.flat_frame = FrameState{e.frame.options};
+    app.accuracy.heatmap_stale = true;
+}
+
 }  // namespace
 
 // One frame's figures: the stages that ran, their times, and the frame's own
@@ -218,10 +251,16 @@ void stop_long_trace(App& app) {
 // One frame of the pipeline: core traces (CPU), the renderer does the rest.
 FrameReport render_app_frame(App& app, bool screenshot_mode) {
     Editor& e = app.editor;
+    if (e.scene.endless) follow_endless_view(app, screenshot_mode);
     renderer_set_world(app.renderer, e.world);
     const Scene scene = render_scene(e);
     Camera cam;
-    if (screenshot_mode) {
+    if (screenshot_mode && e.scene.endless) {
+        const WorldRect& v = e.endless.last_view;
+        cam = {e.view.x, e.view.y, v.w, v.h};
+        app.view = camera_view(cam, e.world);
+        app.view_x = app.view_y = 0;
+    } else if (screenshot_mode) {
         cam = scene_to_save(e).camera;  // width 0: the whole map, as isolux-cli renders it
         app.view = camera_view(cam, e.world);
         app.view_x = app.view_y = 0;

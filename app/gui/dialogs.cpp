@@ -292,12 +292,12 @@ void edits_popup(App& app) {
     const MapFields& m = ui.dialogs.edits_target;
     bool done = false;
     if (ImGui::Button("Keep edits")) {
-        regenerate(e, m.seed, m.width, m.height, m.layout, app.now, true);
+        regenerate(e, m, app.now, true);
         done = true;
     }
     ImGui::SameLine();
     if (ImGui::Button("Clear edits")) {
-        regenerate(e, m.seed, m.width, m.height, m.layout, app.now, false);
+        regenerate(e, m, app.now, false);
         done = true;
     }
     ImGui::SameLine();

@@ -27,7 +27,7 @@ namespace {
 
 bool same_world_fields(const Scene& a, const Scene& b) {
     return a.seed == b.seed && a.width == b.width && a.height == b.height && a.layout == b.layout &&
-           a.tileset == b.tileset && a.map == b.map;
+           a.tileset == b.tileset && a.map == b.map && a.endless == b.endless;
 }
 
 void remember_file(Editor& e, const fs::path& path, FileKind kind) {
@@ -64,10 +64,19 @@ void reset_view(Editor& e) {
 }
 
 MapFields map_fields(const Editor& e) {
-    return {e.scene.seed, e.scene.width, e.scene.height, e.scene.layout, e.scene.tileset};
+    return {e.scene.seed, e.scene.width, e.scene.height, e.scene.endless, e.scene.layout, e.scene.tileset};
 }
 
 Scene scene_to_save(const Editor& e) {
+    if (e.scene.endless) {
+        // The world's own pixels and tiles; the camera keeps the view's size
+        // (an endless render needs one).
+        Scene s = endless_world_scene(e, e.scene);
+        const WorldRect& v = e.endless.last_view;
+        s.camera = {e.view.x + double(e.endless.origin_x), e.view.y + double(e.endless.origin_y),
+                    e.view.width > 0 ? e.view.width : v.w, e.view.height > 0 ? e.view.height : v.h};
+        return s;
+    }
     Scene s = e.scene;
     s.camera = {e.view.x, e.view.y, e.view.width, e.view.height};
     return s;
@@ -86,10 +95,18 @@ Editor make_editor(const Scene& scene, const fs::path& config) {
     std::string warning;
     e.settings = load_settings(config, &warning);
     if (!warning.empty()) set_status(e, warning, true);
-    e.world = build_world(scene);
-    e.world_source = scene;
     e.frame.options.cpu_sprites = false;
     e.frame.options.cpu_blur_and_composite = false;
+    if (scene.endless) {
+        const WorldRect view = default_endless_view(scene);
+        open_endless(e, scene, view, "scene");
+        e.view.width = scene.camera.width;
+        e.view.height = scene.camera.height;
+        e.fit_pending = false;  // an endless world has no whole to fit
+        return e;
+    }
+    e.world = build_world(scene);
+    e.world_source = scene;
     take_camera(e);
     return e;
 }
@@ -104,6 +121,13 @@ void commit_edit(Editor& e, const Scene& before, double now) {
 }
 
 bool sync_world(Editor& e) {
+    if (e.scene.endless && !same_world_fields(e.scene, e.world_source)) {
+        if (sync_endless_world(e)) return true;
+        e.scene.seed = e.world_source.seed;
+        e.scene.layout = e.world_source.layout;
+        e.scene.tileset = e.world_source.tileset;
+        return false;
+    }
     if (same_world_fields(e.scene, e.world_source)) {
         if (e.scene.edits == e.world.edits) return true;
         try {
@@ -120,6 +144,7 @@ bool sync_world(Editor& e) {
         World w = build_world(e.scene, "edits", &warnings);
         e.world = std::move(w);
         e.world_source = e.scene;
+        e.endless.on = false;
         fresh_frame(e);
         return true;
     } catch (const Error& err) {
@@ -233,6 +258,23 @@ bool load_scene_impl(Editor& e, const fs::path& path, double now, bool remember)
             warnings = t.warnings;
         } else {
             loaded = load_scene(path, &warnings);
+            if (loaded.endless) {
+                // Its window first: a scene that cannot open keeps the document.
+                const Scene before = e.scene;
+                open_endless(e, loaded, default_endless_view(loaded), path.string());
+                e.view.width = loaded.camera.width;
+                e.view.height = loaded.camera.height;
+                commit_edit(e, before, now);
+                e.selected = -1;
+                e.selection.clear();
+                e.fit_pending = false;
+                e.scene_path = path;
+                e.dirty = false;
+                e.autosave_due = -1;
+                if (remember) remember_file(e, path, FileKind::scene);
+                set_status(e, warnings.empty() ? "loaded " + path.string() + " (endless)" : warnings.front(), !warnings.empty());
+                return true;
+            }
             // Build first: a scene whose tileset is broken must not replace the document.
             w = build_world(loaded, path.string(), &warnings);
         }
@@ -240,6 +282,7 @@ bool load_scene_impl(Editor& e, const fs::path& path, double now, bool remember)
         e.scene = loaded;
         e.world = std::move(w);
         e.world_source = loaded;
+        e.endless.on = false;
         fresh_frame(e);
         take_camera(e);
         commit_edit(e, before, now);
@@ -450,6 +493,7 @@ void new_scene(Editor& e, double now) {
     e.selected = -1;
     e.selection.clear();
     e.view = View{};
+    e.endless.on = false;
     e.fit_pending = true;
     set_status(e, "new scene");
 }

@@ -4,9 +4,11 @@
 #include <array>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gui/config.hpp"
+#include "isolux/endless.hpp"
 #include "isolux/frame.hpp"
 #include "isolux/scene.hpp"
 #include "isolux/world.hpp"
@@ -79,6 +81,25 @@ struct View {
 
 inline constexpr double min_zoom = 1.0 / 16, max_zoom = 16;
 
+// Where the editor stands in an endless world (editor_endless.cpp). The
+// document stays in the frame of the window it edits: its lights are the
+// window's pixels and its edits the window's tiles (scene.width and height
+// are the window's), so every tool works as on a finite map. When the view
+// needs chunks the window lacks, a new window is made and the document, its
+// history, the view and the character move into its frame by whole pixels
+// and tiles; files hold the world's own pixels and tiles.
+struct EndlessPlace {
+    bool on = false;
+    ChunkRange chunks;                        // the window's tiles, in world tiles
+    std::int64_t origin_x = 0, origin_y = 0;  // the world pixel of the window's pixel (0, 0)
+    std::vector<TileEdit> far_edits;          // world tiles too far from the window for its int tiles
+    WorldRect last_view;                      // the last view followed, world pixels
+    std::uint64_t windows_built = 0;
+};
+// Views whose window would pass this many tiles are refused (zoom in): a
+// window is made whole when the view leaves it, in time that grows with it.
+inline constexpr long max_endless_window_tiles = 288L * 288;
+
 struct Editor {
     // The document: what is saved, undone and autosaved. The one source of
     // truth: panels read and edit it (through commit_edit), never a copy.
@@ -102,6 +123,7 @@ struct Editor {
 
     Overlays overlays;
     Character character;
+    EndlessPlace endless;  // an endless world's window (on: the document is endless)
 
     bool fit_pending = true;  // fit the view to the map next frame (the app knows the free area)
     Brush brush;
@@ -135,6 +157,7 @@ void reset_view(Editor& e);
 struct MapFields {
     std::string seed;
     int width = 0, height = 0;
+    bool endless = false;  // no edge: width and height unused
     Layout layout = Layout::diamond;
     std::string tileset;
     friend bool operator==(const MapFields&, const MapFields&) = default;
@@ -163,6 +186,9 @@ void set_params(Editor& e, const Params& p, double now);   // validated; bad val
 // cleared; edits beyond a smaller map stay in the file and are reported.
 void regenerate(Editor& e, const std::string& seed, int width, int height, Layout layout, double now,
                 bool keep_edits = true);
+// The Map panel's fields applied: finite, or endless (the document moves
+// into the world's frame, around the view).
+void regenerate(Editor& e, const MapFields& m, double now, bool keep_edits = true);
 // How many of the scene's edits lie outside its map.
 int edits_outside(const Scene& s);
 
@@ -215,6 +241,51 @@ void discard_recovery(Editor& e);
 void set_sprite_footprint(Editor& e, int sprite, const FootprintSpec& spec);
 bool save_footprints(Editor& e);
 std::filesystem::path tileset_manifest(const Editor& e);
+
+// Endless worlds (editor_endless.cpp). `world_scene` in the world's frame
+// (lights in world pixels, edits in world tiles) becomes the document, in
+// the frame of a window around `view` (world pixels). Throws Error naming
+// `source`; the document is unchanged then.
+void open_endless(Editor& e, const Scene& world_scene, WorldRect view, std::string_view source);
+// A document scene (the document or one of its history) in the world's frame.
+Scene endless_world_scene(const Editor& e, const Scene& s);
+// The world pixel of a window pixel, and the world tile of a window tile.
+WorldRect endless_world_rect(const Editor& e, Rect window_rect);
+// Keeps the window around `view` (window pixels): when the view needs chunks
+// the window lacks, a window around it is made and everything moves into its
+// frame (moved). A view too large for a window (over
+// max_endless_window_tiles) or too far out is refused with a status message,
+// and the window stays.
+enum class Follow { kept, moved, refused };
+Follow follow_view(Editor& e, Rect view);
+// The document's endless scene rebuilt around the last view (its seed,
+// layout or tileset changed). False, with a status message, on error.
+bool sync_endless_world(Editor& e);
+// Where an endless scene opens: its camera, or 1600x900 pixels at the origin.
+WorldRect default_endless_view(const Scene& world_scene);
+
+// What the panels show for the document's pixels and tiles: the world's
+// own (an endless world's window origin added; zero on a finite map).
+struct WorldOffset {
+    double x = 0, y = 0;
+    std::int64_t col = 0, row = 0;
+};
+WorldOffset world_offset(const Editor& e);
+
+// The overview of an endless world (the minimap): the chunks within
+// `radius` chunks of the one under the view's centre, row by row, each with
+// whether the window holds it and the hand edits and lights in it.
+struct OverviewChunk {
+    std::int64_t cx = 0, cy = 0;  // chunk coordinates: its first tile is (cx, cy) * chunk_tiles
+    bool in_window = false;
+    int edits = 0, lights = 0;
+};
+struct Overview {
+    std::int64_t col = 0, row = 0;     // the tile under the view's centre
+    std::int64_t cx = 0, cy = 0;       // its chunk
+    std::vector<OverviewChunk> chunks;  // (2 radius + 1)^2, row-major from (cx - radius, cy - radius)
+};
+Overview endless_overview(const Editor& e, int radius);
 
 // Walks the character by (dx, dy) world pixels: it stays on the map's tiles
 // and does not step onto the obstacle map, sliding along an obstacle when

@@ -177,7 +177,8 @@ void end_stroke(Editor& e, double now) {
 std::string brush_preview(const Editor& e, int col, int row) {
     if (!on_map(e, col, row)) return "";
     const Tile& t = e.world.map.at(col, row);
-    std::string here = "tile " + std::to_string(col) + ", " + std::to_string(row) + ": " + sprite_name(e, t.floor);
+    const WorldOffset o = world_offset(e);
+    std::string here = "tile " + std::to_string(col + o.col) + ", " + std::to_string(row + o.row) + ": " + sprite_name(e, t.floor);
     for (int s : overlay_sprites(t)) here += " + " + sprite_name(e, s);
     std::string will;
     const std::string overlay =

@@ -80,6 +80,18 @@ void upload_character(App& app) {
 int render_headless(const Scene& scene, const std::string& scene_name, const std::string& out, const std::string& why) {
     std::cerr << "isolux: " << why << ": the editor needs a display.\n"
               << "isolux: rendering the scene with the headless renderer instead (the same as isolux-cli render)\n";
+    if (scene.endless) {
+        // Lit around its camera, or 1600x900 pixels at the origin.
+        const WorldRect view = default_endless_view(scene);
+        const EndlessWindow win = build_endless_window(scene, view, scene_name);
+        FrameState st;
+        const Rect v = rect_in_window(win, view);
+        render_frame(st, win.world, scene_in_window(scene, win, view), Camera{double(v.x), double(v.y), v.w, v.h}, 0);
+        save_image(out, st.final);
+        std::cerr << "isolux: wrote " << out << " (" << st.final.width << "x" << st.final.height
+                  << ", endless world). For more, run isolux-cli render --help.\n";
+        return 0;
+    }
     World w = build_world(scene);
     // isolux-cli's budgets: the view's pixels and the tracing work.
     const Rect view = camera_view(scene.camera, w);
@@ -105,7 +117,7 @@ int main(int argc, char** argv) {
     int width = 1600, height = 900;
     cli.add_option("--scene", scene_file, "Scene JSON to open");
     cli.add_option("--seed", seed, "Map seed (default \"isolux\")");
-    cli.add_option("--size", size, "Map size WxH in tiles");
+    cli.add_option("--size", size, "Map size WxH in tiles, or endless (no edge)");
     cli.add_option("--frames", frames, "Render N frames, then quit (with --screenshot)")->check(CLI::Range(1L, 1000000L));
     cli.add_option("--screenshot", screenshot, "Write the final frame (the viewport, no panels) to this PNG");
     cli.add_option("--script", script_file, "Scripted input, one command a frame (see app/gui/script.hpp)");
@@ -130,17 +142,17 @@ int main(int argc, char** argv) {
     Scene scene;
     try {
         if (!scene_file.empty()) scene = load_scene(scene_file);
-        if (scene.endless)
-            throw Error(scene_file + ": the editor does not open endless worlds yet; isolux-cli render --scene " +
-                        scene_file + " lights one around its camera (or --view X,Y,W,H)");
         if (!seed.empty()) scene.seed = seed;
-        if (!size.empty()) {
+        if (size == "endless") {
+            scene.endless = true;
+        } else if (!size.empty()) {
             int w = 0, h = 0;
             if (std::sscanf(size.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > max_map_side ||
                 h > max_map_side)
                 throw Error("--size \"" + size + "\": expected WxH with sides in [1, " +
-                            std::to_string(max_map_side) + "]");
+                            std::to_string(max_map_side) + "], or endless");
             scene.width = w, scene.height = h;
+            scene.endless = false;
         }
         if (scene_file.empty() && seed.empty() && size.empty()) {
             // The default: the default seed and assets, lit as the README

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "gui/app.hpp"
+#include "gui/overview.hpp"
 #include "gui/dialogs.hpp"
 #include "gui/file_browser.hpp"
 #include "gui/menu_bar.hpp"
@@ -42,11 +43,13 @@ void map_panel(App& app) {
     active |= ImGui::IsItemActive();
     apply |= ImGui::IsItemDeactivatedAfterEdit();
     help("Any text. The same seed gives the same map, pixel for pixel, on every machine. Enter regenerates.");
-    int size[2] = {m.width, m.height};
-    if (ImGui::InputInt2("size", size)) m.width = size[0], m.height = size[1];
-    active |= ImGui::IsItemActive();
-    apply |= ImGui::IsItemDeactivatedAfterEdit();
-    help("Map size in tiles, each side 1 to 1024. Enter regenerates.");
+    if (!m.endless) {
+        int size[2] = {m.width, m.height};
+        if (ImGui::InputInt2("size", size)) m.width = size[0], m.height = size[1];
+        active |= ImGui::IsItemActive();
+        apply |= ImGui::IsItemDeactivatedAfterEdit();
+        help("Map size in tiles, each side 1 to 1024. Enter regenerates.");
+    }
     int layout = int(m.layout);
     if (ImGui::Combo("layout", &layout, "paper\0diamond\0staggered\0")) {
         m.layout = Layout(layout);
@@ -63,17 +66,23 @@ void map_panel(App& app) {
         m.seed = std::string(words[t % 16]) + "-" + std::to_string((t / 16) % 10000);
         apply = true;
     }
+    if (ImGui::Checkbox("endless", &m.endless)) apply = true;
+    help("No edge: chunks of 32x32 tiles are made around the view as it moves (walk, pan), and saving keeps "
+         "the seed, edits and lights, never the tiles.");
     if (apply) {
-        if (m.width < 1 || m.height < 1 || m.width > max_map_side || m.height > max_map_side)
+        if (!m.endless && shown.endless) m.width = Scene{}.width, m.height = Scene{}.height;  // leaving an endless world
+        if (!m.endless && (m.width < 1 || m.height < 1 || m.width > max_map_side || m.height > max_map_side))
             set_status(e, "size: each side must be in [1, " + std::to_string(max_map_side) + "] tiles", true);
         else if (!(m == shown) && !e.scene.edits.empty()) {
             ui.dialogs.edits_target = m;  // ask: keep or clear the hand edits?
             ui.dialogs.edits_prompt = true;
         } else if (!(m == shown))
-            regenerate(e, m.seed, m.width, m.height, m.layout, app.now);
+            regenerate(e, m, app.now);
         ui.map_editing = false;
     }
-    if (!e.scene.edits.empty()) {
+    if (!e.scene.edits.empty() && e.scene.endless) {
+        ImGui::Text("%zu hand edits", e.scene.edits.size());
+    } else if (!e.scene.edits.empty()) {
         const int outside = edits_outside(e.scene);
         ImGui::Text("%zu hand edits", e.scene.edits.size());
         if (outside > 0) {
@@ -214,7 +223,8 @@ void lights_panel(App& app) {
     for (int i = 0; i < int(e.scene.lights.size()); ++i) {
         const Light& l = e.scene.lights[std::size_t(i)];
         char label[160];
-        std::snprintf(label, sizeof label, "%s  (%.0f, %.0f)%s%s##%d", light_label(e.scene, i).c_str(), l.x, l.y,
+        const WorldOffset o = world_offset(e);
+        std::snprintf(label, sizeof label, "%s  (%.0f, %.0f)%s%s##%d", light_label(e.scene, i).c_str(), l.x + o.x, l.y + o.y,
                       l.hidden ? "  hidden" : "", l.locked ? "  locked" : "", i);
         if (ImGui::Selectable(label, is_selected(e, i)))
             select_light(e, i, ImGui::GetIO().KeyShift || ImGui::GetIO().KeyCtrl);
@@ -256,8 +266,11 @@ void lights_panel(App& app) {
         }
         help("Locked lights are not moved by drags nor removed by Delete or right-click.");
         before = e.scene;
-        float pos[2] = {float(l.x), float(l.y)};
-        if (ImGui::DragFloat2("position", pos, 1.0f)) l.x = pos[0], l.y = pos[1];
+        // World pixels (an endless world's, far from its origin, need doubles).
+        const WorldOffset o = world_offset(e);
+        double pos[2] = {l.x + o.x, l.y + o.y};
+        if (ImGui::DragScalarN("position", ImGuiDataType_Double, pos, 2, 1.0f, nullptr, nullptr, "%.1f"))
+            l.x = pos[0] - o.x, l.y = pos[1] - o.y;
         track_edit(app, before);
         before = e.scene;
         bool own_area = l.area_a.has_value();
@@ -436,6 +449,7 @@ void draw_panels(App& app) {
     stats_panel(app);
     accuracy_panel(app, app.accuracy);
     inspector_panel(app);
+    overview_panel(app);
     help_window(app);
     huge_work_prompt(app);
     status_bar(app);

@@ -43,7 +43,8 @@ Script load_script(const std::filesystem::path& path) {
             {"overlay", 2}, {"sweep", -1}, {"wait-sweep", 0}, {"long-work", 1}, {"apply-point", 1}, {"save-sweep", 1},
             {"tool", 1}, {"brush", 2}, {"view", 3}, {"click-tile", 2}, {"drag-tiles", 4}, {"new", 0}, {"fit", 0},
             {"open-dropped", 1}, {"check-glyphs", 1}, {"dump-panels", 1}, {"export-final", 1}, {"select", 1},
-            {"character", -1}, {"show", 1}, {"export-tiled", 1}, {"move-lights", 1}, {"save-stats", 1}};
+            {"character", -1}, {"show", 1}, {"export-tiled", 1}, {"move-lights", 1}, {"save-stats", 1},
+            {"pan", 3}};
         bool known = false;
         for (auto [op, n] : arity)
             if (step.op == op) {
@@ -56,7 +57,7 @@ Script load_script(const std::filesystem::path& path) {
         // Numbers are checked here, so a bad one is a message, not a crash mid-run.
         const bool numeric = step.op == "wait" || step.op == "click" || step.op == "rclick" || step.op == "drag" ||
                              step.op == "apply-point" || step.op == "view" || step.op == "click-tile" ||
-                             step.op == "drag-tiles" || step.op == "move-lights";
+                             step.op == "drag-tiles" || step.op == "move-lights" || step.op == "pan";
         if (step.op == "character" && step.args.size() != 1 && step.args.size() != 3)
             throw Error(path.string() + ":" + std::to_string(line) + ": character takes on|off [X Y]");
         if (step.op == "view" && step.args.size() == 3) {
@@ -144,6 +145,13 @@ void run_script_step(App& app) {
         --s.move_lights;
         return;
     }
+    if (s.pan_frames > 0) {
+        // The view moves as a held pan would, a frame at a time.
+        app.editor.view.x += s.pan_dx;
+        app.editor.view.y += s.pan_dy;
+        --s.pan_frames;
+        return;
+    }
     if (s.wait > 0) {
         --s.wait;
         return;
@@ -229,11 +237,13 @@ void run_script_step(App& app) {
         e.view.zoom = std::clamp(num(2), min_zoom, max_zoom);
         e.fit_pending = false;
     } else if (step.op == "click-tile" || step.op == "drag-tiles") {
-        // Window pixels of a tile's centre in the current view.
+        // Window pixels of a tile's centre in the current view (tiles as the
+        // status bar shows them: an endless world's own).
         auto tile_screen = [&](int col, int row) {
             int cx = 0, cy = 0;
             const Map& m = e.world.map;
-            tile_center(m.layout, m.tile_width, m.tile_height, col, row, cx, cy);
+            const WorldOffset o = world_offset(e);
+            tile_center(m.layout, m.tile_width, m.tile_height, int(col - o.col), int(row - o.row), cx, cy);
             return std::pair<double, double>{(cx + e.world.placed.shift_x - e.view.x) * e.view.zoom,
                                              (cy + e.world.placed.shift_y - e.view.y) * e.view.zoom};
         };
@@ -290,6 +300,10 @@ void run_script_step(App& app) {
         }
     } else if (step.op == "move-lights") {
         s.move_lights = int(num(0));
+    } else if (step.op == "pan") {
+        s.pan_dx = num(0);
+        s.pan_dy = num(1);
+        s.pan_frames = int(num(2));
     } else if (step.op == "save-stats") {
         try {
             write_file_atomic(step.args[0], stats_json(app.stats));

@@ -21,7 +21,8 @@
 //   change, the default; trace it, the script waiting until it is done; or trace it and
 //   press Cancel once it is under way) | move-lights N (for N frames every light moves a
 //   pixel, right then left; the next command waits) | save-stats PATH (each stage's mean
-//   time over the frames the Stats panel keeps, JSON: cpu_ms, gpu_ms, tracer, frames)
+//   time over the frames the Stats panel keeps, JSON: cpu_ms, gpu_ms, tracer, frames) |
+//   pan DX DY N (for N frames the view moves DX, DY world pixels, as a held pan; the next command waits)
 // Coordinates are window pixels; '#' starts a comment.
 #pragma once
 #include <filesystem>
@@ -52,6 +53,9 @@ struct Script {
     // move-lights N: for N frames every light moves a pixel (right, then
     // left), as a game's lights do; the next command waits for the last.
     int move_lights = 0;
+    // pan DX DY N: for N frames the view moves (DX, DY) world pixels; the next command waits.
+    double pan_dx = 0, pan_dy = 0;
+    int pan_frames = 0;
 };
 
 // Parses a script file; throws Error naming the file and line.

@@ -70,8 +70,10 @@ void status_bar(App& app) {
     int col = -1, row = -1;
     const bool on_tile = app.ui.viewport.cursor_in_view &&
                          tile_at(e.world.map, e.world.placed, app.ui.viewport.cursor_x, app.ui.viewport.cursor_y, col, row);
-    ImGui::Text("world (%.0f, %.0f)  tile %s  |  %.0f FPS  %.2f ms  |  zoom %.2f  |  %s%s", app.ui.viewport.cursor_x,
-                app.ui.viewport.cursor_y, on_tile ? (std::to_string(col) + ", " + std::to_string(row)).c_str() : "-",
+    const WorldOffset o = world_offset(e);
+    ImGui::Text("world (%.0f, %.0f)  tile %s  |  %.0f FPS  %.2f ms  |  zoom %.2f  |  %s%s", app.ui.viewport.cursor_x + o.x,
+                app.ui.viewport.cursor_y + o.y,
+                on_tile ? (std::to_string(col + o.col) + ", " + std::to_string(row + o.row)).c_str() : "-",
                 app.stats.fps, app.stats.frame_ms, e.view.zoom, e.dirty ? "unsaved  |  " : "", "");
     ImGui::SameLine();
     if (e.status_error) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", e.status.c_str());

@@ -42,6 +42,13 @@ void endless_tile_center(Layout layout, int tw, int th, std::int64_t col, std::i
     tile_center(layout, tw, th, col, row, x, y);
 }
 
+void endless_tile_at(Layout layout, int tw, int th, double x, double y, std::int64_t& col, std::int64_t& row) {
+    double c = 0, r = 0;
+    tile_of(layout, tw, th, x, y, c, r);
+    col = std::llround(c);
+    row = std::llround(r);
+}
+
 int endless_reach(const Scene& scene, const Tileset& tileset) {
     int area = std::max(scene.params.area_a, scene.params.area_b);
     for (const Light& l : scene.lights) area = std::max({area, l.area_a.value_or(0), l.area_b.value_or(0)});

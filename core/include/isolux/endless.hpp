@@ -33,6 +33,10 @@ struct WorldRect {
 void endless_tile_center(Layout layout, int tile_w, int tile_h, std::int64_t col, std::int64_t row, std::int64_t& x,
                          std::int64_t& y);
 
+// The tile whose centre is nearest endless pixel (x, y) (tile_center
+// inverted and rounded; for the staggered and paper layouts, per row).
+void endless_tile_at(Layout layout, int tile_w, int tile_h, double x, double y, std::int64_t& col, std::int64_t& row);
+
 // Whole chunks of tiles: [col0, col0 + cols) x [row0, row0 + rows).
 struct ChunkRange {
     std::int64_t col0 = 0, row0 = 0;
