@@ -328,6 +328,36 @@ void register_truth() {
 // Every figure of docs/performance.md, each the median of ratios of its two
 // sides measured interleaved (A, B, A, B, ...) in this one run, with the
 // spread over the pairs: a load that comes and goes hits both sides.
+// Tracing time per frame (trace, drawing into the texture, correction, from
+// the frame report) of a walking camera carrying a light, tracing every l
+// frames, against what stops the rays.
+void print_walk_ratios(int pairs) {
+    auto walk = [](int l, Occluders o) {
+        return [l, o, st = lighting_state(1), f = long(0), s = lights_scene(bench::world("default", 24), 8, 11)]() mutable {
+            const World& w = bench::world("default", 24);
+            s.params.trace_every = l;
+            s.params.occluders = o;
+            double ms = 0;
+            for (int i = 0; i < 16; ++i, ++f) {
+                const Camera cam{300.0 + 6.0 * (f % 64), 200.0 + 3.0 * (f % 64), 960, 540};
+                Scene sf = s;
+                sf.lights.push_back(Light{cam.x + 480.5, cam.y + 270.5});
+                const FrameReport r = render_frame(st, w, sf, cam, f);
+                ms += r.ms[int(Stage::trace)] + r.ms[int(Stage::opacity_correction)];
+            }
+            return ms;
+        };
+    };
+    // Every 4 frames against every frame.
+    auto walk4 = walk(4, Occluders::footprints), walk1 = walk(1, Occluders::footprints);
+    bench::print_ratio("trace_every4_cost", bench::interleaved_costs(walk4, walk1, pairs), "<= 0.3");
+    // Beyond the paper: against solids estimated from the sprites (ground rays
+    // and the sprite pass) over the paper's whole light (Algorithm 2 and the
+    // opacity correction), every frame.
+    auto walk_solids = walk(1, Occluders::solids), walk_footprints = walk(1, Occluders::footprints);
+    bench::print_ratio("solids_trace_cost", bench::interleaved_costs(walk_solids, walk_footprints, pairs), "<= 1.5");
+}
+
 int ratios() {
     const char* ratio_scene = "default";
     const int a = 128;
@@ -390,32 +420,7 @@ int ratios() {
     Moving one(16, 1), two(16, 2);
     bench::print_ratio("threads2_speedup", bench::interleaved([&] { one(); }, 5, [&] { two(); }, 5, pairs), ">= 1.7", 2);
 
-    // Tracing time per frame (trace, drawing into the texture, correction, from the frame report)
-    // of a walking camera carrying a light, tracing every l frames, against what stops the rays.
-    auto walk = [](int l, Occluders o) {
-        return [l, o, st = lighting_state(1), f = long(0), s = lights_scene(bench::world("default", 24), 8, 11)]() mutable {
-            const World& w = bench::world("default", 24);
-            s.params.trace_every = l;
-            s.params.occluders = o;
-            double ms = 0;
-            for (int i = 0; i < 16; ++i, ++f) {
-                const Camera cam{300.0 + 6.0 * (f % 64), 200.0 + 3.0 * (f % 64), 960, 540};
-                Scene sf = s;
-                sf.lights.push_back(Light{cam.x + 480.5, cam.y + 270.5});
-                const FrameReport r = render_frame(st, w, sf, cam, f);
-                ms += r.ms[int(Stage::trace)] + r.ms[int(Stage::opacity_correction)];
-            }
-            return ms;
-        };
-    };
-    // Every 4 frames against every frame.
-    auto walk4 = walk(4, Occluders::footprints), walk1 = walk(1, Occluders::footprints);
-    bench::print_ratio("trace_every4_cost", bench::interleaved_costs(walk4, walk1, pairs), "<= 0.3");
-    // Beyond the paper: against solids estimated from the sprites (ground rays
-    // and the sprite pass) over the paper's whole light (Algorithm 2 and the
-    // opacity correction), every frame.
-    auto walk_solids = walk(1, Occluders::solids), walk_footprints = walk(1, Occluders::footprints);
-    bench::print_ratio("solids_trace_cost", bench::interleaved_costs(walk_solids, walk_footprints, pairs), "<= 1.5");
+    print_walk_ratios(pairs);
 
     // 1000 lights of which 8 are in view, against those 8 alone (the 8 move each frame).
     auto offscreen = [](bool more) {
@@ -482,6 +487,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--ratios") == 0) return ratios();
         else if (std::strcmp(argv[i], "--endless-ratios") == 0) return bench::print_endless_ratios(), 0;  // those alone
+        else if (std::strcmp(argv[i], "--walk-ratios") == 0) return print_walk_ratios(11), 0;  // trace_every4_cost, solids_trace_cost
     benchmark::Initialize(&argc, argv);
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();

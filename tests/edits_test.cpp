@@ -95,7 +95,7 @@ TEST(Edits, malformedEntriesAreErrorsNamingTheFileAndTheEntry) {
         R"({"edits": [{"tile": [1, 2], "overlays": ["a", "b", "c", "d"]}]})",  // four overlays
         R"({"edits": [{"tile": [1, 2], "overlays": [7]}]})",                   // a number for a name
         R"({"edits": [{"tile": [1, 2], "floor": "water", "flor": "x"}]})",     // a misspelt field
-        R"({"edits": [{"tile": [99999999999, 2], "floor": "water"}]})",        // beyond any map
+        R"({"edits": [{"tile": [9999999999999, 2], "floor": "water"}]})",        // beyond any map
         R"({"edits": [5]})",                                                   // not an object
     };
     for (const char* text : bad) {

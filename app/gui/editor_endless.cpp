@@ -13,11 +13,6 @@ namespace isolux::app {
 
 namespace {
 
-// The editor edits tiles within +-2^29 of the world's origin: a window's
-// tiles and the document's edits then stay ints whichever window holds them
-// (the scene file bounds edits to +-2^30). isolux-cli renders to +-1e12.
-constexpr std::int64_t editor_tile_bound = std::int64_t(1) << 29;
-
 // A frame the document can be in: the world's own (all zero) or a window's.
 struct Frame {
     std::int64_t col0 = 0, row0 = 0, origin_x = 0, origin_y = 0;
@@ -34,7 +29,7 @@ void move_scene(Scene& s, const Frame& from, const Frame& to) {
     const double dx = double(from.origin_x - to.origin_x), dy = double(from.origin_y - to.origin_y);
     for (Light& l : s.lights) l.x += dx, l.y += dy;
     const std::int64_t dc = from.col0 - to.col0, dr = from.row0 - to.row0;
-    for (TileEdit& t : s.edits) t.col = int(t.col + dc), t.row = int(t.row + dr);
+    for (TileEdit& t : s.edits) t.col += dc, t.row += dr;
 }
 
 // The tileset a window is made with: the world's own while its manifest is
@@ -51,22 +46,11 @@ EndlessWindow make_window_for(const Editor& e, const Scene& world_scene, WorldRe
     const ChunkRange need = endless_chunks(ts, world_scene.layout, view, endless_reach(world_scene, ts), source);
     const ChunkRange grown{need.col0 - chunk_tiles, need.row0 - chunk_tiles, need.cols + 2 * chunk_tiles,
                            need.rows + 2 * chunk_tiles};
-    if (grown.col0 < -editor_tile_bound || grown.row0 < -editor_tile_bound ||
-        grown.col0 + grown.cols > editor_tile_bound || grown.row0 + grown.rows > editor_tile_bound)
-        throw Error(std::string(source) + ": the editor edits an endless world within +-" +
-                    std::to_string(editor_tile_bound) + " tiles of its origin; this view needs tiles from (" +
-                    std::to_string(grown.col0) + ", " + std::to_string(grown.row0) +
-                    "): isolux-cli render --view draws up to +-" + std::to_string(max_endless_tile));
     if (long(grown.cols) * grown.rows > max_endless_window_tiles)
         throw Error(std::string(source) + ": a view of " + std::to_string(view.w) + "x" + std::to_string(view.h) +
                     " pixels needs " + std::to_string(grown.cols) + "x" + std::to_string(grown.rows) +
                     " tiles around it, over the editor's " + std::to_string(max_endless_window_tiles) +
                     " for an endless world: zoom in");
-    for (const TileEdit& t : world_scene.edits)
-        if (std::abs(std::int64_t(t.col)) > editor_tile_bound || std::abs(std::int64_t(t.row)) > editor_tile_bound)
-            throw Error(std::string(source) + ": an edit at tile (" + std::to_string(t.col) + ", " +
-                        std::to_string(t.row) + ") lies beyond +-" + std::to_string(editor_tile_bound) +
-                        ", the tiles the editor edits in an endless world");
     return make_endless_window(std::move(ts), world_scene, grown, source);
 }
 

@@ -41,7 +41,9 @@ int sprite_named(const Tileset& ts, const SpritesByName& names, const std::strin
     return it->second;
 }
 
-bool inside(int col, int row, int width, int height) { return col >= 0 && row >= 0 && col < width && row < height; }
+bool inside(std::int64_t col, std::int64_t row, int width, int height) {
+    return col >= 0 && row >= 0 && col < width && row < height;
+}
 
 }  // namespace
 
@@ -120,14 +122,14 @@ Map apply_edits(const Map& seeded, const std::vector<ResolvedEdit>& edits) {
     // Each edited tile's entries in file order; tiles in row-major order.
     std::vector<std::pair<int, const ResolvedEdit*>> by_tile;
     for (const ResolvedEdit& e : edits)
-        if (inside(e.col, e.row, m.width, m.height)) by_tile.push_back({e.row * m.width + e.col, &e});
+        if (inside(e.col, e.row, m.width, m.height)) by_tile.push_back({int(e.row) * m.width + int(e.col), &e});
     std::stable_sort(by_tile.begin(), by_tile.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     for (std::size_t i = 0; i < by_tile.size();) {
         std::vector<const ResolvedEdit*> list;
         std::size_t j = i;
         for (; j < by_tile.size() && by_tile[j].first == by_tile[i].first; ++j) list.push_back(by_tile[j].second);
         const ResolvedEdit& e = *by_tile[i].second;
-        m.tiles[std::size_t(by_tile[i].first)] = edited_tile(seeded, e.col, e.row, list);
+        m.tiles[std::size_t(by_tile[i].first)] = edited_tile(seeded, int(e.col), int(e.row), list);
         i = j;
     }
     return m;

@@ -106,8 +106,8 @@ EndlessWindow make_endless_window(Tileset tileset, const Scene& scene, ChunkRang
         const std::int64_t c = std::int64_t(e.col) - chunks.col0, r = std::int64_t(e.row) - chunks.row0;
         if (c < 0 || r < 0 || c >= chunks.cols || r >= chunks.rows) continue;
         TileEdit local = e;
-        local.col = int(c);
-        local.row = int(r);
+        local.col = c;
+        local.row = r;
         inside.push_back(local);
     }
     const std::vector<ResolvedEdit> resolved = resolve_edits(inside, w.tileset, source);

@@ -95,8 +95,10 @@ std::vector<TileEdit> edits_from(const json& arr, const Fields& scene) {
             const long long x = v.is_number_unsigned()
                                     ? (long long)std::min<unsigned long long>(v.get<unsigned long long>(), 1ull << 40)
                                     : v.get<long long>();
-            if (x < -(1 << 30) || x > (1 << 30)) ef.fail("tile", "= " + std::to_string(x) + " is out of range");
-            return int(x);
+            if (x < -max_edit_tile || x > max_edit_tile)
+                ef.fail("tile", "= " + std::to_string(x) + " is beyond +-" + std::to_string(max_edit_tile) +
+                                    ", the farthest tile a world reaches");
+            return std::int64_t(x);
         };
         e.col = coord(t[0]);
         e.row = coord(t[1]);

@@ -58,9 +58,9 @@ Rect set_edits(World& w, const std::vector<TileEdit>& edits, std::string_view so
     std::map<int, std::vector<const ResolvedEdit*>> tiles;
     auto inside = [&](const ResolvedEdit& e) { return e.col >= 0 && e.row >= 0 && e.col < w.map.width && e.row < w.map.height; };
     for (const ResolvedEdit& e : before)
-        if (inside(e)) tiles[e.row * w.map.width + e.col];
+        if (inside(e)) tiles[int(e.row) * w.map.width + int(e.col)];
     for (const ResolvedEdit& e : resolved)
-        if (inside(e)) tiles[e.row * w.map.width + e.col].push_back(&e);
+        if (inside(e)) tiles[int(e.row) * w.map.width + int(e.col)].push_back(&e);
     Rect changed;
     for (const auto& [idx, list] : tiles) {
         const int col = idx % w.map.width, row = idx / w.map.width;

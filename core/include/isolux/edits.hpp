@@ -15,7 +15,7 @@ namespace isolux {
 
 // An edit with its names resolved to sprite indices.
 struct ResolvedEdit {
-    int col = 0, row = 0;
+    std::int64_t col = 0, row = 0;
     std::optional<int> floor;
     std::optional<std::vector<int>> overlays;
 };

@@ -36,13 +36,14 @@ struct Camera {
 // content there. Names are the tileset's sprite names. A later edit of the
 // same tile overrides an earlier one field by field.
 struct TileEdit {
-    int col = 0, row = 0;
+    std::int64_t col = 0, row = 0;  // 64-bit: an endless world's tiles reach +-max_edit_tile
     std::optional<std::string> floor;                  // unset: the seed's (or an earlier edit's) floor
     std::optional<std::vector<std::string>> overlays;  // unset: unchanged; empty: no overlays
 
     friend bool operator==(const TileEdit&, const TileEdit&) = default;
 };
 
+inline constexpr std::int64_t max_edit_tile = 1'000'000'000'000;  // |col|, |row| of an edit (endless.hpp's bound)
 inline constexpr const char* default_seed = "isolux";
 inline constexpr int default_map_side = 16;
 
