@@ -218,6 +218,7 @@ TEST(Footprint, aBakedGroundDiamondIsTakenOutAndTheObjectsFootKept) {
     FootprintSpec spec;
     const Mask fp = sprite_footprint(im, op, 32, 32, 64, 32, 25, FootprintMode::automatic, spec, &r);
     EXPECT_TRUE(r.baked_ground);
+    EXPECT_FALSE(r.whole_base);  // the diamond's V, but the post covers little of it
     double cx = 0, cy = 0;
     Rect box;
     ASSERT_TRUE(mask_centre(fp, cx, cy, box));
@@ -226,6 +227,44 @@ TEST(Footprint, aBakedGroundDiamondIsTakenOutAndTheObjectsFootKept) {
     const Mask paper = sprite_footprint(im, op, 32, 32, 64, 32, 25, FootprintMode::paper, spec);
     ASSERT_TRUE(mask_centre(paper, cx, cy, box));
     EXPECT_GT(std::abs(cx - 22), 6);  // the paper's run lies on the diamond
+}
+
+TEST(Footprint, aBlockThatFillsItsTileStandsOnItsWholeBase) {
+    // A 64x56 sprite: a grey block whose base is the tile's diamond (64x32,
+    // centre 32,40), 16 px tall: the diamond and the diamond 16 px higher,
+    // joined by its vertical sides; its top, left and right faces shaded
+    // apart, as a lit block is. It reads as a baked ground diamond (its
+    // lower half is opaque, nothing is outside it), but a third of its base
+    // is not the colour of its ring.
+    Image im(64, 56);
+    auto in_diamond = [](double x, double y, double cy) { return std::abs(x - 32) / 32 + std::abs(y - cy) / 16 <= 1; };
+    for (int y = 0; y < 56; ++y)
+        for (int x = 0; x < 64; ++x) {
+            bool in = false;
+            for (int z = 0; z <= 16 && !in; ++z) in = in_diamond(x + 0.5, y + 0.5 + z, 40);
+            if (!in) continue;
+            const bool top = in_diamond(x + 0.5, y + 0.5 + 16, 40);
+            std::uint8_t* p = im.at(x, y);
+            p[0] = p[1] = p[2] = top ? 150 : x < 32 ? 70 : 200;
+            p[3] = 255;
+        }
+    const Mask op = opacity_map(im, 0.5);
+    FootprintReport r;
+    FootprintSpec spec;
+    const Mask fp = sprite_footprint(im, op, 32, 40, 64, 32, 25, FootprintMode::automatic, spec, &r);
+    EXPECT_TRUE(r.whole_base);
+    ASSERT_EQ(r.base.size(), 4u);
+    double cx = 0, cy = 0;
+    Rect box;
+    ASSERT_TRUE(mask_centre(fp, cx, cy, box));
+    EXPECT_NEAR(cx, 32, 1.5);  // the base's centre: the tile's
+    EXPECT_NEAR(cy, 40, 1.5);
+    EXPECT_GE(box.w, 60);
+    EXPECT_GE(box.h, 28);
+    // Algorithm 1 alone: a run across the block's front.
+    const Mask paper = sprite_footprint(im, op, 32, 40, 64, 32, 25, FootprintMode::paper, spec, &r);
+    EXPECT_FALSE(r.whole_base);
+    EXPECT_LT(paper.count() * 4, fp.count());
 }
 
 TEST(Footprint, explicitRunsPolygonsAndNoneAreTaken) {

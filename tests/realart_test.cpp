@@ -146,3 +146,81 @@ TEST(RealArt, bakedGroundAndShadowsAreDetectedWhereTheyAre) {
             EXPECT_FALSE(r.baked_ground);
         }
 }
+
+namespace {
+
+// Every sprite with an expected_whole_base (its base's left, front and right
+// corners, read off the picture): the footprint is that base whole, not a
+// run at its front. Its box spans at least 80 % of the base's width, its
+// centre and its one object's axis lie within 8 px of the base's centre
+// (the middle of its left and right corners), and the object has a solid.
+int expect_whole_bases(const std::string& name, const std::string& package) {
+    const Loaded l = load(name, package);
+    int checked = 0;
+    for (const auto& entry : l.manifest["sprites"]) {
+        if (!entry.contains("expected_whole_base")) continue;
+        ++checked;
+        const std::string sprite = entry["name"].get<std::string>();
+        const Sprite* s = nullptr;
+        for (const Sprite& c : l.tileset.sprites)
+            if (c.name == sprite) s = &c;
+        if (!s) throw std::runtime_error("no sprite " + sprite);
+        const auto& b = entry["expected_whole_base"];
+        const double lx = b[0][0].get<double>(), ly = b[0][1].get<double>(), rx = b[2][0].get<double>(),
+                     ry = b[2][1].get<double>();
+        const double cx = (lx + rx) / 2, cy = (ly + ry) / 2;
+        FootprintReport r;
+        const Mask fp = tileset_footprint(l.tileset, *s, Params{}, &r);
+        EXPECT_TRUE(r.whole_base) << name << ": " << sprite;
+        double x = 0, y = 0;
+        Rect box;
+        if (!mask_centre(fp, x, y, box)) {
+            ADD_FAILURE() << name << ": " << sprite << " has no footprint";
+            continue;
+        }
+        EXPECT_GE(box.w, 0.8 * (rx - lx)) << name << ": " << sprite << "'s footprint is " << box.w << " px wide";
+        EXPECT_LE(std::hypot(x - cx, y - cy), 8.0) << name << ": " << sprite << "'s footprint centre (" << x << ", " << y << ")";
+        const std::vector<EstimatedObject> objects = sprite_objects(l.tileset, *s, Params{});
+        if (objects.size() != 1) {
+            ADD_FAILURE() << name << ": " << sprite << " has " << objects.size() << " objects, not one";
+            continue;
+        }
+        EXPECT_LE(std::hypot(objects[0].center_x - cx, objects[0].center_y - cy), 8.0) << name << ": " << sprite;
+        EXPECT_GE(objects[0].height(), 15.0) << name << ": " << sprite << "'s solid";
+    }
+    return checked;
+}
+
+}  // namespace
+
+// Freeciv's mountains, hills and walled cities fill their tile: each stands
+// on its whole base (Algorithm 1 alone gives a 5x3 run on a mountain's
+// skirt, or a city's front wall).
+TEST(RealArt, freecivMountainsAndCitiesStandOnTheirWholeBase) {
+    EXPECT_EQ(expect_whole_bases("freeciv", "freeciv-data"), 6);
+    // The paper's footprint keeps its run.
+    const Loaded l = load("freeciv", "freeciv-data");
+    Params paper;
+    paper.footprint = Footprint::paper;
+    for (const Sprite& s : l.tileset.sprites)
+        if (s.name == "mountains") {
+            FootprintReport r;
+            tileset_footprint(l.tileset, s, paper, &r);
+            EXPECT_FALSE(r.whole_base);
+        }
+}
+
+// Flare's house spans several tiles, anchored at its left corner: it stands
+// on its whole base, one object (not fifteen, as its bark-coloured beams
+// would make a grove of). Two of its four trees stand on their trunks; the
+// other two (oak, leafy) hang leaves as low as their trunk's foot beside it,
+// where Algorithm 1's least-deviation run lands, and stay misses.
+TEST(RealArt, flareHouseStandsOnItsWholeBaseAndTwoTreesOnTheirTrunks) {
+    EXPECT_EQ(expect_whole_bases("flare", "flare-game"), 1);
+    int checked = 0;
+    const std::vector<Miss> m = misses(load("flare", "flare-game"), Footprint::automatic, &checked);
+    EXPECT_EQ(checked, 4);
+    std::vector<std::string> missed;
+    for (const Miss& x : m) missed.push_back(x.sprite);
+    EXPECT_EQ(missed, (std::vector<std::string>{"oak", "leafy"}));
+}

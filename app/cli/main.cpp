@@ -264,6 +264,7 @@ int run_check_tileset(const CheckArgs& a) {
         nlohmann::json detected = nlohmann::json::array();
         if (fr.baked_ground) detected.push_back("baked_ground");
         if (fr.baked_shadow) detected.push_back("baked_shadow");
+        if (fr.whole_base) detected.push_back("whole_base");
         nlohmann::json e = {{"name", s.name}, {"anchor", {s.anchor_x, s.anchor_y}}, {"detected", detected}};
         std::string warning;
         if (any) {
@@ -283,7 +284,7 @@ int run_check_tileset(const CheckArgs& a) {
         }
         // Beyond the paper: each object's solid, estimated from the alpha alone,
         // and how much of the manifest's shape it shares, where there is one.
-        const std::vector<EstimatedObject> objects = estimate_objects(fr.estimate, fp, &s.footprint, &s.image);
+        const std::vector<EstimatedObject> objects = estimate_objects(fr.estimate, fp, &s.footprint, &s.image, fr.whole_base);
         e["objects"] = nlohmann::json::array();
         for (const EstimatedObject& o : objects)
             e["objects"].push_back({{"center", {std::round(o.center_x * 10) / 10, std::round(o.center_y * 10) / 10}},

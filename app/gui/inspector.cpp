@@ -49,7 +49,7 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
         for (int x = 0; x < obstacle.width; ++x)
             if (obstacle.bits[std::size_t(y) * obstacle.width + x]) px(obstacle.x0 + x, obstacle.y0 + y, IM_COL32(255, 50, 50, 200));
     // The solid estimated from the alpha alone: its outline in yellow (beyond the paper).
-    const std::vector<EstimatedObject> objects = estimate_objects(r.estimate, obstacle, &spec, &s.image);
+    const std::vector<EstimatedObject> objects = estimate_objects(r.estimate, obstacle, &spec, &s.image, r.whole_base);
     const Mask solid = solid_silhouette(objects, s.image.width, s.image.height);
     for (int y = 0; y < solid.height; ++y)
         for (int x = 0; x < solid.width; ++x)
@@ -78,9 +78,10 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
     double cx = 0, cy = 0;
     Rect box;
     if (mask_centre(obstacle, cx, cy, box))
-        ImGui::Text("obstacle centre (%.0f, %.0f), %.0f px from the anchor (%d, %d)%s%s", cx, cy,
+        ImGui::Text("obstacle centre (%.0f, %.0f), %.0f px from the anchor (%d, %d)%s%s%s", cx, cy,
                     std::hypot(cx - s.anchor_x - 0.5, cy - s.anchor_y - 0.5), s.anchor_x, s.anchor_y,
-                    r.baked_ground ? "; baked ground found" : "", r.baked_shadow ? "; baked shadow found" : "");
+                    r.baked_ground ? "; baked ground found" : "", r.baked_shadow ? "; baked shadow found" : "",
+                    r.whole_base ? "; stands on its whole base" : "");
     else
         ImGui::TextUnformatted("no obstacle: light passes through this sprite");
     for (const EstimatedObject& ob : objects)

@@ -57,7 +57,111 @@ Mask fill_polygon(int w, int h, const std::vector<std::pair<int, int>>& poly) {
     return m;
 }
 
+// A whole base: an object that fills its tile or spans several (a mountain,
+// a walled city, a building) shows the two front edges of its base as the
+// bottom of its outline, a V at the tiles' slope (th / tw) from its left and
+// right extremes down to its lowest point. Its base is the parallelogram
+// those edges close. Found when the outline is at least 75 % of a tile wide
+// (amplio2's mountains reach 85 %), each side of the V a quarter tile or
+// more, and 75 % of each side's columns end within 3 px (plus 8 % of their
+// distance from the lowest point) of the edge (a mountain's or a ruin's
+// outline is ragged); the corners are the outermost columns that do.
+bool find_whole_base(const Mask& est, int tw, int th, std::vector<std::pair<int, int>>& corners) {
+    const int w = est.width, h = est.height;
+    std::vector<int> bottom(std::size_t(std::max(0, w)), -1);
+    int xl = -1, xr = -1, yb = -1;
+    for (int x = 0; x < w; ++x) {
+        for (int y = h - 1; y >= 0; --y)
+            if (est.get(est.x0 + x, est.y0 + y)) {
+                bottom[std::size_t(x)] = y;
+                break;
+            }
+        if (bottom[std::size_t(x)] < 0) continue;
+        if (xl < 0) xl = x;
+        xr = x;
+        yb = std::max(yb, bottom[std::size_t(x)]);
+    }
+    if (xl < 0 || xr - xl + 1 < 0.75 * tw) return false;
+    double sum = 0;
+    int n = 0;
+    for (int x = xl; x <= xr; ++x)
+        if (bottom[std::size_t(x)] >= yb - 1) sum += x, ++n;
+    const double xb = sum / n + 0.5, k = double(th) / tw;  // the lowest point's column centre
+    auto fits = [&](int x) {
+        const double d = std::abs(x + 0.5 - xb), expected = yb - d * k;
+        return bottom[std::size_t(x)] >= 0 && std::abs(bottom[std::size_t(x)] - expected) <= 3 + 0.08 * d;
+    };
+    int left = -1, right = -1, left_n = 0, left_fit = 0, right_n = 0, right_fit = 0;
+    for (int x = xl; x <= xr; ++x) {
+        const bool f = fits(x);
+        if (x + 0.5 < xb) {
+            ++left_n, left_fit += f;
+            if (f && left < 0) left = x;
+        } else {
+            ++right_n, right_fit += f;
+            if (f) right = x;
+        }
+    }
+    if (left < 0 || right < 0 || xb - left < tw / 4.0 || right + 1 - xb < tw / 4.0) return false;
+    if (left_fit < 0.75 * left_n || right_fit < 0.75 * right_n) return false;
+    const double by = yb + 1.0;  // the lowest pixel's bottom edge
+    const double lx = left, ly = by - (xb - left) * k, rx = right + 1.0, ry = by - (right + 1.0 - xb) * k;
+    auto at = [&](double x, double y) { return std::pair<int, int>{int(std::lround(x)) + est.x0, int(std::lround(y)) + est.y0}; };
+    corners = {at(lx, ly), at(xb, by), at(rx, ry), at(lx + rx - xb, ly + ry - by)};
+    return true;
+}
+
 }  // namespace
+
+// A grove painted as one sprite (LinCity-NG's tree2 and tree3) shows its
+// trees apart only by colour: their canopies merge into one silhouette, and
+// Algorithm 1 finds one run under it. A trunk is bark: an opaque pixel redder
+// than it is green (r > g + 6, r >= b, r < 200; foliage and grass are
+// greener, sand and stone greyer or brighter), in an 8-connected component at
+// least 6 pixels tall, taller than wide, of 15 pixels or more (a berry, a
+// flower or a speck of soil is smaller or wider). Components are found in
+// row-major order, so the list is the same on every machine.
+std::vector<TrunkFoot> find_trunks(const Image& image) {
+    const int w = image.width, h = image.height;
+    std::vector<std::uint8_t> bark(std::size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::uint8_t* p = image.at(x, y);
+            bark[std::size_t(y) * w + x] = p[3] >= 128 && p[0] > p[1] + 6 && p[0] >= p[2] && p[0] < 200;
+        }
+    std::vector<TrunkFoot> feet;
+    std::vector<int> stack, component;
+    for (int start = 0; start < w * h; ++start) {
+        if (!bark[std::size_t(start)]) continue;
+        bark[std::size_t(start)] = 0;
+        stack.assign(1, start);
+        component.clear();
+        while (!stack.empty()) {
+            const int i = stack.back();
+            stack.pop_back();
+            component.push_back(i);
+            const int x = i % w, y = i / w;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= w || ny >= h || !bark[std::size_t(ny) * w + nx]) continue;
+                    bark[std::size_t(ny) * w + nx] = 0;
+                    stack.push_back(ny * w + nx);
+                }
+        }
+        int x0 = w, x1 = -1, y0 = h, y1 = -1;
+        for (int i : component)
+            x0 = std::min(x0, i % w), x1 = std::max(x1, i % w), y0 = std::min(y0, i / w), y1 = std::max(y1, i / w);
+        const int tall = y1 - y0 + 1, wide = x1 - x0 + 1;
+        if (component.size() < 15 || tall < 6 || tall < wide) continue;
+        double sum = 0;
+        int n = 0;
+        for (int i : component)
+            if (i / w >= y1 - 2) sum += i % w, ++n;
+        feet.push_back({sum / n, y1});
+    }
+    return feet;
+}
 
 std::string_view to_string(FootprintMode m) {
     switch (m) {
@@ -104,6 +208,18 @@ Mask sprite_footprint(const Image& sprite, const Mask& opacity, int ax, int ay, 
             for (int x = 0; x < w; ++x)
                 if (est.get(x, y) && is_shadow(x, y)) est.set(x, y, false);
     }
+    // The outline's V (find_whole_base) is read before a baked ground
+    // diamond is taken out: a mountain's skirt of grass is its base's edge.
+    std::vector<std::pair<int, int>> base;
+    const bool v_shaped = find_whole_base(est, tw, th, base);
+    const Mask before_ground = est;
+    int ground[3] = {0, 0, 0};
+    auto is_ground = [&](int x, int y) {
+        const std::uint8_t* p = sprite.at(x, y);
+        double d = 0;
+        for (int k = 0; k < 3; ++k) d += double(p[k] - ground[k]) * double(p[k] - ground[k]);
+        return std::sqrt(d / 3) / 255.0 <= spec.ground_tolerance;
+    };
     // 2. A baked ground diamond: the floor diamond's half below the anchor,
     // where an object standing on the anchor rarely reaches, is mostly opaque,
     // and the band just outside its lower edges mostly transparent (a diamond,
@@ -130,7 +246,6 @@ Mask sprite_footprint(const Image& sprite, const Mask& opacity, int ax, int ay, 
     const bool diamond_shaped = band == 0 || band_opaque * 10 <= band * 3;
     if (below > 0 && opaque * 10 >= below * 7 && diamond_shaped && !ring[0].empty()) {
         rep.baked_ground = true;
-        int ground[3];
         for (int k = 0; k < 3; ++k) {
             auto& v = ring[std::size_t(k)];
             std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
@@ -141,12 +256,6 @@ Mask sprite_footprint(const Image& sprite, const Mask& opacity, int ax, int ay, 
         // pixels connected to the object above it through non-ground pixels.
         Mask object(Rect{0, 0, w, h});
         std::vector<std::pair<int, int>> stack;
-        auto is_ground = [&](int x, int y) {
-            const std::uint8_t* p = sprite.at(x, y);
-            double d = 0;
-            for (int k = 0; k < 3; ++k) d += double(p[k] - ground[k]) * double(p[k] - ground[k]);
-            return std::sqrt(d / 3) / 255.0 <= spec.ground_tolerance;
-        };
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x)
                 if (est.get(x, y) && !in_diamond(x, y, ax, ay, tw, th)) {
@@ -167,7 +276,39 @@ Mask sprite_footprint(const Image& sprite, const Mask& opacity, int ax, int ay, 
         est = object;
     }
     rep.estimate = est;
-    // 3. Algorithm 1 on what is left, its Δy scaled with the tile (the paper's
+    // 3. An object that fills its tile or spans several stands on its whole
+    // base, not on a run at its front: when the object's own pixels (the
+    // ground taken out) cover half its base or more. A tree on a baked grass
+    // diamond has the diamond's V but covers a few percent of it. An object
+    // that fills its tile (a mountain) reads as a baked diamond too, and the
+    // diamond's test takes most of it for ground, its rock being near the
+    // ring's colour; but an eighth of its base or more is not that colour
+    // (amplio2's mountains: 16 % and 28 %; LinCity-NG's trees on their grass
+    // diamonds: 5 % and 6 %): then it is all object, and no ground is baked.
+    if (v_shaped) {
+        const Mask whole = fill_polygon(w, h, base);
+        long in = 0, covered = 0, coloured = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                if (whole.get(x, y)) {
+                    ++in;
+                    covered += est.get(x, y);
+                    coloured += before_ground.get(x, y) && !is_ground(x, y);
+                }
+        const bool fills = in > 0 && covered * 2 >= in;
+        const bool fills_its_tile = in > 0 && rep.baked_ground && coloured * 8 >= in;
+        if (fills || fills_its_tile) {
+            if (fills_its_tile && !fills) {
+                est = before_ground;
+                rep.baked_ground = false;
+                rep.estimate = est;
+            }
+            rep.whole_base = true;
+            rep.base = base;
+            return whole;
+        }
+    }
+    // 4. Algorithm 1 on what is left, its Δy scaled with the tile (the paper's
     // 25 lines are for 128-pixel tiles).
     const int lines = std::max(1, int(std::lround(delta_y * tw / 128.0)));
     return sprite_obstacle(est, lines, &rep.trace);

@@ -129,63 +129,6 @@ long covered(const Mask& object, const EstimatedObject& o) {
     return n;
 }
 
-// A tree's foot in a grove sprite: the bottom row of its trunk and the mean
-// column of the trunk's lowest three rows.
-struct TrunkFoot {
-    double x = 0;  // pixel column (its centre is x + 0.5)
-    int y = 0;     // pixel row
-};
-
-// A grove painted as one sprite (LinCity-NG's tree2 and tree3) shows its
-// trees apart only by colour: their canopies merge into one silhouette, and
-// Algorithm 1 finds one run under it. A trunk is bark: an opaque pixel redder
-// than it is green (r > g + 6, r >= b, r < 200; foliage and grass are
-// greener, sand and stone greyer or brighter), in an 8-connected component at
-// least 6 pixels tall, taller than wide, of 15 pixels or more (a berry, a
-// flower or a speck of soil is smaller or wider). Components are found in
-// row-major order, so the list is the same on every machine.
-std::vector<TrunkFoot> find_trunks(const Image& image) {
-    const int w = image.width, h = image.height;
-    std::vector<std::uint8_t> bark(std::size_t(w) * h, 0);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const std::uint8_t* p = image.at(x, y);
-            bark[std::size_t(y) * w + x] = p[3] >= 128 && p[0] > p[1] + 6 && p[0] >= p[2] && p[0] < 200;
-        }
-    std::vector<TrunkFoot> feet;
-    std::vector<int> stack, component;
-    for (int start = 0; start < w * h; ++start) {
-        if (!bark[std::size_t(start)]) continue;
-        bark[std::size_t(start)] = 0;
-        stack.assign(1, start);
-        component.clear();
-        while (!stack.empty()) {
-            const int i = stack.back();
-            stack.pop_back();
-            component.push_back(i);
-            const int x = i % w, y = i / w;
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int nx = x + dx, ny = y + dy;
-                    if (nx < 0 || ny < 0 || nx >= w || ny >= h || !bark[std::size_t(ny) * w + nx]) continue;
-                    bark[std::size_t(ny) * w + nx] = 0;
-                    stack.push_back(ny * w + nx);
-                }
-        }
-        int x0 = w, x1 = -1, y0 = h, y1 = -1;
-        for (int i : component)
-            x0 = std::min(x0, i % w), x1 = std::max(x1, i % w), y0 = std::min(y0, i / w), y1 = std::max(y1, i / w);
-        const int tall = y1 - y0 + 1, wide = x1 - x0 + 1;
-        if (component.size() < 15 || tall < 6 || tall < wide) continue;
-        double sum = 0;
-        int n = 0;
-        for (int i : component)
-            if (i / w >= y1 - 2) sum += i % w, ++n;
-        feet.push_back({sum / n, y1});
-    }
-    return feet;
-}
-
 // One object per trunk: the object's pixels go to the trunk whose column is
 // nearest (the lower index on a tie), and each part gets its solid of
 // revolution standing on its trunk's foot, with a 5 x 3 footprint there.
@@ -217,7 +160,7 @@ std::vector<EstimatedObject> grove_objects(const Mask& object, const std::vector
 }  // namespace
 
 std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction,
-                                              const Image* image) {
+                                              const Image* image, bool whole_base) {
     EstimatedObject o;
     const bool has_footprint = mask_centre(footprint, o.center_x, o.center_y, o.rect);
     const bool corrected = correction && correction->object_foot;
@@ -230,8 +173,9 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
         o.rect.y += int(std::lround(fy + 0.5 - o.center_y));
         o.center_x = fx + 0.5, o.center_y = fy + 0.5;
     }
-    // A grove: one object per trunk the colours show (two or more).
-    if (image && !corrected) {
+    // A grove: one object per trunk the colours show (two or more). Not on a
+    // whole base: a building's beams and a mountain's earth are bark-coloured.
+    if (image && !corrected && !whole_base) {
         const std::vector<TrunkFoot> feet = find_trunks(*image);
         if (feet.size() >= 2) {
             std::vector<EstimatedObject> grove = grove_objects(object, feet);
@@ -243,7 +187,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     const RunsThrough runs = runs_through(object, c);
     const int top = top_row(object);
     const double widest = object.width / sqrt2 + 1;
-    if (corrected) {
+    if (corrected || whole_base) {  // a whole base's centre is where it stands
         o.radius = fit_discs(runs, o.center_x, o.center_y, top, widest, height);
         if (o.radius.empty()) return {};
         return {o};
@@ -280,7 +224,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
 std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite& s, const Params& p) {
     FootprintReport report;
     const Mask footprint = tileset_footprint(tileset, s, p, &report);
-    return estimate_objects(report.estimate, footprint, &s.footprint, &s.image);
+    return estimate_objects(report.estimate, footprint, &s.footprint, &s.image, report.whole_base);
 }
 
 Mask solid_silhouette(const std::vector<EstimatedObject>& objects, int w, int h) {

@@ -21,9 +21,25 @@ namespace isolux {
 struct FootprintReport {
     bool baked_ground = false;  // the tile's floor diamond around the anchor was mostly opaque ground
     bool baked_shadow = false;  // translucent dark pixels were left out
+    // The object fills its tile or spans several: its footprint is its whole
+    // base, the parallelogram (left, front, right and back corners, sprite
+    // pixels) closed by its outline's two lower edges.
+    bool whole_base = false;
+    std::vector<std::pair<int, int>> base;
+
     Mask estimate;              // the object's pixels: what Algorithm 1 read, and the opacity map the correction uses
     SpriteObstacleTrace trace;  // Algorithm 1's lines and run
 };
+
+// A tree's foot: the bottom row of its trunk and the mean column of the
+// trunk's lowest three rows.
+struct TrunkFoot {
+    double x = 0;  // pixel column (its centre is x + 0.5)
+    int y = 0;     // pixel row
+};
+// The trunks a sprite's colours show (bark-coloured, taller than wide),
+// in row-major order of their first pixel (footprint.cpp says how).
+std::vector<TrunkFoot> find_trunks(const Image& image);
 
 // The footprint of a sprite whose opacity map is `opacity`, anchored at
 // (anchor_x, anchor_y) on a tile_w x tile_h floor diamond, by `mode`, as an

@@ -41,9 +41,12 @@ struct EstimatedObject {
 // where the axis meets the ground (`object_foot`, the centre of that pixel)
 // and the solid's height (`object_height`), as a user set them in the
 // tileset inspector. With the sprite's `image`, a grove (two or more trunks
-// the colours show, each a tree's foot) gives one object per tree.
+// the colours show, each a tree's foot) gives one object per tree. With
+// `whole_base` (FootprintReport::whole_base: the footprint is the object's
+// whole base), one object stands on its base's centre.
 std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint,
-                                              const FootprintSpec* correction = nullptr, const Image* image = nullptr);
+                                              const FootprintSpec* correction = nullptr, const Image* image = nullptr,
+                                              bool whole_base = false);
 
 // The objects of tileset sprite `s` under preset `p`: its footprint as the
 // obstacle map stamps it (tileset_footprint) and the estimate's pixels.
