@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "isolux/endless.hpp"
 #include "isolux/error.hpp"
@@ -159,4 +160,64 @@ TEST(Endless, aWalkKeepsItsWindowAChunkAtATimeAndEveryFrameIsTheSame) {
     EXPECT_EQ(checked, 4);
     EXPECT_GE(st.windows_built, 2u);   // it walked out of the first window
     EXPECT_LE(st.windows_built, 8u);  // 7200 px: a few chunks' worth (a chunk spans 2048 px)
+}
+
+TEST(Endless, aWalkMakesEachChunkAndObstacleBlockOnceAndTheyAreTheFreshOnes) {
+    // The paper's preset (the obstacle map stops its rays) walking far out:
+    // each frame's obstacle map equals a fresh window's over the part both
+    // cover, its pixels equal a fresh window's, and later windows copy the
+    // chunks and obstacle blocks earlier ones made instead of making them
+    // again.
+    const Tileset ts = test::default_tileset();
+    std::int64_t x = 0, y = 0;
+    endless_tile_center(Layout::diamond, ts.tile_width, ts.tile_height, -5'000'000, 9'000'000, x, y);
+    Scene s = lit(x, y, builtin_preset("paper"));
+    EndlessState st;
+    int checked = 0;
+    for (int f = 0; f < 96; ++f) {
+        const WorldRect view{x + 150 * f, y + 40 * f, 480, 320};
+        for (Light& l : s.lights) l.x += 150, l.y += 40;
+        render_endless_frame(st, ts, s, view, f);
+        if (f % 24 != 23) continue;
+        ++checked;
+        EndlessWindow fresh;
+        const Image image = endless_frame(s, view, &fresh);
+        EXPECT_EQ(differing(st.frame.final, 0, 0, image, 0, 0, 480, 320), 0) << "frame " << f;
+        FrameState alone;
+        const Rect v = rect_in_window(fresh, view);
+        render_frame(alone, fresh.world, scene_in_window(s, fresh, view), Camera{double(v.x), double(v.y), v.w, v.h}, 0);
+        // The two obstacle maps over the world pixels both cover.
+        const Mask& a = st.frame.obstacles;
+        const Mask& b = alone.obstacles;
+        const std::int64_t ax = st.window.origin_x, ay = st.window.origin_y, bx = fresh.origin_x, by = fresh.origin_y;
+        const std::int64_t x0 = std::max(a.x0 + ax, b.x0 + bx), x1 = std::min(a.x0 + a.width + ax, b.x0 + b.width + bx);
+        const std::int64_t y0 = std::max(a.y0 + ay, b.y0 + by), y1 = std::min(a.y0 + a.height + ay, b.y0 + b.height + by);
+        ASSERT_GT(x1 - x0, 480);
+        ASSERT_GT(y1 - y0, 320);
+        long differ = 0, set = 0;
+        for (std::int64_t wy = y0; wy < y1; ++wy)
+            for (std::int64_t wx = x0; wx < x1; ++wx) {
+                const bool pa = a.get(int(wx - ax), int(wy - ay)), pb = b.get(int(wx - bx), int(wy - by));
+                differ += pa != pb;
+                set += pa;
+            }
+        EXPECT_EQ(differ, 0) << "frame " << f;
+        EXPECT_GT(set, 100) << "frame " << f;  // there are obstacles to compare
+    }
+    EXPECT_EQ(checked, 4);
+    EXPECT_GE(st.windows_built, 3u);
+    const EndlessCache& c = st.cache;
+    EXPECT_EQ(c.chunks_made, c.chunks.size());  // none made twice (none dropped yet)
+    EXPECT_GT(c.chunks_reused, 0u);             // a new window reuses the chunks it shares
+    EXPECT_GT(c.blocks_copied, c.blocks_built);  // a rebuilt region copies the blocks it had
+    std::printf("# chunks made %llu, reused %llu; blocks built %llu, copied %llu\n", (unsigned long long)c.chunks_made,
+                (unsigned long long)c.chunks_reused, (unsigned long long)c.blocks_built, (unsigned long long)c.blocks_copied);
+    EXPECT_GT(c.blocks_copied, 0u);
+    EXPECT_LE(c.chunks.size(), max_kept_chunks);
+    EXPECT_LE(c.blocks.size(), max_obstacle_blocks);
+    // A changed edit makes a new window (the old one shows the old tiles).
+    const std::uint64_t windows = st.windows_built;
+    s.edits.push_back(TileEdit{0, 0, "water", std::nullopt});
+    render_endless_frame(st, ts, s, WorldRect{x + 150 * 95, y + 40 * 95, 480, 320}, 96);
+    EXPECT_EQ(st.windows_built, windows + 1);
 }

@@ -8,6 +8,8 @@
 #include "isolux/edits.hpp"
 #include "isolux/error.hpp"
 #include "isolux/light_texture.hpp"
+#include "isolux/obstacle_map.hpp"
+#include "isolux/params.hpp"
 
 namespace isolux {
 
@@ -33,6 +35,118 @@ void tile_of(Layout layout, int tw, int th, double x, double y, double& col, dou
             col = (x - row * hw) / tw;
             return;
     }
+}
+
+// The seeded tiles of `chunks`, each chunk's from the cache or generated
+// (a tile's content is its seed's and its own coordinates', so a chunk made
+// alone has the tiles it has in any window).
+Map seeded_from_chunks(const Scene& scene, const Tileset& ts, ChunkRange chunks, EndlessCache& cache) {
+    Map m;
+    m.width = chunks.cols;
+    m.height = chunks.rows;
+    m.layout = scene.layout;
+    m.tile_width = ts.tile_width;
+    m.tile_height = ts.tile_height;
+    m.tiles.resize(std::size_t(chunks.cols) * chunks.rows);
+    for (int j = 0; j < chunks.rows / chunk_tiles; ++j)
+        for (int i = 0; i < chunks.cols / chunk_tiles; ++i) {
+            const EndlessCache::Key key{floor_div(chunks.col0, chunk_tiles) + i, floor_div(chunks.row0, chunk_tiles) + j};
+            auto it = cache.chunks.find(key);
+            if (it == cache.chunks.end()) {
+                Map c = generate_map(scene.seed, chunk_tiles, chunk_tiles, scene.layout, ts, key.first * chunk_tiles,
+                                     key.second * chunk_tiles);
+                it = cache.chunks.emplace(key, std::move(c.tiles)).first;
+                cache.chunk_order.push_back(key);
+                ++cache.chunks_made;
+            } else {
+                ++cache.chunks_reused;
+            }
+            for (int r = 0; r < chunk_tiles; ++r)
+                std::copy_n(&it->second[std::size_t(r) * chunk_tiles], chunk_tiles,
+                            &m.tiles[std::size_t(j * chunk_tiles + r) * chunks.cols + std::size_t(i) * chunk_tiles]);
+        }
+    while (cache.chunks.size() > max_kept_chunks) {
+        cache.chunks.erase(cache.chunk_order.front());
+        cache.chunk_order.pop_front();
+    }
+    return m;
+}
+
+// The cache holds what `scene` and `tileset` make, or is emptied. Returns
+// whether the world itself changed (seed, layout, tileset or edits): a
+// window made before no longer shows it.
+bool sync_cache(EndlessCache& c, const Scene& scene, const Tileset& tileset) {
+    const bool same_world =
+        c.has && c.seed == scene.seed && c.layout == scene.layout && c.tileset == &tileset && c.edits == scene.edits;
+    if (same_world && !stages_changed(c.params, scene.params).has(Stage::obstacle_map)) return false;
+    c.chunks.clear();
+    c.chunk_order.clear();
+    c.blocks.clear();
+    c.block_order.clear();
+    c.has = true;
+    c.seed = scene.seed;
+    c.layout = scene.layout;
+    c.tileset = &tileset;
+    c.edits = scene.edits;
+    c.params = scene.params;
+    return !same_world;
+}
+
+// The obstacle map over `region` of the window, a block of the world's
+// pixels at a time: copied where an earlier window built the block; built
+// and kept where this window holds every tile that can reach it (the tiles
+// within the tallest sprite, two tiles and the noise window of it); built
+// for this region alone where it does not.
+Mask obstacles_from_blocks(EndlessState& st, const Tileset& tileset, const Scene& scene, const World& world,
+                           const Params& p, Rect region, const std::vector<Mask>& footprints) {
+    EndlessCache& c = st.cache;
+    const EndlessWindow& win = st.window;
+    Mask out(region);
+    if (region.empty()) return out;
+    int margin = p.noise_window + 2 * tileset.tile_height;
+    for (const Sprite& s : tileset.sprites) margin = std::max(margin, std::max(s.image.width, s.image.height) + p.noise_window);
+    const std::int64_t B = obstacle_block;
+    const std::int64_t wx0 = region.x + win.origin_x, wy0 = region.y + win.origin_y;
+    auto copy = [&](const Mask& m) {
+        const Rect part = intersect(m.rect(), region);
+        for (int y = part.y; y < part.y + part.h; ++y)
+            std::copy_n(&m.bits[std::size_t(y - m.y0) * m.width + std::size_t(part.x - m.x0)], part.w,
+                        &out.bits[std::size_t(y - region.y) * region.w + std::size_t(part.x - region.x)]);
+    };
+    for (std::int64_t by = floor_div(wy0, B); by <= floor_div(wy0 + region.h - 1, B); ++by)
+        for (std::int64_t bx = floor_div(wx0, B); bx <= floor_div(wx0 + region.w - 1, B); ++bx) {
+            const EndlessCache::Key key{bx, by};
+            const Rect in_window{int(bx * B - win.origin_x), int(by * B - win.origin_y), int(B), int(B)};
+            if (auto it = c.blocks.find(key); it != c.blocks.end()) {
+                Mask m = it->second;  // kept at the world's pixels less this window's origin
+                m.x0 = in_window.x, m.y0 = in_window.y;
+                copy(m);
+                ++c.blocks_copied;
+                continue;
+            }
+            bool complete = false;
+            try {
+                const ChunkRange need = endless_chunks(tileset, scene.layout, WorldRect{bx * B, by * B, int(B), int(B)}, margin, "");
+                const ChunkRange& have = win.chunks;
+                complete = need.col0 >= have.col0 && need.row0 >= have.row0 && need.col0 + need.cols <= have.col0 + have.cols &&
+                           need.row0 + need.rows <= have.row0 + have.rows;
+            } catch (const Error&) {
+            }
+            if (!complete) {
+                copy(build_obstacle_map(world.tileset, world.placed, p, intersect(in_window, region), &footprints));
+                continue;
+            }
+            Mask m = build_obstacle_map(world.tileset, world.placed, p, in_window, &footprints);
+            copy(m);
+            c.blocks.emplace(key, std::move(m));
+            c.block_order.push_back(key);
+            ++c.blocks_built;
+        }
+    while (c.blocks.size() > max_obstacle_blocks) {
+        c.blocks.erase(c.block_order.front());
+        c.block_order.pop_front();
+    }
+    return out;
 }
 
 }  // namespace
@@ -92,12 +206,17 @@ ChunkRange endless_chunks(const Tileset& tileset, Layout layout, WorldRect view,
     return out;
 }
 
-EndlessWindow make_endless_window(Tileset tileset, const Scene& scene, ChunkRange chunks, std::string_view source) {
+EndlessWindow make_endless_window(Tileset tileset, const Scene& scene, ChunkRange chunks, std::string_view source,
+                                  EndlessCache* cache) {
     EndlessWindow out;
     out.chunks = chunks;
     World& w = out.world;
     w.tileset = std::move(tileset);
-    w.seeded = generate_map(scene.seed, chunks.cols, chunks.rows, scene.layout, w.tileset, chunks.col0, chunks.row0);
+    const bool whole_chunks = chunks.col0 % chunk_tiles == 0 && chunks.row0 % chunk_tiles == 0 &&
+                              chunks.cols % chunk_tiles == 0 && chunks.rows % chunk_tiles == 0;
+    w.seeded = cache && whole_chunks
+                   ? seeded_from_chunks(scene, w.tileset, chunks, *cache)
+                   : generate_map(scene.seed, chunks.cols, chunks.rows, scene.layout, w.tileset, chunks.col0, chunks.row0);
     // Every edit is checked (a bad sprite name is an error wherever it
     // stands); those inside the window apply, in its own tiles.
     resolve_edits(scene.edits, w.tileset, source);
@@ -165,19 +284,29 @@ FrameReport render_endless_frame(EndlessState& st, const Tileset& tileset, const
                                  long frame, std::string_view source) {
     const ChunkRange need = endless_chunks(tileset, scene.layout, view, endless_reach(scene, tileset), source);
     const ChunkRange& have = st.window.chunks;
-    const bool holds = st.has_window && need.col0 >= have.col0 && need.row0 >= have.row0 &&
+    const bool world_changed = sync_cache(st.cache, scene, tileset);
+    const bool holds = st.has_window && !world_changed && need.col0 >= have.col0 && need.row0 >= have.row0 &&
                        need.col0 + need.cols <= have.col0 + have.cols && need.row0 + need.rows <= have.row0 + have.rows;
     if (!holds) {
         ChunkRange grown = need;
         if (need.cols + 2 * chunk_tiles <= max_map_side && need.rows + 2 * chunk_tiles <= max_map_side)
             grown = ChunkRange{need.col0 - chunk_tiles, need.row0 - chunk_tiles, need.cols + 2 * chunk_tiles,
                                need.rows + 2 * chunk_tiles};
-        st.window = make_endless_window(tileset, scene, grown, source);
+        st.window = make_endless_window(tileset, scene, grown, source, &st.cache);
         st.has_window = true;
         st.frame = FrameState{st.frame.options};
         ++st.windows_built;
     }
     const Rect v = rect_in_window(st.window, view);
+    // The obstacle map from the blocks earlier windows built, for this frame only.
+    st.frame.options.obstacle_map = [&st, &tileset, &scene](const World& world, const Params& p, Rect region,
+                                                            const std::vector<Mask>& footprints) {
+        return obstacles_from_blocks(st, tileset, scene, world, p, region, footprints);
+    };
+    struct Reset {
+        FrameOptions& o;
+        ~Reset() { o.obstacle_map = {}; }
+    } reset{st.frame.options};
     return render_frame(st.frame, st.window.world, scene_in_window(scene, st.window, view), Camera{double(v.x), double(v.y), v.w, v.h},
                         frame);
 }

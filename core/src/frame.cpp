@@ -235,7 +235,8 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
         }
         c.sprites_built = world.built_revision;
     }
-    st.obstacles = build_obstacle_map(world.tileset, world.placed, p, c.obstacle_region, &c.footprints);
+    st.obstacles = st.options.obstacle_map ? st.options.obstacle_map(world, p, c.obstacle_region, c.footprints)
+                                           : build_obstacle_map(world.tileset, world.placed, p, c.obstacle_region, &c.footprints);
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
     // Beyond the paper: solids with height stop the rays (occluders.hpp).

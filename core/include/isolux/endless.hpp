@@ -11,7 +11,12 @@
 // World whose pixel (0, 0) lies at `origin` in that frame.
 #pragma once
 #include <cstdint>
+#include <deque>
+#include <map>
+#include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "isolux/frame.hpp"
 #include "isolux/scene.hpp"
@@ -55,6 +60,33 @@ ChunkRange endless_chunks(const Tileset& tileset, Layout layout, WorldRect view,
 // rays reach as far again; plus the tallest sprite and Algorithm 1's lines.
 int endless_reach(const Scene& scene, const Tileset& tileset);
 
+// Chunks and blocks kept across windows, so a walk makes each once: each
+// chunk's seeded tiles, and the obstacle map in blocks of the world's pixels
+// (a block is built from a window that holds every tile that can reach it,
+// then copied into the frames of later windows). Bounded: beyond
+// max_kept_chunks chunks or max_obstacle_blocks blocks the oldest are
+// dropped. Dropped whole when what they were made from changes (the seed,
+// layout, tileset, edits, or a parameter the obstacle map reads).
+inline constexpr int obstacle_block = 256;                 // a block's side, pixels
+inline constexpr std::size_t max_obstacle_blocks = 256;    // 16 MiB of bits
+inline constexpr std::size_t max_kept_chunks = 256;        // 256 chunks of 32x32 tiles
+struct EndlessCache {
+    using Key = std::pair<std::int64_t, std::int64_t>;
+    std::map<Key, std::vector<Tile>> chunks;  // seeded tiles, by chunk (col0 / 32, row0 / 32)
+    std::deque<Key> chunk_order;              // oldest first
+    std::map<Key, Mask> blocks;               // obstacle bits, by block (x / 256, y / 256)
+    std::deque<Key> block_order;
+    // What they were made from.
+    bool has = false;
+    std::string seed;
+    Layout layout = Layout::diamond;
+    const Tileset* tileset = nullptr;  // the caller's: a tileset changed in place needs a new EndlessState
+    std::vector<TileEdit> edits;
+    Params params;
+    // What was made and what was reused, for tests and benchmarks.
+    std::uint64_t chunks_made = 0, chunks_reused = 0, blocks_built = 0, blocks_copied = 0;
+};
+
 // A finite window onto an endless world: the scene's seed, layout and edits
 // (in the world's own tile coordinates) over `chunks`, placed so that its
 // world pixel (x, y) is the endless frame's (origin_x + x, origin_y + y).
@@ -64,7 +96,7 @@ struct EndlessWindow {
     World world;
 };
 EndlessWindow make_endless_window(Tileset tileset, const Scene& scene, ChunkRange chunks,
-                                  std::string_view source = "scene");
+                                  std::string_view source = "scene", EndlessCache* cache = nullptr);
 
 // The scene's lights and camera moved into the window's pixels (lights whose
 // area cannot meet `view` are left out: the window may not hold what they
@@ -77,16 +109,18 @@ Rect rect_in_window(const EndlessWindow& window, WorldRect view);
 struct EndlessState {
     EndlessWindow window;
     bool has_window = false;
-    FrameState frame;       // its options are the caller's
+    FrameState frame;       // its options are the caller's (obstacle_map is set by render_endless_frame)
     std::uint64_t windows_built = 0;
+    EndlessCache cache;
 };
 
 // One frame of `view` (endless pixels): the window is kept while it holds
 // every chunk the view needs, else made anew around them with a chunk to
 // spare on every side (so a walking camera remakes it once a chunk, not
-// once a frame), and the frame state starts afresh on it. The frame's
-// pixels do not depend on which window holds the view. `tileset` is copied
-// into each window.
+// once a frame), and the frame state starts afresh on it: its seeded chunks
+// and obstacle blocks come from st.cache where an earlier window made them.
+// The frame's pixels do not depend on which window holds the view.
+// `tileset` is copied into each window.
 FrameReport render_endless_frame(EndlessState& st, const Tileset& tileset, const Scene& scene, WorldRect view,
                                  long frame, std::string_view source = "scene");
 

@@ -92,6 +92,12 @@ struct FrameOptions {
     // tracer). Once `cancel` is set, render_frame stops within a few
     // milliseconds, resets the state (options kept) and throws Cancelled.
     TraceControl control;
+    // Builds the obstacle map over a region when it is made whole (not an
+    // edit's part): the same bits build_obstacle_map gives, from the world's
+    // placed sprites, the parameters and each sprite's Algorithm 1 mask. An
+    // endless world's frames copy the blocks earlier windows built
+    // (endless.hpp). Empty: build_obstacle_map.
+    std::function<Mask(const World&, const Params&, Rect, const std::vector<Mask>& footprints)> obstacle_map;
 };
 
 // What the last frame was built from: private to render_frame, which reads
