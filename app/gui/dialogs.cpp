@@ -85,7 +85,11 @@ void run_file_action(App& app, const std::string& action, const std::string& pat
     else if (action == "export-tiled") {
         try {
             export_tiled(e.world, e.scene, path);
-            set_status(e, "exported the level as a Tiled map: " + path);
+            const WorldOffset o = world_offset(e);
+            set_status(e, "exported the level as a Tiled map: " + path +
+                              (e.scene.endless ? " (the chunks around the view: tiles from (" + std::to_string(o.col) + ", " +
+                                                     std::to_string(o.row) + ") of the endless world)"
+                                               : std::string()));
         } catch (const Error& err) {
             set_status(e, err.what(), true);
         }
