@@ -135,11 +135,15 @@ wait 2
 pan 64 32 150
 wait 2
 save-scene $tmp/walked.json
+export-tiled $tmp/walked.tmx
 quit
 SCRIPT
 timeout 300 "$app" --size endless --script "$tmp/walk.script" >"$tmp/log" 2>&1 || { bad "endless walk run"; cat "$tmp/log"; }
 if [ "$(json "$tmp/walked.json" "d['width'], d['height'], d['camera']['x'], d['camera']['y'], [(l['x'], l['y']) for l in d['lights']]")" = "('endless', 'endless', 9600.0, 4800.0, [(800.5, 450.5)])" ]; then ok
 else bad "endless walk saved"; cat "$tmp/walked.json"; fi
+# Its Tiled export (the chunks around the view) reads back as a map.
+if "$cli" render --map "$tmp/walked.tmx" --view 0,0,64,64 --out "$tmp/walked_tmx.png" >"$tmp/log" 2>&1; then ok
+else bad "the endless world's Tiled export"; cat "$tmp/log"; fi
 timeout 120 "$app" --scene "$tmp/walked.json" --frames 3 --screenshot "$tmp/walked_app.png" >"$tmp/log" 2>&1 || { bad "walked screenshot"; cat "$tmp/log"; }
 "$cli" render --scene "$tmp/walked.json" --out "$tmp/walked_cli.png" >/dev/null
 if idiff -fail 0.0079 -warn 0.0079 "$tmp/walked_app.png" "$tmp/walked_cli.png" >"$tmp/idiff" 2>&1; then ok; else bad "reopened endless level differs from isolux-cli"; cat "$tmp/idiff"; fi
