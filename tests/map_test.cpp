@@ -50,6 +50,14 @@ TEST(Map, refusesZeroNegativeAndTooLargeSizes) {
     EXPECT_THROW(generate_map("s", 0, 4, Layout::diamond, tiles()), Error);
     EXPECT_THROW(generate_map("s", 4, -1, Layout::diamond, tiles()), Error);
     EXPECT_THROW(generate_map("s", max_map_side + 1, 4, Layout::diamond, tiles()), Error);
+    // A side may reach 4096 tiles, the tiles in all 1024 x 1024's: a long
+    // strip is a map, the same area as a square, as many tiles again not.
+    const Map strip = generate_map("s", max_map_side, 8, Layout::diamond, tiles());
+    EXPECT_EQ(strip.tiles.size(), std::size_t(max_map_side) * 8);
+    EXPECT_TRUE(map_size_ok(4096, 256));
+    EXPECT_TRUE(map_size_ok(1024, 1024));
+    EXPECT_FALSE(map_size_ok(1024, 1025));
+    EXPECT_THROW(generate_map("s", 2048, 1024, Layout::diamond, tiles()), Error);
     try {
         generate_map("s", 0, 4, Layout::diamond, tiles());
     } catch (const Error& e) {

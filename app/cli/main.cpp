@@ -197,8 +197,7 @@ Scene scene_from_args(const RenderArgs& a) {
         std::vector<long long> v;
         if (!parse_ints(a.size, 'x', v) || v.size() != 2)
             throw Error("--size \"" + a.size + "\": expected WxH, e.g. 16x16, or endless");
-        if (v[0] < 1 || v[1] < 1 || v[0] > max_map_side || v[1] > max_map_side)
-            throw Error("--size " + a.size + ": each side must be in [1, " + std::to_string(max_map_side) + "] tiles");
+        if (!map_size_ok(v[0], v[1])) throw Error("--size " + a.size + ": " + map_size_rule());
         s.width = int(v[0]);
         s.height = int(v[1]);
     }

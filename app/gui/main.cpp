@@ -147,10 +147,8 @@ int main(int argc, char** argv) {
             scene.endless = true;
         } else if (!size.empty()) {
             int w = 0, h = 0;
-            if (std::sscanf(size.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > max_map_side ||
-                h > max_map_side)
-                throw Error("--size \"" + size + "\": expected WxH with sides in [1, " +
-                            std::to_string(max_map_side) + "], or endless");
+            if (std::sscanf(size.c_str(), "%dx%d", &w, &h) != 2 || !map_size_ok(w, h))
+                throw Error("--size \"" + size + "\": expected WxH, " + map_size_rule() + ", or endless");
             scene.width = w, scene.height = h;
             scene.endless = false;
         }

@@ -48,7 +48,7 @@ void map_panel(App& app) {
         if (ImGui::InputInt2("size", size)) m.width = size[0], m.height = size[1];
         active |= ImGui::IsItemActive();
         apply |= ImGui::IsItemDeactivatedAfterEdit();
-        help("Map size in tiles, each side 1 to 1024. Enter regenerates.");
+        help("Map size in tiles: each side 1 to 4096, at most 1048576 tiles (1024x1024). Enter regenerates.");
     }
     int layout = int(m.layout);
     if (ImGui::Combo("layout", &layout, "paper\0diamond\0staggered\0")) {
@@ -71,8 +71,8 @@ void map_panel(App& app) {
          "the seed, edits and lights, never the tiles.");
     if (apply) {
         if (!m.endless && shown.endless) m.width = Scene{}.width, m.height = Scene{}.height;  // leaving an endless world
-        if (!m.endless && (m.width < 1 || m.height < 1 || m.width > max_map_side || m.height > max_map_side))
-            set_status(e, "size: each side must be in [1, " + std::to_string(max_map_side) + "] tiles", true);
+        if (!m.endless && !map_size_ok(m.width, m.height))
+            set_status(e, std::string("size: ") + map_size_rule(), true);
         else if (!(m == shown) && !e.scene.edits.empty()) {
             ui.dialogs.edits_target = m;  // ask: keep or clear the hand edits?
             ui.dialogs.edits_prompt = true;

@@ -163,9 +163,8 @@ isolux_status isolux_world_open_seeded(const char* seed, int width, int height, 
     return guarded("isolux_world_open_seeded", [&] {
         Scene s;
         s.seed = seed;
-        if (width < 1 || height < 1 || width > max_map_side || height > max_map_side)
-            throw Error("isolux_world_open_seeded: width and height must be in [1, " + std::to_string(max_map_side) +
-                        "] tiles");
+        if (!map_size_ok(width, height))
+            throw Error(std::string("isolux_world_open_seeded: width x height: ") + map_size_rule());
         s.width = width;
         s.height = height;
         if (layout) s.layout = parse_layout(layout, "isolux_world_open_seeded: layout");

@@ -196,11 +196,11 @@ ChunkRange endless_chunks(const Tileset& tileset, Layout layout, WorldRect view,
     out.row0 = floor_div(tr0, chunk_tiles) * chunk_tiles;
     const std::int64_t cols = (floor_div(tc1, chunk_tiles) + 1) * chunk_tiles - out.col0;
     const std::int64_t rows = (floor_div(tr1, chunk_tiles) + 1) * chunk_tiles - out.row0;
-    if (cols > max_map_side || rows > max_map_side)
+    if (cols > max_window_side || rows > max_window_side)
         throw Error(std::string(source) + ": a view of " + std::to_string(view.w) + "x" + std::to_string(view.h) +
                     " pixels with lights reaching " + std::to_string(reach) + " pixels past it needs " +
                     std::to_string(cols) + "x" + std::to_string(rows) + " tiles at once, over " +
-                    std::to_string(max_map_side) + " a side: use a smaller view or smaller light areas");
+                    std::to_string(max_window_side) + " a side: use a smaller view or smaller light areas");
     out.cols = int(cols);
     out.rows = int(rows);
     return out;
@@ -289,7 +289,7 @@ FrameReport render_endless_frame(EndlessState& st, const Tileset& tileset, const
                        need.col0 + need.cols <= have.col0 + have.cols && need.row0 + need.rows <= have.row0 + have.rows;
     if (!holds) {
         ChunkRange grown = need;
-        if (need.cols + 2 * chunk_tiles <= max_map_side && need.rows + 2 * chunk_tiles <= max_map_side)
+        if (need.cols + 2 * chunk_tiles <= max_window_side && need.rows + 2 * chunk_tiles <= max_window_side)
             grown = ChunkRange{need.col0 - chunk_tiles, need.row0 - chunk_tiles, need.cols + 2 * chunk_tiles,
                                need.rows + 2 * chunk_tiles};
         st.window = make_endless_window(tileset, scene, grown, source, &st.cache);

@@ -104,10 +104,9 @@ void add_overlay(Tile& t, int sprite, const Map& m, Pcg32& rng) {
 
 Map generate_map(std::string_view seed, int width, int height, Layout layout, const Tileset& ts, std::int64_t col0,
                  std::int64_t row0) {
-    if (width < 1 || height < 1 || width > max_map_side || height > max_map_side)
-        throw Error("map size " + std::to_string(width) + "x" + std::to_string(height) +
-                    " is out of range: each side must be in [1, " + std::to_string(max_map_side) +
-                    "] tiles");
+    if (!map_size_ok(width, height))
+        throw Error("map size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range: " +
+                    map_size_rule());
     validate(ts);
     Map m;
     m.width = width;

@@ -74,8 +74,8 @@ std::string hex_color(const Light& l) {
 // "edits": [{"tile": [x, y], "floor": "water"}, {"tile": [x, y], "overlays": ["oak"]}]
 std::vector<TileEdit> edits_from(const json& arr, const Fields& scene) {
     if (!arr.is_array()) scene.fail("edits", "must be an array");
-    // A tile holds one edit that matters; more than a 1024 x 1024 map's worth is not a level.
-    constexpr std::size_t max_edits = std::size_t(max_map_side) * max_map_side;
+    // A tile holds one edit that matters; more than the largest map's worth is not a level.
+    constexpr std::size_t max_edits = std::size_t(max_map_tiles);
     if (arr.size() > max_edits) scene.fail("edits", "holds more than " + std::to_string(max_edits) + " entries");
     std::vector<TileEdit> out;
     out.reserve(arr.size());
@@ -153,6 +153,9 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
     } else {
         if (f.has("width")) s.width = int(f.integer("width", 1, max_map_side));
         if (f.has("height")) s.height = int(f.integer("height", 1, max_map_side));
+        if (!map_size_ok(s.width, s.height))
+            f.fail("width", "x height = " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is " +
+                                std::to_string((long long)s.width * s.height) + " tiles: " + map_size_rule());
     }
     if (f.has("layout")) s.layout = parse_layout(f.text("layout"), src + ": layout");
     if (f.has("tileset")) s.tileset = f.text("tileset");

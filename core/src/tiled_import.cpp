@@ -168,9 +168,9 @@ void read_chunk_bounds(const fs::path& tmx, const pugi::xml_node& m, Grid& g) {
     }
     if (x1 == LLONG_MIN) fail(tmx, m, "is an infinite map (infinite=\"1\") whose tile layers hold no chunks");
     if (y0 % 2 != 0) --y0;  // an even top row: staggered rows keep their shift
-    if (x1 - x0 > max_tiled_side || y1 - y0 > max_tiled_side)
+    if (!map_size_ok(x1 - x0, y1 - y0))
         fail(tmx, m, "is an infinite map whose chunks span " + std::to_string(x1 - x0) + "x" + std::to_string(y1 - y0) +
-                         " tiles, over " + std::to_string(max_tiled_side) + " a side");
+                         " tiles: " + map_size_rule());
     g.infinite = true;
     g.map_h = g.h;
     g.x0 = int(x0), g.y0 = int(y0);
@@ -193,6 +193,8 @@ Grid read_map_grid(const fs::path& tmx, const pugi::xml_node& m) {
     }
     g.w = int_attr(tmx, m, "width", 1, max_tiled_side);
     g.h = int_attr(tmx, m, "height", 1, max_tiled_side);
+    if (!map_size_ok(g.w, g.h))
+        fail(tmx, m, "is " + std::to_string(g.w) + "x" + std::to_string(g.h) + " tiles: " + map_size_rule());
     g.tw = int_attr(tmx, m, "tilewidth", 2, 4096);
     g.th = int_attr(tmx, m, "tileheight", 2, 4096);
     if (std::string(m.attribute("infinite").value()) == "1") read_chunk_bounds(tmx, m, g);

@@ -58,6 +58,8 @@ for line in rows[1:]:
 for name, args, frag in [
     ("size_zero", ["render", "--size", "0x5"], "--size"),
     ("size_huge", ["render", "--size", "2000x2000"], "--size"),
+    ("size_side_beyond", ["render", "--size", "4097x2"], "4096"),
+    ("size_tiles_beyond", ["render", "--size", "4096x257"], "1048576 tiles"),
     ("size_text", ["render", "--size", "axb"], "--size"),
     ("size_overflow", ["render", "--size", "99999999999999999999x2"], "--size"),
     ("view_huge", ["render", "--size", "3x3", "--view", "0,0,65536,65536"], "megapixel"),
@@ -125,6 +127,8 @@ scene("light_area_huge", '{"lights": [{"x": 1, "y": 1, "a": 999999}]}', 2, "ligh
 scene("light_height_negative", '{"lights": [{"x": 1, "y": 1, "height": -5}]}', 2, "height")
 scene("width_zero", '{"width": 0}', 2, "width")
 scene("width_huge", '{"width": 100000}', 2, "width")
+scene("width_times_height", '{"width": 4096, "height": 300}', 2, "1228800 tiles")
+case("size_long_strip", ["render", "--size", "4096x256", "--view", "0,0,64,64", "--out", T("out.png")], 0, "")
 scene("layout_unknown", '{"layout": "hex"}', 2, "layout")
 scene("camera_huge", '{"width": 3, "height": 3, "camera": {"x": 0, "y": 0, "width": 65536, "height": 65536}}', 2, "megapixel")
 scene("camera_far", '{"width": 3, "height": 3, "camera": {"x": 1e18, "y": 0, "width": 10, "height": 10}}', 0, "")
@@ -224,6 +228,8 @@ tmx("ok", TS + L('<data encoding="csv">1,1,1,1</data>'), frag="", want=0)
 tmx("orthogonal", TS, attrs='orientation="orthogonal" width="2" height="2" tilewidth="64" tileheight="32"')
 tmx("hexagonal", TS, attrs='orientation="hexagonal" width="2" height="2" tilewidth="64" tileheight="32"')
 tmx("no_map", "", frag="no <map>")
+tmx("too_many_tiles", TS, attrs='orientation="isometric" width="2048" height="1024" tilewidth="64" tileheight="32"',
+    frag="2048x1024 tiles")
 write(os.path.join("tmx", "no_map.tmx"), "<notamap/>")
 tmx("huge_side", TS, attrs='orientation="isometric" width="100000" height="2" tilewidth="64" tileheight="32"', frag="width")
 tmx("zero_tile", TS, attrs='orientation="isometric" width="2" height="2" tilewidth="0" tileheight="32"', frag="tilewidth")

@@ -25,6 +25,7 @@
 namespace isolux {
 
 inline constexpr int chunk_tiles = 32;                            // a chunk's side, tiles
+inline constexpr int max_window_side = 1024;                      // a window's side at most, tiles
 inline constexpr std::int64_t max_endless_tile = 1'000'000'000'000;  // |col|, |row| of any tile shown
 
 // A rectangle of an endless world's pixels.

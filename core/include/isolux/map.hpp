@@ -41,12 +41,22 @@ struct Map {
     const Tile& at(int col, int row) const { return tiles[std::size_t(row) * width + col]; }
 };
 
-inline constexpr int max_map_side = 1024;  // tiles; 256 x 256 is the documented minimum we support
+// A map's size: each side up to max_map_side tiles, and at most
+// max_map_tiles tiles in all, what bounds its memory (a 1024 x 1024 map
+// renders in about 400 MB): a long strip may reach 4096 tiles where a square
+// stops at 1024. An endless world (endless.hpp) has no size.
+inline constexpr int max_map_side = 4096;
+inline constexpr long long max_map_tiles = 1LL << 20;
+inline bool map_size_ok(long long width, long long height) {
+    return width >= 1 && height >= 1 && width <= max_map_side && height <= max_map_side && width * height <= max_map_tiles;
+}
+// The rule map_size_ok holds, for messages.
+inline const char* map_size_rule() { return "each side in [1, 4096] tiles and at most 1048576 tiles (1024x1024)"; }
 
 // Generates the map for `seed` deterministically: biome noise (elevation and
 // moisture) picks water, sand, meadow, forest, dirt and stone regions; each
-// biome picks its floor and 0 to 3 overlays. Throws Error on a size outside
-// 1..max_map_side or a tileset without floors. Tile (col, row) holds what
+// biome picks its floor and 0 to 3 overlays. Throws Error on a size that
+// map_size_ok refuses or a tileset without floors. Tile (col, row) holds what
 // the seed gives tile (col0 + col, row0 + row): a tile's content depends on
 // the seed and its own coordinates only, so a larger map extends a smaller
 // one and an endless world is any window of tiles (endless.hpp).

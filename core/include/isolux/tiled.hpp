@@ -49,10 +49,10 @@ struct TiledMap {
 };
 TiledMap load_tiled(const std::filesystem::path& tmx);
 
-// Limits a TMX file may not exceed: tiles per map side (as isolux's own
-// maps), and layers (each is width x height tiles once decoded: a
-// compression bomb is refused at that size, not inflated).
-inline constexpr int max_tiled_side = 1024;
+// Limits a TMX file may not exceed: tiles per map side and in all (as
+// isolux's own maps: map_size_ok), and layers (each is width x height tiles
+// once decoded: a compression bomb is refused at that size, not inflated).
+inline constexpr int max_tiled_side = max_map_side;
 inline constexpr int max_tiled_layers = 256;
 // Sprites a map may draw in all layers (4M: four full layers of a 1024x1024
 // map), and sprite pixels it may load in all its tilesets
