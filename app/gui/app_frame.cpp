@@ -188,7 +188,11 @@ bool screenshot_view_fits(App& app) {
 // last zoom that fitted.
 void follow_endless_view(App& app, bool screenshot_mode) {
     Editor& e = app.editor;
-    if (e.stroke.active) return;  // a stroke's tiles stay in one frame
+    // A stroke, a slider's or a light's drag and a box select keep what they
+    // started from (tiles, the document before, world pixels) in one frame:
+    // the window waits for them to end.
+    const ViewportState& vp = app.ui.viewport;
+    if (e.stroke.active || app.ui.editing || vp.dragging_light >= 0 || vp.box_selecting) return;
     auto view_of = [&] {
         if (screenshot_mode) {
             const WorldRect& v = e.endless.last_view;
