@@ -249,7 +249,7 @@ std::filesystem::path tileset_manifest(const Editor& e);
 void open_endless(Editor& e, const Scene& world_scene, WorldRect view, std::string_view source);
 // A document scene (the document or one of its history) in the world's frame.
 Scene endless_world_scene(const Editor& e, const Scene& s);
-// The world pixel of a window pixel, and the world tile of a window tile.
+// A rectangle of the window's pixels in the world's own (64-bit) pixels.
 WorldRect endless_world_rect(const Editor& e, Rect window_rect);
 // Keeps the window around `view` (window pixels): when the view needs chunks
 // the window lacks, a window around it is made and everything moves into its
