@@ -58,6 +58,17 @@ int other_floor(const Editor& e, int col, int row) {
     return -1;
 }
 
+// A floor stroke on the tile under window pixel (x, y): another floor than
+// its own, one undo step. Its tile (window tiles); false when none is there.
+bool paint_floor(Editor& e, double x, double y, double now, int& col, int& row) {
+    if (!tile_at(e.world.map, e.world.placed, x, y, col, row)) return false;
+    e.brush.tool = Tool::floor;
+    e.brush.floor = other_floor(e, col, row);
+    begin_stroke(e, col, row);
+    end_stroke(e, now);
+    return true;
+}
+
 }  // namespace
 
 TEST(EditorEndless, walkingFarKeepsLightsEditsAndUndoWhereTheyAreInTheWorld) {
@@ -69,11 +80,7 @@ TEST(EditorEndless, walkingFarKeepsLightsEditsAndUndoWhereTheyAreInTheWorld) {
     // A light and a floor edit near the view's centre.
     place_light(e, e.view.x + 400.3, e.view.y + 225.8, 1);
     int col = -1, row = -1;
-    ASSERT_TRUE(tile_at(e.world.map, e.world.placed, e.view.x + 300, e.view.y + 200, col, row));
-    e.brush.tool = Tool::floor;
-    e.brush.floor = other_floor(e, col, row);
-    begin_stroke(e, col, row);
-    end_stroke(e, 2);
+    ASSERT_TRUE(paint_floor(e, e.view.x + 300, e.view.y + 200, 2, col, row));
     const Scene placed = endless_world_scene(e, e.scene);
     // The panels show the world's tiles, not the window's.
     EXPECT_NE(brush_preview(e, col, row).find("tile " + std::to_string(col + e.endless.chunks.col0) + ", " +
@@ -126,11 +133,7 @@ TEST(EditorEndless, savingKeepsSeedEditsAndLightsAndReopensWhereItWas) {
     Editor e = make_editor(endless_scene(-5000, 3000), d.path);
     place_light(e, e.view.x + 100, e.view.y + 80, 1);
     int col = -1, row = -1;
-    ASSERT_TRUE(tile_at(e.world.map, e.world.placed, e.view.x + 200, e.view.y + 150, col, row));
-    e.brush.tool = Tool::floor;
-    e.brush.floor = other_floor(e, col, row);
-    begin_stroke(e, col, row);
-    end_stroke(e, 2);
+    ASSERT_TRUE(paint_floor(e, e.view.x + 200, e.view.y + 150, 2, col, row));
     for (int k = 0; k < 60; ++k) {
         e.view.x -= 80;
         ASSERT_NE(follow_view(e, view_rect(e)), Follow::refused);
@@ -240,13 +243,9 @@ TEST(EditorEndless, editsAHundredBillionTilesOutAreSavedAndReopened) {
     endless_tile_center(Layout::diamond, ts.tile_width, ts.tile_height, 100'000'000'000, -100'000'000'000, x, y);
     Editor e = make_editor(endless_scene(double(x) - 400, double(y) - 225), d.path);
     int col = -1, row = -1;
-    ASSERT_TRUE(tile_at(e.world.map, e.world.placed, e.view.x + 400, e.view.y + 225, col, row));
+    ASSERT_TRUE(paint_floor(e, e.view.x + 400, e.view.y + 225, 1, col, row));
     EXPECT_EQ(col + e.endless.chunks.col0, 100'000'000'000);
     EXPECT_EQ(row + e.endless.chunks.row0, -100'000'000'000);
-    e.brush.tool = Tool::floor;
-    e.brush.floor = other_floor(e, col, row);
-    begin_stroke(e, col, row);
-    end_stroke(e, 1);
     const auto path = d.path / "far.json";
     ASSERT_TRUE(save_scene_to(e, path)) << e.status;
     const Scene file = load_scene(path);

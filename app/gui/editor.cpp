@@ -39,13 +39,6 @@ void remember_file(Editor& e, const fs::path& path, FileKind kind) {
     }
 }
 
-// A new world: the frame's caches start over, its options stay.
-void fresh_frame(Editor& e) {
-    const FrameOptions keep = e.frame.options;
-    e.frame = FrameState{};
-    e.frame.options = keep;
-}
-
 // A scene's camera becomes the view; the document keeps none while editing.
 void take_camera(Editor& e) {
     e.view.x = e.scene.camera.x;
@@ -57,6 +50,12 @@ void take_camera(Editor& e) {
 }
 
 }  // namespace
+
+void fresh_frame(Editor& e) {
+    const FrameOptions keep = e.frame.options;
+    e.frame = FrameState{};
+    e.frame.options = keep;
+}
 
 void reset_view(Editor& e) {
     e.view.x = e.view.y = 0;
@@ -258,33 +257,23 @@ bool load_scene_impl(Editor& e, const fs::path& path, double now, bool remember)
             warnings = t.warnings;
         } else {
             loaded = load_scene(path, &warnings);
-            if (loaded.endless) {
-                // Its window first: a scene that cannot open keeps the document.
-                const Scene before = e.scene;
-                open_endless(e, loaded, default_endless_view(loaded), path.string());
-                e.view.width = loaded.camera.width;
-                e.view.height = loaded.camera.height;
-                commit_edit(e, before, now);
-                e.selected = -1;
-                e.selection.clear();
-                e.fit_pending = false;
-                e.scene_path = path;
-                e.dirty = false;
-                e.autosave_due = -1;
-                if (remember) remember_file(e, path, FileKind::scene);
-                set_status(e, warnings.empty() ? "loaded " + path.string() + " (endless)" : warnings.front(), !warnings.empty());
-                return true;
-            }
-            // Build first: a scene whose tileset is broken must not replace the document.
-            w = build_world(loaded, path.string(), &warnings);
+            // Build first: a scene whose tileset is broken must not replace
+            // the document (an endless one: its window around the camera).
+            if (!loaded.endless) w = build_world(loaded, path.string(), &warnings);
         }
         Scene before = e.scene;
-        e.scene = loaded;
-        e.world = std::move(w);
-        e.world_source = loaded;
-        e.endless.on = false;
-        fresh_frame(e);
-        take_camera(e);
+        if (loaded.endless) {
+            open_endless(e, loaded, default_endless_view(loaded), path.string());
+            e.view.width = loaded.camera.width;
+            e.view.height = loaded.camera.height;
+        } else {
+            e.scene = loaded;
+            e.world = std::move(w);
+            e.world_source = loaded;
+            e.endless.on = false;
+            fresh_frame(e);
+            take_camera(e);
+        }
         commit_edit(e, before, now);
     } catch (const Error& err) {
         set_status(e, err.what(), true);
@@ -292,7 +281,8 @@ bool load_scene_impl(Editor& e, const fs::path& path, double now, bool remember)
     }
     e.selected = -1;
     e.selection.clear();
-    e.fit_pending = e.view.width == 0;  // a scene without a camera: show all of its map
+    // A scene without a camera: show all of its map (an endless world has no whole).
+    e.fit_pending = !loaded.endless && e.view.width == 0;
     e.scene_path = path.extension() == ".tmx" ? fs::path() : path;
     e.dirty = false;
     e.autosave_due = -1;

@@ -150,6 +150,9 @@ Editor make_editor(const Scene& scene, const std::filesystem::path& config);
 // Messages: every action reports here instead of throwing.
 void set_status(Editor& e, std::string text, bool error = false);
 
+// A new world: the frame's caches start over, its options stay.
+void fresh_frame(Editor& e);
+
 // The view back at the map's origin, zoom 1 (View › Reset view, Home).
 void reset_view(Editor& e);
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "common/world.hpp"
 #include "gui/editor.hpp"
@@ -81,15 +82,21 @@ void adopt_window(Editor& e, EndlessWindow w, WorldRect view, const Scene* docum
     e.world.edits = e.scene.edits;  // the window applied those inside it; set_edits skips the rest
     e.world_source = e.scene;
     e.world_source.camera = Camera{};
-    const FrameOptions keep = e.frame.options;
-    e.frame = FrameState{};
-    e.frame.options = keep;
+    fresh_frame(e);
     e.endless.on = true;
     e.endless.chunks = w.chunks;
     e.endless.origin_x = w.origin_x;
     e.endless.origin_y = w.origin_y;
     e.endless.last_view = view;
     ++e.endless.windows_built;
+}
+
+// Where a finite map's pixel (0, 0) lies in the endless frame: its first
+// tile's centre less its shift, as a window's origin is (make_endless_window).
+std::pair<double, double> finite_origin(Layout layout, const World& w) {
+    std::int64_t fx = 0, fy = 0;
+    endless_tile_center(layout, w.map.tile_width, w.map.tile_height, 0, 0, fx, fy);
+    return {double(fx - w.placed.shift_x), double(fy - w.placed.shift_y)};
 }
 
 }  // namespace
@@ -195,14 +202,11 @@ Overview endless_overview(const Editor& e, int radius) {
 void regenerate(Editor& e, const MapFields& m, double now, bool keep_edits) {
     if (!m.endless && !e.scene.endless) return regenerate(e, m.seed, m.width, m.height, m.layout, now, keep_edits);
     const Scene before = e.scene;
-    // The document in the world's frame: a finite map's pixel (0, 0) lies at
-    // its first tile's centre less its shift, as a window's does.
+    // The document in the world's frame.
     Scene world = e.scene;
     WorldRect view = e.endless.last_view;
     if (!e.scene.endless) {
-        std::int64_t fx = 0, fy = 0;
-        endless_tile_center(e.scene.layout, e.world.map.tile_width, e.world.map.tile_height, 0, 0, fx, fy);
-        const double ox = double(fx - e.world.placed.shift_x), oy = double(fy - e.world.placed.shift_y);
+        const auto [ox, oy] = finite_origin(e.scene.layout, e.world);
         for (Light& l : world.lights) l.x += ox, l.y += oy;
         view = WorldRect{std::int64_t(std::floor(e.view.x + ox)), std::int64_t(std::floor(e.view.y + oy)),
                          view.w > 0 ? view.w : 1600, view.h > 0 ? view.h : 900};
@@ -221,16 +225,12 @@ void regenerate(Editor& e, const MapFields& m, double now, bool keep_edits) {
             world.width = m.width;
             world.height = m.height;
             World w = build_world(world, "edits");
-            std::int64_t fx = 0, fy = 0;
-            endless_tile_center(world.layout, w.map.tile_width, w.map.tile_height, 0, 0, fx, fy);
-            const double ox = double(fx - w.placed.shift_x), oy = double(fy - w.placed.shift_y);
+            const auto [ox, oy] = finite_origin(world.layout, w);
             for (Light& l : world.lights) l.x -= ox, l.y -= oy;
             e.scene = world;
             e.world = std::move(w);
             e.world_source = world;
-            const FrameOptions keep = e.frame.options;
-            e.frame = FrameState{};
-            e.frame.options = keep;
+            fresh_frame(e);
             e.view.x = double(view.x) - ox;
             e.view.y = double(view.y) - oy;
             e.endless.on = false;

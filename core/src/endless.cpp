@@ -107,10 +107,11 @@ Mask obstacles_from_blocks(EndlessState& st, const Tileset& tileset, const Scene
     for (const Sprite& s : tileset.sprites) margin = std::max(margin, std::max(s.image.width, s.image.height) + p.noise_window);
     const std::int64_t B = obstacle_block;
     const std::int64_t wx0 = region.x + win.origin_x, wy0 = region.y + win.origin_y;
-    auto copy = [&](const Mask& m) {
-        const Rect part = intersect(m.rect(), region);
+    // Copies `m`, whose pixel (0, 0) is the window's (x0, y0), into `out`.
+    auto copy = [&](const Mask& m, int x0, int y0) {
+        const Rect part = intersect(Rect{x0, y0, m.width, m.height}, region);
         for (int y = part.y; y < part.y + part.h; ++y)
-            std::copy_n(&m.bits[std::size_t(y - m.y0) * m.width + std::size_t(part.x - m.x0)], part.w,
+            std::copy_n(&m.bits[std::size_t(y - y0) * m.width + std::size_t(part.x - x0)], part.w,
                         &out.bits[std::size_t(y - region.y) * region.w + std::size_t(part.x - region.x)]);
     };
     for (std::int64_t by = floor_div(wy0, B); by <= floor_div(wy0 + region.h - 1, B); ++by)
@@ -118,9 +119,7 @@ Mask obstacles_from_blocks(EndlessState& st, const Tileset& tileset, const Scene
             const EndlessCache::Key key{bx, by};
             const Rect in_window{int(bx * B - win.origin_x), int(by * B - win.origin_y), int(B), int(B)};
             if (auto it = c.blocks.find(key); it != c.blocks.end()) {
-                Mask m = it->second;  // kept at the world's pixels less this window's origin
-                m.x0 = in_window.x, m.y0 = in_window.y;
-                copy(m);
+                copy(it->second, in_window.x, in_window.y);
                 ++c.blocks_copied;
                 continue;
             }
@@ -133,11 +132,12 @@ Mask obstacles_from_blocks(EndlessState& st, const Tileset& tileset, const Scene
             } catch (const Error&) {
             }
             if (!complete) {
-                copy(build_obstacle_map(world.tileset, world.placed, p, intersect(in_window, region), &footprints));
+                const Mask part = build_obstacle_map(world.tileset, world.placed, p, intersect(in_window, region), &footprints);
+                copy(part, part.x0, part.y0);
                 continue;
             }
             Mask m = build_obstacle_map(world.tileset, world.placed, p, in_window, &footprints);
-            copy(m);
+            copy(m, m.x0, m.y0);
             c.blocks.emplace(key, std::move(m));
             c.block_order.push_back(key);
             ++c.blocks_built;
