@@ -5,7 +5,9 @@
 // realart_fetch); these tests fail, never skip, when it is missing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -223,4 +225,36 @@ TEST(RealArt, flareHouseStandsOnItsWholeBaseAndTwoTreesOnTheirTrunks) {
     std::vector<std::string> missed;
     for (const Miss& x : m) missed.push_back(x.sprite);
     EXPECT_EQ(missed, (std::vector<std::string>{"oak", "leafy"}));
+}
+
+// The stem a hidden under-part stands on (hidden_stem_ratio): the median,
+// over the real art's lone trees whose trunk shows (one object, its lowest
+// disc under half its widest), of the lowest disc's radius over the widest's.
+TEST(RealArt, hiddenStemRatioIsTheRealTreesMedian) {
+    const std::vector<std::pair<std::string, std::string>> sets = {{"freedroidrpg", "freedroidrpg-data"},
+                                                                   {"widelands", "widelands-data"},
+                                                                   {"lincity-ng", "lincity-ng-data"},
+                                                                   {"flare", "flare-game"}};
+    std::vector<double> ratios;
+    for (const auto& [name, package] : sets) {
+        const Loaded l = load(name, package);
+        for (const auto& entry : l.manifest["sprites"]) {
+            if (!entry.contains("expected_base")) continue;
+            for (const Sprite& s : l.tileset.sprites) {
+                if (s.name != entry["name"].get<std::string>()) continue;
+                const std::vector<EstimatedObject> objects = sprite_objects(l.tileset, s, Params{});
+                if (objects.size() != 1) continue;
+                const std::vector<double>& r = objects[0].radius;
+                const double widest = *std::max_element(r.begin(), r.end());
+                if (r[0] < widest / 2) ratios.push_back(r[0] / widest);
+            }
+        }
+    }
+    ASSERT_GE(ratios.size(), 6u);
+    std::sort(ratios.begin(), ratios.end());
+    const std::size_t n = ratios.size();
+    const double median = n % 2 ? ratios[n / 2] : (ratios[n / 2 - 1] + ratios[n / 2]) / 2;
+    std::cout << "hidden_stem_ratio " << hidden_stem_ratio << ", the lone real trees' median " << median << " over "
+              << n << " trees\n";
+    EXPECT_NEAR(hidden_stem_ratio, median, 0.03);
 }

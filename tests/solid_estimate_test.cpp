@@ -83,6 +83,35 @@ TEST(SolidEstimate, aBushsFootMovesDownFromItsEquatorToWhereItStands) {
     EXPECT_NEAR(at_foot[0].center_y, ay, 3);
 }
 
+// A skirted tree: a cone of foliage from 10 px up whose front edge hangs
+// lower on screen than its trunk's foot, so the sprite never shows the
+// trunk. Every disc below the skirt is hidden behind it: they stand on a
+// stem (hidden_stem_ratio of the skirt), not on a cone of foliage reaching
+// the ground. A bush resting on the ground shows its lower half below its
+// widest disc and keeps its discs as the silhouette allows.
+TEST(SolidEstimate, aSkirtThatHidesItsTrunkStandsOnAStem) {
+    const int w = 160, h = 150, ax = 80, ay = 120;
+    const std::vector<Solid> pine{{SolidKind::cylinder, {0, 0, 0}, {3, 3, 16}}, {SolidKind::cone, {0, 0, 10}, {24, 24, 60}}};
+    const Mask object = drawn(pine, w, h, ax, ay);
+    const auto objects = estimate_objects(object, foot(w, h, ax, ay));
+    ASSERT_EQ(objects.size(), 1u);
+    const std::vector<double>& r = objects[0].radius;
+    const auto widest = std::size_t(std::max_element(r.begin(), r.end()) - r.begin());
+    EXPECT_GE(widest, 6u);
+    EXPECT_GT(r[widest], 18);
+    for (std::size_t z = 0; z < widest; ++z) EXPECT_LE(r[z], hidden_stem_ratio * r[widest] + 1e-9) << z;
+    double lo = 0, hi = 0;
+    ASSERT_TRUE(objects[0].span_at(12, lo, hi));  // under the skirt: the foliage starts off the ground
+    EXPECT_GE(lo, double(widest) - 1);
+    EXPECT_GT(volume_overlap(objects, ax, ay, pine), 0.6);
+
+    const std::vector<Solid> bush{{SolidKind::ellipsoid, {0, 0, 10}, {17, 17, 13}}};
+    const auto resting = estimate_objects(drawn(bush, w, h, ax, ay), foot(w, h, ax, ay));
+    ASSERT_EQ(resting.size(), 1u);
+    const std::vector<double>& b = resting[0].radius;
+    EXPECT_GT(b[0], 0.5 * *std::max_element(b.begin(), b.end()));
+}
+
 // A user's correction (the tileset inspector's): the axis stands on the
 // pixel they chose and the solid is as tall as they said, lower or higher
 // than the estimate's own; an object with no footprint gets one where they

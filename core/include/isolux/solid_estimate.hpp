@@ -34,6 +34,13 @@ struct EstimatedObject {
     bool contains(Vec3 p) const;
 };
 
+// Where the widest disc hides everything below it (a pine's skirt of
+// foliage over a trunk the sprite never shows), the discs below it keep at
+// most this share of its radius: a stem. The median of the lone trees'
+// visible trunks in the real art nobody here drew
+// (RealArt.hiddenStemRatioIsTheRealTreesMedian; docs/method.md).
+constexpr double hidden_stem_ratio = 0.2;
+
 // The object standing in a sprite whose object pixels are `object` (the
 // footprint estimate's opacity, baked ground and shadows taken out) and whose
 // footprint is `footprint` (both in sprite pixels). None when the footprint
