@@ -203,10 +203,7 @@ TEST(Occluders, solidsMislightAtMostHalfWhatFootprintsDoAgainst3d) {
     // The default seed, and seeds and lights drawn here (pooled: two lights
     // on an 8x8 map may meet a handful of sprites), at four light heights:
     // solids mislight at most half the sprite pixels and the ground pixels
-    // footprints do at every height, but on the default seed's ground at 4
-    // px (a light that low sees only what stands lowest, where a sprite
-    // cannot show whether a skirt of foliage hangs over a thin trunk or
-    // reaches the ground: docs/method.md).
+    // footprints do at every height.
     // The true shapes through the same tracer mislight less ground than the
     // estimate.
     const std::vector<std::string> heights = {"4", "16", "32", "64"};
@@ -241,9 +238,7 @@ TEST(Occluders, solidsMislightAtMostHalfWhatFootprintsDoAgainst3d) {
             if (seed == 0) {
                 const std::string where = "the default seed, light height " + heights[h];
                 EXPECT_LE(solids.sprite.lit_mismatch, paper.sprite.lit_mismatch / 2) << where;
-                if (h > 0) {
-                    EXPECT_LE(solids.floor.lit_mismatch, paper.floor.lit_mismatch / 2) << where;
-                }
+                EXPECT_LE(solids.floor.lit_mismatch, paper.floor.lit_mismatch / 2) << where;
                 EXPECT_LE(shapes.floor.lit_mismatch, solids.floor.lit_mismatch) << where;
                 continue;
             }
@@ -267,7 +262,9 @@ TEST(Occluders, solidsMislightAtMostHalfWhatFootprintsDoAgainst3d) {
 // forest.json, their own settings, 8 frames with the camera moving and a
 // light carried, as `isolux-cli sweep` runs them): solids mislight at most
 // half the sprite pixels footprints do at 4, 16, 32 and 64 px, and half the
-// ground from 16 px up; at 4 px less ground than footprints.
+// ground at every height on the forest and from 16 px up on the default
+// scene; on its ground at 4 px, less than footprints (its bushes:
+// docs/accuracy.md).
 TEST(Occluders, solidsHalveThePapersErrorOnTheAccuracyScenes) {
     for (const char* name : {"default", "forest"}) {
         const Scene s = load_scene(std::string(ISOLUX_ASSETS_DIR) + "/scenes/" + name + ".json");
@@ -285,7 +282,8 @@ TEST(Occluders, solidsHalveThePapersErrorOnTheAccuracyScenes) {
                         100 * paper.floor.lit_mismatch, 100 * solids.floor.lit_mismatch, 100 * paper.sprite.lit_mismatch,
                         100 * solids.sprite.lit_mismatch);
             EXPECT_LE(solids.sprite.lit_mismatch, paper.sprite.lit_mismatch / 2) << where;
-            EXPECT_LE(solids.floor.lit_mismatch, paper.floor.lit_mismatch / (h > 0 ? 2 : 1)) << where;
+            const bool half_ground = h > 0 || std::string(name) == "forest";
+            EXPECT_LE(solids.floor.lit_mismatch, paper.floor.lit_mismatch / (half_ground ? 2 : 1)) << where;
         }
     }
 }
