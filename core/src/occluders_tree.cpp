@@ -265,36 +265,42 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
                 v = table[std::size_t(std::max(std::abs(int(c) - m.a), std::abs(int(r) - int(rows) - b)))];
         }
     };
-    // Below a span: per depth on the current path, the node's span and the
-    // descents blocked there (a level's own set, or an ancestor's when no
-    // span joined it).
+    // Below a span: per depth on the current path, the node's span; and the
+    // descents the spans passed block, one set changed in place down a chain
+    // of single children and saved at each branch (a node with two or more
+    // children), restored when the walk comes back to take its next child.
+    // A tree has about as many branches as rays, far fewer than nodes.
     const int depths = std::max(m.a, b) + 1;
     struct Blocked {  // disjoint (from, to], sorted: the union of what was added
         std::vector<std::pair<double, double>> iv;
         void add(double from, double to) {
             auto it = std::lower_bound(iv.begin(), iv.end(), from, [](const auto& v, double x) { return v.second < x; });
+            if (it == iv.end() || to < it->first) {  // apart from all: no merge
+                iv.insert(it, {from, to});
+                return;
+            }
             auto end = it;
             while (end != iv.end() && end->first <= to) {
                 from = std::min(from, end->first);
                 to = std::max(to, end->second);
                 ++end;
             }
-            it = iv.erase(it, end);
-            iv.insert(it, {from, to});
+            *it = {from, to};
+            iv.erase(it + 1, end);
         }
         bool blocks(double u) const {
             auto it = std::lower_bound(iv.begin(), iv.end(), u, [](const auto& v, double x) { return v.second < x; });
             return it != iv.end() && it->first < u;
         }
     };
-    thread_local std::vector<Blocked> level;
-    thread_local std::vector<int> ref;
+    struct Branch {
+        std::int32_t end;  // the branch's subtree ends there
+        Blocked saved;     // the set after the branch node
+    };
+    thread_local std::vector<Branch> branches;  // a stack: the current path's branch nodes
+    thread_local Blocked blocked;
     thread_local std::vector<Spans> span;
-    level.resize(std::size_t(depths) + 1);
-    ref.assign(std::size_t(depths), 0);
     span.assign(std::size_t(depths), Spans{});
-    const int none = depths;  // the empty set
-    level[std::size_t(none)].iv.clear();
     for (std::int32_t i = 0; i < n;) {
         i = walk_clear(node, i, n, flags, OccluderMap::has_shown,
                        [&](std::uint32_t o, std::uint32_t k) { light_shown(o, k, [](double) { return false; }); });
@@ -303,28 +309,34 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
         const std::int32_t last = node[i].end;
         const int first = int(node[i].at_depth & ((1u << depth_bits) - 1));
         for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = Spans{};
+        blocked.iv.clear();
+        std::size_t top = 0;  // branches in use
+        int previous = first - 1;
         for (; i < last; ++i) {
             const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
             const int k = int(w & ((1u << depth_bits) - 1));
+            if (k <= previous) {  // back up to the branch whose next child this is
+                while (branches[top - 1].end <= i) --top;
+                blocked.iv = branches[top - 1].saved.iv;
+            }
+            previous = k;
             const std::uint8_t f = flags[o];
             span[std::size_t(k)] = (f & OccluderMap::has_span) ? occ.spans[in.map(o)] : Spans{};
-            int at = k > first ? ref[std::size_t(k - 1)] : none;
             const int s = k - own_steps;
             if (s >= 0)
                 for (const Span& sp : {span[std::size_t(s)].lower, span[std::size_t(s)].upper}) {
                     if (!sp.any() || (s == 0 && !(sp.low <= H && H < sp.high))) continue;
-                    Blocked& b = level[std::size_t(k)];
-                    if (at != k) b.iv = level[std::size_t(at)].iv;
                     if (s == 0)  // the light's own pixel: a light inside a solid is hidden from all
-                        b.add(-inf, inf);
+                        blocked.add(-inf, inf);
                     else
-                        b.add((H - sp.high) / double(s), (H - sp.low) / double(s));
-                    at = k;
+                        blocked.add((H - sp.high) / double(s), (H - sp.low) / double(s));
                 }
-            ref[std::size_t(k)] = at;
-            if (f & OccluderMap::has_shown) {
-                const Blocked& b = level[std::size_t(at)];
-                light_shown(o, std::uint32_t(k), [&](double u) { return b.blocks(u); });
+            if (f & OccluderMap::has_shown) light_shown(o, std::uint32_t(k), [&](double u) { return blocked.blocks(u); });
+            if (node[i].end > i + 1 && node[i + 1].end < node[i].end) {  // a branch
+                if (branches.size() <= top) branches.emplace_back();
+                branches[top].end = node[i].end;
+                branches[top].saved.iv = blocked.iv;
+                ++top;
             }
         }
     }
