@@ -55,7 +55,7 @@ struct Spans {
 inline std::int64_t rows_above(double h) {
     if (h < 0) return -rows_above(-h);
     const std::int64_t r = std::int64_t(h);
-    return h - double(r) >= 0.5 ? r + 1 : r;
+    return r + std::int64_t(h - double(r) >= 0.5);  // no branch: a height's fraction is as likely either way
 }
 
 struct OccluderMap {
