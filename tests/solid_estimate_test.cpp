@@ -112,6 +112,25 @@ TEST(SolidEstimate, aSkirtThatHidesItsTrunkStandsOnAStem) {
     EXPECT_GT(b[0], 0.5 * *std::max_element(b.begin(), b.end()));
 }
 
+// On the default tileset the pine alone hides what stands below its widest
+// disc (its skirt); its bushes and rocks show their lower halves and its
+// trees their trunks.
+TEST(SolidEstimate, onTheDefaultTilesetOnlyThePinesSkirtHidesItsStem) {
+    const Tileset ts = test::default_tileset();
+    const Params p;
+    int overlays = 0;
+    for (const Sprite& s : ts.sprites) {
+        if (s.kind != SpriteKind::overlay) continue;
+        ++overlays;
+        FootprintReport r;
+        tileset_footprint(ts, s, p, &r);
+        const auto objects = sprite_objects(ts, s, p);
+        ASSERT_EQ(objects.size(), 1u) << s.name;
+        EXPECT_EQ(hidden_below_widest(r.estimate, objects[0]), s.name == "pine") << s.name;
+    }
+    EXPECT_EQ(overlays, 9);
+}
+
 // A user's correction (the tileset inspector's): the axis stands on the
 // pixel they chose and the solid is as tall as they said, lower or higher
 // than the estimate's own; an object with no footprint gets one where they

@@ -129,38 +129,13 @@ long covered(const Mask& object, const EstimatedObject& o) {
     return n;
 }
 
-// Whether everything of the object below its widest disc's centre is drawn
-// by the discs from the widest one up, but for at most `rounding` rows a
-// column (the largest disc that fits rounds to pixel centres): then the
-// discs below it are hidden behind its front edge (a pine's skirt of
-// foliage), and nothing in the silhouette says they reach that wide.
-// A bush or a rock that rests on the ground shows a crescent of its lower
-// half below its widest disc.
-bool hidden_below_widest(const Mask& object, const EstimatedObject& o, std::size_t widest) {
-    constexpr int rounding = 2;
-    EstimatedObject above = o;
-    for (std::size_t z = 0; z < widest; ++z) above.radius[z] = 0;
-    const Mask drawn = solid_silhouette({above}, object.x0 + object.width, object.y0 + object.height);
-    const double centre_row = o.center_y - (double(widest) + 0.5);
-    for (int i = 0; i < object.width; ++i) {
-        int uncovered = 0;
-        for (int j = 0; j < object.height; ++j) {
-            const int y = object.y0 + j;
-            if (y + 0.5 > centre_row && object.bits[std::size_t(j) * object.width + i] && !drawn.get(object.x0 + i, y))
-                ++uncovered;
-        }
-        if (uncovered > rounding) return false;
-    }
-    return true;
-}
-
 // The discs below the widest stand on a hidden stem when the widest hides
 // them (hidden_below_widest): each keeps at most hidden_stem_ratio of the
 // widest radius. The largest discs that fit would otherwise stand a cone of
 // foliage on the ground, and a low light would cast its shadow far too wide.
 void stand_on_hidden_stem(const Mask& object, EstimatedObject& o) {
+    if (!hidden_below_widest(object, o)) return;
     const auto widest = std::size_t(std::max_element(o.radius.begin(), o.radius.end()) - o.radius.begin());
-    if (widest == 0 || !hidden_below_widest(object, o, widest)) return;
     const double stem = hidden_stem_ratio * o.radius[widest];
     for (std::size_t z = 0; z < widest; ++z) o.radius[z] = std::min(o.radius[z], stem);
 }
@@ -196,6 +171,27 @@ std::vector<EstimatedObject> grove_objects(const Mask& object, const std::vector
 }
 
 }  // namespace
+
+bool hidden_below_widest(const Mask& object, const EstimatedObject& o) {
+    constexpr int rounding = 2;  // rows a column: the largest disc that fits rounds to pixel centres
+    if (o.radius.empty()) return false;
+    const auto widest = std::size_t(std::max_element(o.radius.begin(), o.radius.end()) - o.radius.begin());
+    if (widest == 0) return false;
+    EstimatedObject above = o;
+    for (std::size_t z = 0; z < widest; ++z) above.radius[z] = 0;
+    const Mask drawn = solid_silhouette({above}, object.x0 + object.width, object.y0 + object.height);
+    const double centre_row = o.center_y - (double(widest) + 0.5);
+    for (int i = 0; i < object.width; ++i) {
+        int uncovered = 0;
+        for (int j = 0; j < object.height; ++j) {
+            const int y = object.y0 + j;
+            if (y + 0.5 > centre_row && object.bits[std::size_t(j) * object.width + i] && !drawn.get(object.x0 + i, y))
+                ++uncovered;
+        }
+        if (uncovered > rounding) return false;
+    }
+    return true;
+}
 
 std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction,
                                               const Image* image, bool whole_base) {

@@ -41,6 +41,14 @@ struct EstimatedObject {
 // (RealArt.hiddenStemRatioIsTheRealTreesMedian; docs/method.md).
 constexpr double hidden_stem_ratio = 0.2;
 
+// Whether the discs from object `o`'s widest one up draw every opaque pixel
+// of `object` below the widest disc's centre, but for at most 2 rows a
+// column: then the discs below the widest are hidden behind its front edge
+// (a pine's skirt of foliage), and nothing in the silhouette says how wide
+// they are. A bush or a rock resting on the ground shows a crescent of its
+// lower half below its widest disc.
+bool hidden_below_widest(const Mask& object, const EstimatedObject& o);
+
 // The object standing in a sprite whose object pixels are `object` (the
 // footprint estimate's opacity, baked ground and shadows taken out) and whose
 // footprint is `footprint` (both in sprite pixels). None when the footprint
