@@ -129,13 +129,18 @@ long covered(const Mask& object, const EstimatedObject& o) {
     return n;
 }
 
+// The widest disc's height (the lowest of equals).
+std::size_t widest_disc(const EstimatedObject& o) {
+    return std::size_t(std::max_element(o.radius.begin(), o.radius.end()) - o.radius.begin());
+}
+
 // The discs below the widest stand on a hidden stem when the widest hides
 // them (hidden_below_widest): each keeps at most hidden_stem_ratio of the
 // widest radius. The largest discs that fit would otherwise stand a cone of
 // foliage on the ground, and a low light would cast its shadow far too wide.
 void stand_on_hidden_stem(const Mask& object, EstimatedObject& o) {
     if (!hidden_below_widest(object, o)) return;
-    const auto widest = std::size_t(std::max_element(o.radius.begin(), o.radius.end()) - o.radius.begin());
+    const std::size_t widest = widest_disc(o);
     const double stem = hidden_stem_ratio * o.radius[widest];
     for (std::size_t z = 0; z < widest; ++z) o.radius[z] = std::min(o.radius[z], stem);
 }
@@ -175,7 +180,7 @@ std::vector<EstimatedObject> grove_objects(const Mask& object, const std::vector
 bool hidden_below_widest(const Mask& object, const EstimatedObject& o) {
     constexpr int rounding = 2;  // rows a column: the largest disc that fits rounds to pixel centres
     if (o.radius.empty()) return false;
-    const auto widest = std::size_t(std::max_element(o.radius.begin(), o.radius.end()) - o.radius.begin());
+    const std::size_t widest = widest_disc(o);
     if (widest == 0) return false;
     EstimatedObject above = o;
     for (std::size_t z = 0; z < widest; ++z) above.radius[z] = 0;
