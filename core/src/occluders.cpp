@@ -334,37 +334,12 @@ OccluderMap build_occluders(const World& world, const Params& p, Rect region, So
     return m;
 }
 
-LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64_t cy, int a, int b, double height,
-                             const Params& p, Rect clip) {
-    LightMask m;
-    start_mask(m, cx, cy, a, b, p, clip, p.mode == Mode::shadow);
-    if (m.clip.empty()) return m;
-    assert(occ.flags.size() == occ.spans.size());  // index_occluders
-    const double H = std::max(height, 0.0);
-    const std::vector<std::uint8_t> table = falloff_table(a, b, p.falloff_scale);
-    const Rect area{int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1};
-    if (occluder_tree_serves(occ, area, p)) {
-        if (m.clip == area) {
-            trace_ground_tree(m, occ, H, table, p);
-        } else if (const Rect inside = intersect(m.clip, area);
-                   double(area.w) * area.h <= 4.0 * double(inside.w) * inside.h) {
-            // Clipped: the whole area over the tree, then the part of it the
-            // clip holds copied (rays run to the border whatever the clip;
-            // past the area the clip stays unlit).
-            thread_local LightMask whole;
-            start_mask(whole, cx, cy, a, b, p, area);
-            trace_ground_tree(whole, occ, H, table, p);
-            for (int y = inside.y; y < inside.y + inside.h; ++y)
-                std::memcpy(&m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(inside.x - m.clip.x)],
-                            &whole.value[std::size_t(y - area.y) * area.w + std::size_t(inside.x - area.x)],
-                            std::size_t(inside.w));
-        } else {
-            goto by_rays;
-        }
-        if (p.mode == Mode::shadow) std::fill(m.reached.begin(), m.reached.end(), std::uint8_t(1));
-        return m;
-    }
-by_rays:
+namespace {
+
+// The ground pass ray by ray: the reference the tree pass is held to, and
+// what serves every light the tree does not.
+void ground_by_rays(LightMask& m, const OccluderMap& occ, std::int64_t cx, std::int64_t cy, int a, int b, double H,
+                    const std::vector<std::uint8_t>& table, const Params& p) {
     // Ground pixels: one pass per ray, each span before a pixel shading a
     // stretch of the ray beyond it (its own pixel too when it stands on the
     // ground). Stretches that run to the border are one: from the nearest
@@ -407,13 +382,61 @@ by_rays:
             if (!shaded && v >= 0) m.value[std::size_t(v)] = table[std::size_t(i)];
         });
     });
+}
+
+
+LightMask solids_mask(std::int64_t cx, std::int64_t cy, int a, int b, const Params& p, Rect clip) {
+    LightMask m;
+    start_mask(m, cx, cy, a, b, p, clip, p.mode == Mode::shadow);
     if (p.mode == Mode::shadow) std::fill(m.reached.begin(), m.reached.end(), std::uint8_t(1));
     return m;
 }
 
-void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
-    if (m.clip.empty()) return;
-    assert(occ.flags.size() == occ.surface.instance.size());  // index_occluders
+}  // namespace
+
+LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64_t cy, int a, int b, double height,
+                             const Params& p, Rect clip) {
+    LightMask m = solids_mask(cx, cy, a, b, p, clip);
+    if (m.clip.empty()) return m;
+    assert(occ.flags.size() == occ.spans.size());  // index_occluders
+    const double H = std::max(height, 0.0);
+    const std::vector<std::uint8_t> table = falloff_table(a, b, p.falloff_scale);
+    const Rect area{int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1};
+    if (!occluder_tree_serves(occ, area, p)) {
+        ground_by_rays(m, occ, cx, cy, a, b, H, table, p);
+        return m;
+    }
+    if (m.clip == area) {
+        trace_ground_tree(m, occ, H, table, p);
+        return m;
+    }
+    // Clipped: the whole area over the tree, then the part of it the clip
+    // holds copied (rays run to the border whatever the clip; past the area
+    // the clip stays unlit). The tree walks fewer steps than the rays that
+    // cross any part of the area.
+    thread_local LightMask whole;
+    start_mask(whole, cx, cy, a, b, p, area);
+    trace_ground_tree(whole, occ, H, table, p);
+    const Rect inside = intersect(m.clip, area);
+    for (int y = inside.y; y < inside.y + inside.h; ++y)
+        std::memcpy(&m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(inside.x - m.clip.x)],
+                    &whole.value[std::size_t(y - area.y) * area.w + std::size_t(inside.x - area.x)], std::size_t(inside.w));
+    return m;
+}
+
+LightMask trace_light_solids_by_rays(const OccluderMap& occ, std::int64_t cx, std::int64_t cy, int a, int b,
+                                     double height, const Params& p, Rect clip) {
+    LightMask m = solids_mask(cx, cy, a, b, p, clip);
+    if (m.clip.empty()) return m;
+    ground_by_rays(m, occ, cx, cy, a, b, std::max(height, 0.0), falloff_table(a, b, p.falloff_scale), p);
+    return m;
+}
+
+namespace {
+
+// The sprite pass ray by ray: the reference the tree pass is held to, and
+// what serves every light the tree does not.
+void sprite_points_by_rays(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
     const double H = std::max(height, 0.0);
     const Surface& surface = occ.surface;
     const std::int64_t cx = m.cx, cy = m.cy;
@@ -425,22 +448,7 @@ void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, co
     auto intensity = [&](std::int64_t x, std::int64_t y) {
         return falloff(std::max(std::llabs(x - cx), std::llabs(y - cy)), p.falloff_scale);
     };
-    const Rect whole_area{int(cx) - m.a, int(cy) - m.b, 2 * m.a + 1, 2 * m.b + 1};
-    // A clipped light the tree serves whole: its whole area's sprite pixels,
-    // then the clip's copied (rays run to the border whatever the clip, so
-    // each pixel's answer is the same).
     const Rect ray_area{int(cx) - m.a, int(cy) - m.b - occ.tallest, 2 * m.a + 1, 2 * (m.b + occ.tallest) + 1};
-    if (!(m.clip == whole_area) && occluder_tree_serves(occ, ray_area, p) &&
-        double(whole_area.w) * whole_area.h <= 4.0 * double(area.w) * area.h) {
-        thread_local LightMask whole;
-        start_mask(whole, cx, cy, m.a, m.b, p, whole_area);
-        light_sprite_points(whole, occ, height, p);
-        for (int y = area.y; y < area.y + area.h; ++y)
-            for (int x = area.x; x < area.x + area.w; ++x)
-                if (surface.instance[at(x, y)] >= 0)
-                    m.value[index(x, y)] = whole.value[std::size_t(y - whole_area.y) * whole_area.w + std::size_t(x - whole_area.x)];
-        return;
-    }
     // Every sprite pixel starts unlit; a ray that reaches its ground point
     // unblocked lights it. The rays run to the border of the light's area
     // grown by the tallest point's rows, so a sprite standing below the area
@@ -495,10 +503,46 @@ void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, co
             }
         });
     };
-    if (m.clip == whole_area && occluder_tree_serves(occ, ray_area, p))
-        light_sprite_points_tree(m, occ, H, table, p, own_steps);
-    else
-        for_each_ray_target(cx, cy, m.a, m.b + occ.tallest, p, sprite_ray);
+    for_each_ray_target(cx, cy, m.a, m.b + occ.tallest, p, sprite_ray);
+}
+
+}  // namespace
+
+void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
+    if (m.clip.empty()) return;
+    assert(occ.flags.size() == occ.surface.instance.size());  // index_occluders
+    const Rect whole_area{int(m.cx) - m.a, int(m.cy) - m.b, 2 * m.a + 1, 2 * m.b + 1};
+    const Rect ray_area{whole_area.x, whole_area.y - occ.tallest, whole_area.w, whole_area.h + 2 * occ.tallest};
+    if (!occluder_tree_serves(occ, ray_area, p)) return sprite_points_by_rays(m, occ, height, p);
+    // Over the tree: every ground point lies in the rays' area, inside the
+    // map. A clipped light's sprite pixels come from its whole area's (rays
+    // run to the border whatever the clip, so each pixel's answer is the
+    // same), the walk asked for the clip's alone.
+    const Rect wanted = intersect(whole_area, m.clip);
+    const Surface& surface = occ.surface;
+    const bool whole = m.clip == whole_area;
+    thread_local LightMask whole_mask;
+    if (!whole) start_mask(whole_mask, m.cx, m.cy, m.a, m.b, p, whole_area);
+    LightMask& into = whole ? m : whole_mask;
+    for (int y = wanted.y; y < wanted.y + wanted.h; ++y) {  // every sprite pixel starts unlit
+        const std::int32_t* instance = &surface.instance[std::size_t(y - surface.rect.y) * surface.rect.w + std::size_t(wanted.x - surface.rect.x)];
+        std::uint8_t* value = &into.value[std::size_t(y - into.clip.y) * into.clip.w + std::size_t(wanted.x - into.clip.x)];
+        for (int i = 0; i < wanted.w; ++i)
+            if (instance[i] >= 0) value[i] = 0;
+    }
+    const std::vector<std::uint8_t> table = falloff_table(m.a, m.b, p.falloff_scale);
+    light_sprite_points_tree(into, occ, std::max(height, 0.0), table, p, own_steps, wanted);
+    if (whole) return;
+    for (int y = wanted.y; y < wanted.y + wanted.h; ++y)
+        for (int x = wanted.x; x < wanted.x + wanted.w; ++x)
+            if (surface.instance[std::size_t(y - surface.rect.y) * surface.rect.w + std::size_t(x - surface.rect.x)] >= 0)
+                m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(x - m.clip.x)] =
+                    whole_mask.value[std::size_t(y - whole_area.y) * whole_area.w + std::size_t(x - whole_area.x)];
+}
+
+void light_sprite_points_by_rays(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
+    if (m.clip.empty()) return;
+    sprite_points_by_rays(m, occ, height, p);
 }
 
 }  // namespace isolux

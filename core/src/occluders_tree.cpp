@@ -68,12 +68,26 @@ struct AreaInMap {
     }
 };
 
-// The occluder flags of the area, rows copied into the area's layout.
-const std::uint8_t* area_flags(const OccluderMap& occ, Rect area, const AreaInMap& in) {
+// The occluder flags of the area, rows copied into the area's layout;
+// has_shown kept only within `shown` (the ground pixels whose points the
+// sprite pass is asked for: elsewhere it has nothing to light).
+const std::uint8_t* area_flags(const OccluderMap& occ, Rect area, const AreaInMap& in, Rect shown) {
     thread_local std::vector<std::uint8_t> local;
     local.resize(std::size_t(area.w) * area.h);
     for (int y = 0; y < area.h; ++y)
         std::memcpy(&local[std::size_t(y) * area.w], &occ.flags[in.base + std::size_t(y) * in.map_w], std::size_t(area.w));
+    if (shown == area) return local.data();
+    constexpr auto unshown = std::uint8_t(~OccluderMap::has_shown);
+    for (int y = 0; y < area.h; ++y) {
+        std::uint8_t* row = &local[std::size_t(y) * area.w];
+        const int y_in = area.y + y;
+        if (y_in < shown.y || y_in >= shown.y + shown.h) {
+            for (int x = 0; x < area.w; ++x) row[x] &= unshown;
+            continue;
+        }
+        for (int x = 0; x < std::min(area.w, shown.x - area.x); ++x) row[x] &= unshown;
+        for (int x = std::max(0, shown.x + shown.w - area.x); x < area.w; ++x) row[x] &= unshown;
+    }
     return local.data();
 }
 
@@ -145,7 +159,7 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
     const Node* node = tree->data();
     const std::int32_t n = std::int32_t(tree->size());
     const AreaInMap in(occ, m.clip);
-    const std::uint8_t* flags = area_flags(occ, m.clip, in);
+    const std::uint8_t* flags = area_flags(occ, m.clip, in, m.clip);
     std::uint8_t* value = m.value.data();
     // Below a span: a stack of the subtrees whose shades differ from their
     // parent's. A shade [from, to) shades the whole depths [ceil(from),
@@ -235,7 +249,7 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
 }
 
 void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
-                              const Params& p, int own_steps) {
+                              const Params& p, int own_steps, Rect wanted) {
     // The rays' area: the light's, grown by the tallest point's rows above
     // and below (light_sprite_points).
     const int b = m.b + occ.tallest;
@@ -244,7 +258,11 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     const Node* node = tree->data();
     const std::int32_t n = std::int32_t(tree->size());
     const AreaInMap in(occ, rays);
-    const std::uint8_t* flags = area_flags(occ, rays, in);
+    // The ground pixels whose points can show in `wanted`: its columns, its
+    // rows and the tallest point's rows below them. (Rays only climb or only
+    // sink, so a node above them has its whole subtree above them too.)
+    const Rect shown = intersect(rays, Rect{wanted.x, wanted.y, wanted.w, wanted.h + occ.tallest});
+    const std::uint8_t* flags = area_flags(occ, rays, in, shown);
     std::uint8_t* value = m.value.data();
     const std::uint32_t W = std::uint32_t(rays.w);
     const std::uint32_t first_row = std::uint32_t(occ.tallest), last_row = first_row + std::uint32_t(2 * m.b);
@@ -300,7 +318,9 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     thread_local std::vector<Branch> branches;  // a stack: the current path's branch nodes
     thread_local Blocked blocked;
     thread_local std::vector<Spans> span;
+    thread_local std::vector<std::int32_t> next_shown;  // per node: the first node from it with points
     span.assign(std::size_t(depths), Spans{});
+    next_shown.resize(std::size_t(n) + 1);
     for (std::int32_t i = 0; i < n;) {
         i = walk_clear(node, i, n, flags, OccluderMap::has_shown,
                        [&](std::uint32_t o, std::uint32_t k) { light_shown(o, k, [](double) { return false; }); });
@@ -308,6 +328,15 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
         // Node i holds a span and no node before it on its rays does.
         const std::int32_t last = node[i].end;
         const int first = int(node[i].at_depth & ((1u << depth_bits) - 1));
+        // A subtree with no points has nothing to light: what its spans
+        // block matters only within it, so the walk skips it whole.
+        next_shown[std::size_t(last)] = last;
+        for (std::int32_t j = last - 1; j >= i; --j)
+            next_shown[std::size_t(j)] = flags[node[j].at_depth >> depth_bits] & OccluderMap::has_shown ? j : next_shown[std::size_t(j) + 1];
+        if (next_shown[std::size_t(i)] >= last) {
+            i = last;
+            continue;
+        }
         for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = Spans{};
         blocked.iv.clear();
         std::size_t top = 0;  // branches in use
@@ -320,6 +349,10 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
                 blocked.iv = branches[top - 1].saved.iv;
             }
             previous = k;
+            if (next_shown[std::size_t(i)] >= node[i].end) {
+                i = node[i].end - 1;
+                continue;
+            }
             const std::uint8_t f = flags[o];
             span[std::size_t(k)] = (f & OccluderMap::has_span) ? occ.spans[in.map(o)] : Spans{};
             const int s = k - own_steps;

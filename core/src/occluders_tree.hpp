@@ -24,8 +24,9 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
 // The sprite pass's rays (light_sprite_points, after its sprite pixels are
 // unlit) over the tree of its rays' area (the light's grown by occ.tallest
 // rows up and down, which the caller checks the tree serves), the mask's
-// clip the light's whole area.
+// clip the light's whole area; only the sprite pixels in `wanted` (within
+// the area) are sure to be lit: the walk skips what lights no other.
 void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
-                              const Params& p, int own_steps);
+                              const Params& p, int own_steps, Rect wanted);
 
 }  // namespace isolux

@@ -127,4 +127,12 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
 // own line from the light's centre.
 void light_sprite_points(LightMask& mask, const OccluderMap& occ, double height, const Params& p);
 
+// The same two passes ray by ray, every ray walked whole: the reference
+// whose bytes the passes above give (they walk the rays' shared prefixes
+// once, and only the parts that can light a pixel of the clip), and what
+// shaders/trace_solids.comp does on the GPU.
+LightMask trace_light_solids_by_rays(const OccluderMap& occ, std::int64_t cx, std::int64_t cy, int a, int b,
+                                     double height, const Params& p, Rect clip);
+void light_sprite_points_by_rays(LightMask& mask, const OccluderMap& occ, double height, const Params& p);
+
 }  // namespace isolux
