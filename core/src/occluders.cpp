@@ -211,10 +211,10 @@ void index_occluders(OccluderMap& m) {
     for (std::size_t i = 0; i < n; ++i)
         if (ground_of(i, g, rows)) ++m.shown_start[g + 1], m.tallest = std::max(m.tallest, int(rows));
     for (std::size_t i = 0; i < n; ++i) m.shown_start[i + 1] += m.shown_start[i];
-    m.shown.assign(m.shown_start[n], 0.f);
+    m.shown.assign(m.shown_start[n], OccluderMap::Shown{});
     std::vector<std::uint32_t> next(m.shown_start.begin(), m.shown_start.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
-        if (ground_of(i, g, rows)) m.shown[next[g]++] = s.height[i];
+        if (ground_of(i, g, rows)) m.shown[next[g]++] = {s.height[i], rows};
     m.flags.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i)
         m.flags[i] = std::uint8_t((m.spans[i].any() ? OccluderMap::has_span : 0) |
@@ -493,8 +493,8 @@ void sprite_points_by_rays(LightMask& m, const OccluderMap& occ, double height, 
             passed[std::size_t(i) % passed.size()] = f & OccluderMap::has_span ? occ.spans[std::size_t(g)] : Spans{};
             if (!(f & OccluderMap::has_shown)) return;
             for (std::uint32_t k = occ.shown_start[std::size_t(g)]; k < occ.shown_start[std::size_t(g) + 1]; ++k) {
-                const double h = occ.shown[k];
-                const std::int64_t rows = rows_above(h);
+                const double h = occ.shown[k].height;
+                const std::int64_t rows = occ.shown[k].rows;
                 if (!area.contains(int(x), int(y - rows))) continue;
                 std::uint8_t& v = m.value[index(x, y - rows)];
                 if (v) continue;

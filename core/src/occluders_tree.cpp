@@ -273,8 +273,8 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
         const std::size_t g = in.map(o);
         const std::uint32_t r = in.row(o), c = o - r * W;
         for (std::uint32_t e = occ.shown_start[g]; e < occ.shown_start[g + 1]; ++e) {
-            const double h = occ.shown[e];
-            const std::uint32_t rows = std::uint32_t(rows_above(h));
+            const double h = occ.shown[e].height;
+            const std::uint32_t rows = occ.shown[e].rows;
             if (rows > r || r - rows < first_row || r - rows > last_row) continue;  // outside the light's area
             std::uint8_t& v = value[(r - rows - first_row) * W + c];
             if (v) continue;
@@ -317,9 +317,9 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     };
     thread_local std::vector<Branch> branches;  // a stack: the current path's branch nodes
     thread_local Blocked blocked;
-    thread_local std::vector<Spans> span;
+    thread_local std::vector<const Spans*> span;  // none: nullptr
     thread_local std::vector<std::int32_t> next_shown;  // per node: the first node from it with points
-    span.assign(std::size_t(depths), Spans{});
+    span.assign(std::size_t(depths), nullptr);
     next_shown.resize(std::size_t(n) + 1);
     for (std::int32_t i = 0; i < n;) {
         i = walk_clear(node, i, n, flags, OccluderMap::has_shown,
@@ -337,7 +337,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
             i = last;
             continue;
         }
-        for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = Spans{};
+        for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = nullptr;
         blocked.iv.clear();
         std::size_t top = 0;  // branches in use
         int previous = first - 1;
@@ -354,10 +354,10 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
                 continue;
             }
             const std::uint8_t f = flags[o];
-            span[std::size_t(k)] = (f & OccluderMap::has_span) ? occ.spans[in.map(o)] : Spans{};
+            span[std::size_t(k)] = (f & OccluderMap::has_span) ? &occ.spans[in.map(o)] : nullptr;
             const int s = k - own_steps;
-            if (s >= 0)
-                for (const Span& sp : {span[std::size_t(s)].lower, span[std::size_t(s)].upper}) {
+            if (s >= 0 && span[std::size_t(s)])
+                for (const Span& sp : {span[std::size_t(s)]->lower, span[std::size_t(s)]->upper}) {
                     if (!sp.any() || (s == 0 && !(sp.low <= H && H < sp.high))) continue;
                     if (s == 0)  // the light's own pixel: a light inside a solid is hidden from all
                         blocked.add(-inf, inf);

@@ -65,10 +65,15 @@ struct OccluderMap {
     // Per ground pixel g, the sprite pixels whose point stands over it (h
     // rows above g): shown[shown_start[g] .. shown_start[g + 1]). The sprite
     // pass tests them where a ray meets g. Each entry is the height h of the
-    // point the pixel shows (the pixel lies rows_above(h) rows above g), so the
-    // pass reads nothing else of it.
+    // point the pixel shows and the rows the pixel lies above g
+    // (rows_above(h)), so the pass reads nothing else of it.
+    struct Shown {
+        float height;
+        std::uint32_t rows;
+        bool operator==(const Shown&) const = default;
+    };
     std::vector<std::uint32_t> shown_start;
-    std::vector<float> shown;
+    std::vector<Shown> shown;
     int tallest = 0;  // the most rows any such pixel lies above its ground pixel
     // Per pixel: has_span | has_shown, one byte a step reads before the rest
     // (most steps of a ray cross bare ground that no sprite stands over).
