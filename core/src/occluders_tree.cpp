@@ -91,6 +91,17 @@ const std::uint8_t* area_flags(const OccluderMap& occ, Rect area, const AreaInMa
     return local.data();
 }
 
+// The spans are map-wide, 16 bytes a pixel, so a light's rows of them are
+// far apart and mostly out of cache: the walks ask for a node's spans this
+// many nodes before they read them.
+constexpr std::int32_t spans_ahead = 16;
+inline void ask_for_spans(const OccluderMap& occ, const AreaInMap& in, const std::uint8_t* flags, const Node* node,
+                          std::int32_t j, std::int32_t end) {
+    if (j >= end) return;
+    const std::uint32_t o = node[j].at_depth >> depth_bits;
+    if (flags[o] & OccluderMap::has_span) __builtin_prefetch(&occ.spans[in.map(o)]);
+}
+
 // Walks nodes from `i` while no node holds a span, calling at(o, depth) for
 // each whose flags have a bit of `wanted`; four nodes a step while none of
 // them has any. Returns the first node holding a span (or n).
@@ -186,6 +197,7 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
     for (std::int32_t i = 0; i < n;) {
         while (frame[t].end <= i) --t;
         const Frame top = frame[t];
+        ask_for_spans(occ, in, flags, node, i + spans_ahead, n);
         const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
         const int k = int(w & ((1u << depth_bits) - 1));
         if (top.reach <= k && !(flags[o] & OccluderMap::has_span)) {
@@ -342,6 +354,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
         std::size_t top = 0;  // branches in use
         int previous = first - 1;
         for (; i < last; ++i) {
+            ask_for_spans(occ, in, flags, node, i + spans_ahead, last);
             const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
             const int k = int(w & ((1u << depth_bits) - 1));
             if (k <= previous) {  // back up to the branch whose next child this is
