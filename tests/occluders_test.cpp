@@ -395,8 +395,10 @@ TEST(Occluders, theTreePassesGiveTheRaysBytes) {
                 const Rect area{int(cx) - a, int(cy) - bb, 2 * a + 1, 2 * bb + 1};
                 const Rect wider{area.x - 1, area.y - 1, area.w + 2, area.h + 2};
                 const Rect part{area.x + 1, area.y, area.w / 2 - 1, area.h / 2 - 1};
+                const Rect lower_right{area.x + area.w / 2 + 2, area.y + area.h / 2 + 2, area.w / 2 - 2, area.h / 2 + 3};
                 LightMask tree = trace_light_solids(occ, cx, cy, a, bb, height, p, area);
                 LightMask tree_part = trace_light_solids(occ, cx, cy, a, bb, height, p, part);
+                LightMask tree_corner = trace_light_solids(occ, cx, cy, a, bb, height, p, lower_right);
                 LightMask rays = trace_light_solids_by_rays(occ, cx, cy, a, bb, height, p, area);
                 LightMask rays_part = trace_light_solids_by_rays(occ, cx, cy, a, bb, height, p, part);
                 LightMask wide = trace_light_solids(occ, cx, cy, a, bb, height, p, wider);
@@ -417,16 +419,19 @@ TEST(Occluders, theTreePassesGiveTheRaysBytes) {
                 same_as_tree(rays, "ground, rays");
                 same_as_tree(rays_part, "ground, rays clipped");
                 same_as_tree(tree_part, "ground, tree clipped");
+                same_as_tree(tree_corner, "ground, tree clipped to a corner past the area");
                 same_as_tree(wide, "ground, wider clip");
                 for (std::size_t i = 0; i < tree.value.size(); ++i) shaded_ground += tree.value[i] == 0;
                 light_sprite_points(tree, occ, height, p);
                 light_sprite_points(tree_part, occ, height, p);
+                light_sprite_points(tree_corner, occ, height, p);
                 light_sprite_points_by_rays(rays, occ, height, p);
                 light_sprite_points_by_rays(rays_part, occ, height, p);
                 light_sprite_points(wide, occ, height, p);
                 same_as_tree(rays, "sprites, rays");
                 same_as_tree(rays_part, "sprites, rays clipped");
                 same_as_tree(tree_part, "sprites, tree clipped");
+                same_as_tree(tree_corner, "sprites, tree clipped to a corner past the area");
                 same_as_tree(wide, "sprites, wider clip");
                 for (std::size_t i = 0; i < tree.value.size(); ++i) {
                     const int px = area.x + int(i % std::size_t(area.w)), py = area.y + int(i / std::size_t(area.w));
@@ -436,7 +441,7 @@ TEST(Occluders, theTreePassesGiveTheRaysBytes) {
             }
         }
     }
-    EXPECT_EQ(compared, 384);
+    EXPECT_EQ(compared, 480);
     // The scenes hold both shaded ground and lit sprites, so the comparison can fail.
     EXPECT_GT(shaded_ground, 10000);
     EXPECT_GT(lit_sprites, 10000);

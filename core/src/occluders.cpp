@@ -407,17 +407,17 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
         return m;
     }
     if (m.clip == area) {
-        trace_ground_tree(m, occ, H, table, p);
+        trace_ground_tree(m, occ, H, table, p, area);
         return m;
     }
     // Clipped: the whole area over the tree, then the part of it the clip
     // holds copied (rays run to the border whatever the clip; past the area
     // the clip stays unlit). The tree walks fewer steps than the rays that
     // cross any part of the area.
+    const Rect inside = intersect(m.clip, area);
     thread_local LightMask whole;
     start_mask(whole, cx, cy, a, b, p, area);
-    trace_ground_tree(whole, occ, H, table, p);
-    const Rect inside = intersect(m.clip, area);
+    trace_ground_tree(whole, occ, H, table, p, inside);
     for (int y = inside.y; y < inside.y + inside.h; ++y)
         std::memcpy(&m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(inside.x - m.clip.x)],
                     &whole.value[std::size_t(y - area.y) * area.w + std::size_t(inside.x - area.x)], std::size_t(inside.w));

@@ -68,25 +68,42 @@ struct AreaInMap {
     }
 };
 
-// The occluder flags of the area, rows copied into the area's layout;
-// has_shown kept only within `shown` (the ground pixels whose points the
-// sprite pass is asked for: elsewhere it has nothing to light).
-const std::uint8_t* area_flags(const OccluderMap& occ, Rect area, const AreaInMap& in, Rect shown) {
+// A flag of the areas' copies alone: from this pixel on, a ray only moves
+// farther from the pixels a pass is asked about.
+constexpr std::uint8_t moving_away = 4;
+
+// The occluder flags of the area (centred on the light), rows copied into
+// the area's layout. A pass asks only about the ground pixels in `wanted`
+// (the clip; for the sprite pass, those whose points can show in it):
+// has_shown is cleared outside it, and `moving_away` set where a pixel lies
+// outside it on the far side from the light. (A ray only climbs or only
+// sinks, and only goes left or only right, so such a node's whole subtree
+// lies there too.)
+const std::uint8_t* area_flags(const OccluderMap& occ, Rect area, const AreaInMap& in, Rect wanted) {
     thread_local std::vector<std::uint8_t> local;
     local.resize(std::size_t(area.w) * area.h);
     for (int y = 0; y < area.h; ++y)
         std::memcpy(&local[std::size_t(y) * area.w], &occ.flags[in.base + std::size_t(y) * in.map_w], std::size_t(area.w));
-    if (shown == area) return local.data();
-    constexpr auto unshown = std::uint8_t(~OccluderMap::has_shown);
+    if (wanted == area) return local.data();
+    const int cx = area.w / 2, cy = area.h / 2;  // the light, in the area
+    const int x0 = std::clamp(wanted.x - area.x, 0, area.w), x1 = std::clamp(wanted.x + wanted.w - area.x, x0, area.w);
+    const int y0 = wanted.y - area.y, y1 = y0 + wanted.h;
+    auto mark = [](std::uint8_t* from, int count, bool away) {
+        constexpr auto unshown = std::uint8_t(~OccluderMap::has_shown);
+        const std::uint8_t set = away ? moving_away : 0;
+        for (int x = 0; x < count; ++x) from[x] = std::uint8_t((from[x] & unshown) | set);
+    };
+    const int left_away = std::min(x0, cx), right_away = std::max(x1, cx + 1);
     for (int y = 0; y < area.h; ++y) {
         std::uint8_t* row = &local[std::size_t(y) * area.w];
-        const int y_in = area.y + y;
-        if (y_in < shown.y || y_in >= shown.y + shown.h) {
-            for (int x = 0; x < area.w; ++x) row[x] &= unshown;
+        if (y < y0 || y >= y1) {
+            mark(row, area.w, (y < y0 && y < cy) || (y >= y1 && y > cy));
             continue;
         }
-        for (int x = 0; x < std::min(area.w, shown.x - area.x); ++x) row[x] &= unshown;
-        for (int x = std::max(0, shown.x + shown.w - area.x); x < area.w; ++x) row[x] &= unshown;
+        mark(row, left_away, true);
+        mark(row + left_away, x0 - left_away, false);
+        mark(row + x1, right_away - x1, false);
+        mark(row + right_away, area.w - right_away, true);
     }
     return local.data();
 }
@@ -103,12 +120,13 @@ inline void ask_for_spans(const OccluderMap& occ, const AreaInMap& in, const std
 }
 
 // Walks nodes from `i` while no node holds a span, calling at(o, depth) for
-// each whose flags have a bit of `wanted`; four nodes a step while none of
-// them has any. Returns the first node holding a span (or n).
+// each whose flags have a bit of `wanted` and skipping the subtrees moving
+// away; four nodes a step while none of them has any. Returns the first
+// node holding a span (or n).
 template <class At>
 std::int32_t walk_clear(const Node* node, std::int32_t i, std::int32_t n, const std::uint8_t* flags,
                         std::uint8_t wanted, At&& at) {
-    const std::uint8_t any = wanted | OccluderMap::has_span;
+    const std::uint8_t any = wanted | OccluderMap::has_span | moving_away;
     for (;;) {
         while (i + 4 <= n) {
             const std::uint32_t w0 = node[i].at_depth, w1 = node[i + 1].at_depth, w2 = node[i + 2].at_depth,
@@ -120,6 +138,10 @@ std::int32_t walk_clear(const Node* node, std::int32_t i, std::int32_t n, const 
         if (i >= n) return n;
         const std::uint32_t w = node[i].at_depth;
         const std::uint8_t f = flags[w >> depth_bits];
+        if (f & moving_away) {
+            i = node[i].end;
+            continue;
+        }
         if (f & OccluderMap::has_span) return i;
         if (f & wanted) at(w >> depth_bits, w & ((1u << depth_bits) - 1));
         ++i;
@@ -127,8 +149,8 @@ std::int32_t walk_clear(const Node* node, std::int32_t i, std::int32_t n, const 
 }
 
 // The same, writing each node's falloff (ground pass: a node before any span
-// on its rays is lit), and skipping the subtree of each node at depth
-// `endless` or more (shaded to the border by a span before them).
+// on its rays is lit), and skipping the subtree of each node moving away or
+// at depth `endless` or more (shaded to the border by a span before them).
 std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const std::uint8_t* flags,
                          const std::uint8_t* table, std::uint8_t* value, std::uint32_t endless) {
     constexpr std::uint32_t d = (1u << depth_bits) - 1;
@@ -138,7 +160,7 @@ std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const
                 const std::uint32_t w0 = node[i].at_depth, w1 = node[i + 1].at_depth, w2 = node[i + 2].at_depth,
                                     w3 = node[i + 3].at_depth;
                 const std::uint32_t o0 = w0 >> depth_bits, o1 = w1 >> depth_bits, o2 = w2 >> depth_bits, o3 = w3 >> depth_bits;
-                if ((flags[o0] | flags[o1] | flags[o2] | flags[o3]) & OccluderMap::has_span) break;
+                if ((flags[o0] | flags[o1] | flags[o2] | flags[o3]) & (OccluderMap::has_span | moving_away)) break;
                 value[o0] = table[w0 & d];
                 value[o1] = table[w1 & d];
                 value[o2] = table[w2 & d];
@@ -147,8 +169,9 @@ std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const
             }
         if (i >= n) return n;
         const std::uint32_t w = node[i].at_depth;
-        if (flags[w >> depth_bits] & OccluderMap::has_span) return i;
-        if ((w & d) >= endless) {
+        const std::uint8_t f = flags[w >> depth_bits];
+        if (f & OccluderMap::has_span) return i;
+        if ((w & d) >= endless || (f & moving_away)) {
             i = node[i].end;
             continue;
         }
@@ -165,12 +188,12 @@ bool occluder_tree_serves(const OccluderMap& occ, Rect area, const Params& p) {
 }
 
 void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
-                       const Params& p) {
+                       const Params& p, Rect wanted) {
     const auto tree = tree_nodes(m.a, m.b, p.ray_skip);
     const Node* node = tree->data();
     const std::int32_t n = std::int32_t(tree->size());
     const AreaInMap in(occ, m.clip);
-    const std::uint8_t* flags = area_flags(occ, m.clip, in, m.clip);
+    const std::uint8_t* flags = area_flags(occ, m.clip, in, wanted);
     std::uint8_t* value = m.value.data();
     // Below a span: a stack of the subtrees whose shades differ from their
     // parent's. A shade [from, to) shades the whole depths [ceil(from),
@@ -200,6 +223,10 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
         ask_for_spans(occ, in, flags, node, i + spans_ahead, n);
         const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
         const int k = int(w & ((1u << depth_bits) - 1));
+        if (flags[o] & moving_away) {
+            i = node[i].end;
+            continue;
+        }
         if (top.reach <= k && !(flags[o] & OccluderMap::has_span)) {
             // No bit shades this node or any below it: lit unless past the
             // endless shade, up to the next span (in its subtree, or after
@@ -271,10 +298,9 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     const std::int32_t n = std::int32_t(tree->size());
     const AreaInMap in(occ, rays);
     // The ground pixels whose points can show in `wanted`: its columns, its
-    // rows and the tallest point's rows below them. (Rays only climb or only
-    // sink, so a node above them has its whole subtree above them too.)
-    const Rect shown = intersect(rays, Rect{wanted.x, wanted.y, wanted.w, wanted.h + occ.tallest});
-    const std::uint8_t* flags = area_flags(occ, rays, in, shown);
+    // rows and the tallest point's rows below them.
+    const std::uint8_t* flags =
+        area_flags(occ, rays, in, intersect(rays, Rect{wanted.x, wanted.y, wanted.w, wanted.h + occ.tallest}));
     std::uint8_t* value = m.value.data();
     const std::uint32_t W = std::uint32_t(rays.w);
     const std::uint32_t first_row = std::uint32_t(occ.tallest), last_row = first_row + std::uint32_t(2 * m.b);
@@ -362,7 +388,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
                 blocked.iv = branches[top - 1].saved.iv;
             }
             previous = k;
-            if (next_shown[std::size_t(i)] >= node[i].end) {
+            if ((flags[o] & moving_away) || next_shown[std::size_t(i)] >= node[i].end) {
                 i = node[i].end - 1;
                 continue;
             }

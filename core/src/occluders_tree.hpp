@@ -17,9 +17,10 @@ namespace isolux {
 bool occluder_tree_serves(const OccluderMap& occ, Rect area, const Params& p);
 
 // The ground pass (trace_light_solids) over the tree, into `m` as started
-// with its clip the whole area.
+// with its clip the whole area; only the pixels in `wanted` (within the
+// area) are sure to be lit: the walk skips the rays once they leave it.
 void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
-                       const Params& p);
+                       const Params& p, Rect wanted);
 
 // The sprite pass's rays (light_sprite_points, after its sprite pixels are
 // unlit) over the tree of its rays' area (the light's grown by occ.tallest
