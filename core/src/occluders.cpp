@@ -214,7 +214,7 @@ void index_occluders(OccluderMap& m) {
     m.shown.assign(m.shown_start[n], OccluderMap::Shown{});
     std::vector<std::uint32_t> next(m.shown_start.begin(), m.shown_start.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
-        if (ground_of(i, g, rows)) m.shown[next[g]++] = {s.height[i], rows};
+        if (ground_of(i, g, rows)) m.shown[next[g]++] = {std::max(s.height[i], 0.f), rows};
     m.flags.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i)
         m.flags[i] = std::uint8_t((m.spans[i].any() ? OccluderMap::has_span : 0) |

@@ -327,8 +327,18 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     // children), restored when the walk comes back to take its next child.
     // A tree has about as many branches as rays, far fewer than nodes.
     const int depths = std::max(m.a, b) + 1;
-    struct Blocked {  // disjoint (from, to], sorted: the union of what was added
-        std::vector<std::pair<double, double>> iv;
+    // A span standing on the ground (low <= 0) s steps out blocks the
+    // descents ((H - high) / s, (H - low) / s], and every point's descent
+    // (H - h) / d, h >= 0, d > s, lies at or below the top of it: such spans
+    // together block every descent above the least of their lower ends.
+    // The others (crowns over the ground) keep their intervals.
+    struct Blocked {
+        double standing = inf;  // every descent above it is blocked
+        std::vector<std::pair<double, double>> iv;  // disjoint (from, to], sorted: the union of the others
+        void clear() {
+            standing = inf;
+            iv.clear();
+        }
         void add(double from, double to) {
             auto it = std::lower_bound(iv.begin(), iv.end(), from, [](const auto& v, double x) { return v.second < x; });
             if (it == iv.end() || to < it->first) {  // apart from all: no merge
@@ -345,6 +355,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
             iv.erase(it + 1, end);
         }
         bool blocks(double u) const {
+            if (u > standing) return true;
             auto it = std::lower_bound(iv.begin(), iv.end(), u, [](const auto& v, double x) { return v.second < x; });
             return it != iv.end() && it->first < u;
         }
@@ -376,7 +387,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
             continue;
         }
         for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = nullptr;
-        blocked.iv.clear();
+        blocked.clear();
         std::size_t top = 0;  // branches in use
         int previous = first - 1;
         for (; i < last; ++i) {
@@ -385,6 +396,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
             const int k = int(w & ((1u << depth_bits) - 1));
             if (k <= previous) {  // back up to the branch whose next child this is
                 while (branches[top - 1].end <= i) --top;
+                blocked.standing = branches[top - 1].saved.standing;
                 blocked.iv = branches[top - 1].saved.iv;
             }
             previous = k;
@@ -399,7 +411,9 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
                 for (const Span& sp : {span[std::size_t(s)]->lower, span[std::size_t(s)]->upper}) {
                     if (!sp.any() || (s == 0 && !(sp.low <= H && H < sp.high))) continue;
                     if (s == 0)  // the light's own pixel: a light inside a solid is hidden from all
-                        blocked.add(-inf, inf);
+                        blocked.standing = -inf;
+                    else if (sp.low <= 0)
+                        blocked.standing = std::min(blocked.standing, (H - sp.high) / double(s));
                     else
                         blocked.add((H - sp.high) / double(s), (H - sp.low) / double(s));
                 }
@@ -407,6 +421,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
             if (node[i].end > i + 1 && node[i + 1].end < node[i].end) {  // a branch
                 if (branches.size() <= top) branches.emplace_back();
                 branches[top].end = node[i].end;
+                branches[top].saved.standing = blocked.standing;
                 branches[top].saved.iv = blocked.iv;
                 ++top;
             }

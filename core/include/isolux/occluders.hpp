@@ -65,8 +65,9 @@ struct OccluderMap {
     // Per ground pixel g, the sprite pixels whose point stands over it (h
     // rows above g): shown[shown_start[g] .. shown_start[g + 1]). The sprite
     // pass tests them where a ray meets g. Each entry is the height h of the
-    // point the pixel shows and the rows the pixel lies above g
-    // (rows_above(h)), so the pass reads nothing else of it.
+    // point the pixel shows (one below the ground counts as on it) and the
+    // rows the pixel lies above g (rows_above(h)), so the pass reads nothing
+    // else of it.
     struct Shown {
         float height;
         std::uint32_t rows;
