@@ -384,7 +384,6 @@ void ground_by_rays(LightMask& m, const OccluderMap& occ, std::int64_t cx, std::
     });
 }
 
-
 LightMask solids_mask(std::int64_t cx, std::int64_t cy, int a, int b, const Params& p, Rect clip) {
     LightMask m;
     start_mask(m, cx, cy, a, b, p, clip, p.mode == Mode::shadow);
@@ -412,8 +411,8 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
     }
     // Clipped: the whole area over the tree, then the part of it the clip
     // holds copied (rays run to the border whatever the clip; past the area
-    // the clip stays unlit). The tree walks fewer steps than the rays that
-    // cross any part of the area.
+    // the clip stays unlit). Leaving each ray once it moves away from the
+    // clip, the tree walks fewer steps than the rays one by one would.
     const Rect inside = intersect(m.clip, area);
     thread_local LightMask whole;
     start_mask(whole, cx, cy, a, b, p, area);
