@@ -239,6 +239,42 @@ TEST(OnlyWhatChanged, LightsSharingAPlaceEachKeepTheirMask) {
     }
 }
 
+TEST(OnlyWhatChanged, AgainstSolidsALightAtTheViewsEdgeIsTracedOnceAsTheCameraPans) {
+    // Against solids a light keeps its whole area's mask (a clipped one walks
+    // the same rays), so a panning camera reuses the lights its view cuts;
+    // with footprints a light the view cuts is traced for its new clip.
+    Scene base;
+    base.width = base.height = 16;
+    const World w = make_world(test::default_tileset(), base);
+    const Camera start{double(w.placed.bounds.x + 300), double(w.placed.bounds.y + 200), 600, 360};
+    for (Occluders o : {Occluders::solids, Occluders::footprints}) {
+        Scene s = moving_scene(w, 0);
+        s.params.occluders = o;
+        s.lights = {Light{start.x + 20, start.y + 180},    // the view cuts it, then holds it
+                    Light{start.x + 300, start.y + 180}};  // the view holds it, then cuts it
+        FrameState st;
+        EXPECT_EQ(render_frame(st, w, s, start, 0).lights_traced, 2);
+        int traced = 0, reused = 0;
+        for (long f = 1; f <= 4; ++f) {
+            // Past the texture's margin each frame: the lights are planned anew.
+            const Camera cam{start.x - 80.0 * double(f), start.y + 10.0 * double(f), start.width, start.height};
+            const FrameReport r = render_frame(st, w, s, cam, f);
+            traced += r.lights_traced;
+            reused += r.lights_reused;
+            FrameState fresh;
+            render_frame(fresh, w, s, cam, f);
+            ASSERT_EQ(st.traced.texels, fresh.traced.texels) << "frame " << f;
+            ASSERT_EQ(st.final.rgba, fresh.final.rgba) << "frame " << f;
+        }
+        if (o == Occluders::solids) {
+            EXPECT_EQ(traced, 0);
+            EXPECT_EQ(reused, 8);
+        } else {  // the first light when the view stops cutting it, the second when it starts
+            EXPECT_EQ(traced, 2);
+        }
+    }
+}
+
 TEST(OnlyWhatChanged, RadiusAndModeChangesRedoEverything) {
     Scene base;
     base.width = base.height = 10;

@@ -17,6 +17,7 @@
 #include "isolux/footprint.hpp"
 #include "isolux/opacity_map.hpp"
 #include "isolux/truth.hpp"
+#include "occluders_tree.hpp"
 #include "worker_pool.hpp"
 
 namespace isolux {
@@ -302,7 +303,11 @@ LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edi
         t.height = p.rays_over_obstacles || p.occluders != Occluders::footprints ? light_height(l, p) : 0;
         t.colour = {l.r, l.g, l.b};
         t.intensity = l.intensity;
-        const Rect clip = intersect(light_area(l, p), tex_rect);
+        // Against solids a clipped light still walks its whole area's rays
+        // (occluders_tree.hpp), so where the trees reach it the light keeps
+        // its whole area: a camera that moves then reuses it.
+        const bool whole = p.occluders != Occluders::footprints && occluder_tree_extent(t.a, t.b, p);
+        const Rect clip = whole ? light_area(l, p) : intersect(light_area(l, p), tex_rect);
         auto same = [&](const TracedLight& old) {
             return old.cx == t.cx && old.cy == t.cy && old.a == t.a && old.b == t.b && old.height == t.height &&
                    old.mask.clip == clip && intersect(old.mask.clip, edited).empty();

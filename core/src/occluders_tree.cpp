@@ -182,9 +182,13 @@ std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const
 
 }  // namespace
 
+bool occluder_tree_extent(int a, int b, const Params& p) {
+    return p.rays == Rays::border && a <= max_extent && b <= max_extent;
+}
+
 bool occluder_tree_serves(const OccluderMap& occ, Rect area, const Params& p) {
-    return p.rays == Rays::border && area.w <= 2 * max_extent + 1 && area.h <= 2 * max_extent + 1 &&
-           intersect(area, occ.rect) == area && occ.flags.size() == occ.spans.size();
+    return occluder_tree_extent(area.w / 2, area.h / 2, p) && intersect(area, occ.rect) == area &&
+           occ.flags.size() == occ.spans.size();
 }
 
 void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,

@@ -12,8 +12,10 @@
 
 namespace isolux {
 
-// Whether the tree passes serve a light's area: border rays, an area within
-// the trees' extent, lying inside the occluder map.
+// Whether the trees reach a light of half-extents a, b (border rays, an
+// extent the trees are kept for); and whether the tree passes serve a
+// light's area: within that extent, lying inside the occluder map.
+bool occluder_tree_extent(int a, int b, const Params& p);
 bool occluder_tree_serves(const OccluderMap& occ, Rect area, const Params& p);
 
 // The ground pass (trace_light_solids) over the tree, into `m` as started
