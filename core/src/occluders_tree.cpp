@@ -227,11 +227,12 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
         ask_for_spans(occ, in, flags, node, i + spans_ahead, n);
         const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
         const int k = int(w & ((1u << depth_bits) - 1));
-        if (flags[o] & moving_away) {
+        const std::uint8_t f = flags[o];
+        if (f & moving_away) {
             i = node[i].end;
             continue;
         }
-        if (top.reach <= k && !(flags[o] & OccluderMap::has_span)) {
+        if (top.reach <= k && !(f & OccluderMap::has_span)) {
             // No bit shades this node or any below it: lit unless past the
             // endless shade, up to the next span (in its subtree, or after
             // it when the frame is empty).
@@ -242,7 +243,7 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
         // This node's shades (one per span below the light): the depths [from, to).
         int endless = top.endless;
         std::array<int, 2> from{0, 0}, to{0, 0};
-        if (flags[o] & OccluderMap::has_span) {
+        if (f & OccluderMap::has_span) {
             const Spans& sps = occ.spans[in.map(o)];
             const double kd = double(k);
             for (int j = 0; j < 2; ++j) {
@@ -400,15 +401,14 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
             const int k = int(w & ((1u << depth_bits) - 1));
             if (k <= previous) {  // back up to the branch whose next child this is
                 while (branches[top - 1].end <= i) --top;
-                blocked.standing = branches[top - 1].saved.standing;
-                blocked.iv = branches[top - 1].saved.iv;
+                blocked = branches[top - 1].saved;
             }
             previous = k;
-            if ((flags[o] & moving_away) || next_shown[std::size_t(i)] >= node[i].end) {
+            const std::uint8_t f = flags[o];
+            if ((f & moving_away) || next_shown[std::size_t(i)] >= node[i].end) {
                 i = node[i].end - 1;
                 continue;
             }
-            const std::uint8_t f = flags[o];
             span[std::size_t(k)] = (f & OccluderMap::has_span) ? &occ.spans[in.map(o)] : nullptr;
             const int s = k - own_steps;
             if (s >= 0 && span[std::size_t(s)])
@@ -425,8 +425,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
             if (node[i].end > i + 1 && node[i + 1].end < node[i].end) {  // a branch
                 if (branches.size() <= top) branches.emplace_back();
                 branches[top].end = node[i].end;
-                branches[top].saved.standing = blocked.standing;
-                branches[top].saved.iv = blocked.iv;
+                branches[top].saved = blocked;
                 ++top;
             }
         }
