@@ -13,9 +13,11 @@
 #include <thread>
 
 #include "isolux/accuracy.hpp"
+#include "isolux/blur.hpp"
 #include "isolux/files.hpp"
 #include "isolux/hash.hpp"
 #include "isolux/light_trace.hpp"
+#include "isolux/occluders.hpp"
 #include "isolux/truth.hpp"
 #include "edits.hpp"
 #include "endless.hpp"
@@ -163,6 +165,46 @@ void register_solids() {
                                              }
                                          });
     }
+}
+
+// Beyond the paper: what a frame rebuilds when the obstacle map's region
+// changes (the first frame, a camera past the region, Δy or n changed),
+// over the default 24x24 map: the occluder map (spans, surface, the points
+// each ground pixel holds; sprites' solids kept, as the frame keeps them),
+// the surfaces' reach for the blur within surfaces, and a floor: copying
+// the surface's ids, 4 bytes a pixel, once.
+void register_occluder_map() {
+    const World& w = bench::world("default", 24);
+    static Params p;
+    p.occluders = Occluders::solids;
+    const Rect region = w.placed.bounds;
+    benchmark::RegisterBenchmark("occluders/build/solids/default", [region](benchmark::State& st) {
+        const World& w = bench::world("default", 24);
+        SolidsCache cache;
+        benchmark::DoNotOptimize(build_occluders(w, p, region, &cache).flags.data());
+        for (auto _ : st) benchmark::DoNotOptimize(build_occluders(w, p, region, &cache).flags.data());
+        st.counters["ns_per_pixel"] = benchmark::Counter(double(region.w) * region.h,
+                                                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    })->Unit(benchmark::kMillisecond);
+    static const OccluderMap occ = build_occluders(w, p, region);
+    benchmark::RegisterBenchmark("occluders/index_surfaces/default", [](benchmark::State& st) {
+        SurfaceIds ids{occ.surface.rect, occ.surface.instance, {}};
+        for (auto _ : st) {
+            index_surfaces(ids);
+            benchmark::DoNotOptimize(ids.reach.data());
+        }
+        st.counters["ns_per_pixel"] = benchmark::Counter(double(ids.id.size()),
+                                                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("occluders/floor_memcpy_ids/default", [](benchmark::State& st) {
+        std::vector<std::int32_t> copy(occ.surface.instance.size());
+        for (auto _ : st) {
+            std::memcpy(copy.data(), occ.surface.instance.data(), copy.size() * sizeof(std::int32_t));
+            benchmark::DoNotOptimize(copy.data());
+        }
+        st.counters["ns_per_pixel"] = benchmark::Counter(double(copy.size()),
+                                                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    })->Unit(benchmark::kMillisecond);
 }
 
 // ------------------------------------------------------------------ frames
@@ -480,6 +522,7 @@ int ratios() {
 int main(int argc, char** argv) {
     register_tracers();
     register_solids();
+    register_occluder_map();
     register_frames();
     register_truth();
     bench::register_edits();

@@ -637,42 +637,53 @@ void blur_within_separable(const LightTexture& tex, int radius, const std::int32
 }  // namespace
 
 void index_surfaces(SurfaceIds& ids) {
+    constexpr int cap = surface_reach_cap;
+    static_assert(cap == max_fused_radius + 1, "reach is only ever compared with a fused radius");
     const Rect s = ids.rect;
     const int w = std::max(0, s.w), h = std::max(0, s.h);
-    ids.reach.assign(std::size_t(w) * h, 255);
+    ids.reach.assign(std::size_t(w) * h, std::uint8_t(cap));
     if (w == 0 || h == 0) return;
-    // The ids and reaches framed by one pixel of ground (-1) whose reach is
-    // never lowered (255: it passes nothing on), so no step tests an edge.
-    const std::size_t W = std::size_t(w) + 2;
-    std::vector<std::int32_t> id(W * (std::size_t(h) + 2), -1);
-    std::vector<std::uint8_t> reach(id.size(), 255);
-    for (int y = 0; y < h; ++y)
-        std::copy_n(&ids.id[std::size_t(y) * w], w, &id[(std::size_t(y) + 1) * W + 1]);
-    // A pixel with a neighbour of another surface reaches 1; the rest one
-    // more than their nearest neighbour of the same surface (a Chebyshev
-    // distance transform: a forward and a backward pass over 8-neighbours).
-    const std::ptrdiff_t n8[8] = {-std::ptrdiff_t(W) - 1, -std::ptrdiff_t(W), -std::ptrdiff_t(W) + 1, -1, 1,
-                                  std::ptrdiff_t(W) - 1, std::ptrdiff_t(W), std::ptrdiff_t(W) + 1};
-    for (int y = 1; y <= h; ++y)
-        for (std::size_t i = std::size_t(y) * W + 1, end = i + std::size_t(w); i < end; ++i) {
-            bool edge = false;
-            for (std::ptrdiff_t d : n8) edge |= id[i + std::size_t(d)] != id[i];
-            if (edge) reach[i] = 1;
-        }
-    auto relax = [&](std::size_t i, std::ptrdiff_t d) {
-        const std::uint8_t n = reach[std::size_t(std::ptrdiff_t(i) + d)];
-        if (n < 255 && n + 1 < reach[i]) reach[i] = std::uint8_t(n + 1);
+    // The reach is one more than the Chebyshev distance to the nearest edge
+    // pixel (one with a neighbour of another surface, the outside counting
+    // as the ground): per row, the distance along the row to its nearest
+    // edge; then per pixel, the least over the rows up to cap - 1 away of
+    // max(rows away, that row's distance). Capped, so the second step reads
+    // a fixed number of rows, each a straight byte loop.
+    std::vector<std::uint8_t> along(std::size_t(w) * h);
+    std::vector<std::int32_t> framed(3 * (std::size_t(w) + 2), -1);  // rows y - 1, y, y + 1, a ground pixel each side
+    std::vector<std::uint8_t> edge(static_cast<std::size_t>(w));
+    auto frame_row = [&](int y, std::size_t slot) {
+        std::int32_t* row = &framed[slot * (std::size_t(w) + 2)];
+        if (y < 0 || y >= h) std::fill_n(row, w + 2, -1);
+        else std::copy_n(&ids.id[std::size_t(y) * w], w, row + 1);
     };
-    for (int y = 1; y <= h; ++y)
-        for (std::size_t i = std::size_t(y) * W + 1, end = i + std::size_t(w); i < end; ++i)
-            relax(i, n8[0]), relax(i, n8[1]), relax(i, n8[2]), relax(i, n8[3]);
-    for (int y = h; y >= 1; --y)
-        for (std::size_t i = std::size_t(y) * W + std::size_t(w), first = std::size_t(y) * W + 1;; --i) {
-            relax(i, n8[7]), relax(i, n8[6]), relax(i, n8[5]), relax(i, n8[4]);
-            if (i == first) break;
+    frame_row(-1, 0), frame_row(0, 1);
+    for (int y = 0; y < h; ++y) {
+        frame_row(y + 1, std::size_t(y + 2) % 3);
+        const std::int32_t* up = &framed[std::size_t(y) % 3 * (std::size_t(w) + 2) + 1];
+        const std::int32_t* at = &framed[std::size_t(y + 1) % 3 * (std::size_t(w) + 2) + 1];
+        const std::int32_t* down = &framed[std::size_t(y + 2) % 3 * (std::size_t(w) + 2) + 1];
+        for (int x = 0; x < w; ++x) {
+            const std::int32_t c = at[x];
+            edge[std::size_t(x)] = std::uint8_t((up[x - 1] != c) | (up[x] != c) | (up[x + 1] != c) | (at[x - 1] != c) |
+                                                (at[x + 1] != c) | (down[x - 1] != c) | (down[x] != c) | (down[x + 1] != c));
         }
-    for (int y = 0; y < h; ++y)
-        std::copy_n(&reach[(std::size_t(y) + 1) * W + 1], w, &ids.reach[std::size_t(y) * w]);
+        std::uint8_t* d = &along[std::size_t(y) * w];
+        std::uint8_t run = cap;
+        for (int x = 0; x < w; ++x) run = edge[std::size_t(x)] ? 0 : std::uint8_t(std::min(run + 1, cap)), d[x] = run;
+        run = cap;
+        for (int x = w - 1; x >= 0; --x)
+            run = edge[std::size_t(x)] ? 0 : std::uint8_t(std::min(run + 1, cap)), d[x] = std::min(d[x], run);
+    }
+    for (int y = 0; y < h; ++y) {
+        std::uint8_t* out = &ids.reach[std::size_t(y) * w];
+        for (int k = -(cap - 1); k <= cap - 1; ++k) {
+            if (y + k < 0 || y + k >= h) continue;
+            const std::uint8_t away = std::uint8_t(std::abs(k) + 1);
+            const std::uint8_t* d = &along[std::size_t(y + k) * w];
+            for (int x = 0; x < w; ++x) out[x] = std::min(out[x], std::max(away, std::uint8_t(d[x] + 1)));
+        }
+    }
 }
 
 void box_blur_within_into(const LightTexture& tex, int radius, const SurfaceIds& ids, Rect region, LightTexture& out) {

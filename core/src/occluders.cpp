@@ -205,20 +205,28 @@ void index_occluders(OccluderMap& m) {
         g = i + rows * w;
         return true;
     };
+    // A counting sort of the sprite pixels by ground pixel, the flags set on
+    // the way: counts into shown_start[g + 1], their running sums, then each
+    // point placed at its ground pixel's cursor shown_start[g]; the cursors
+    // end one ground pixel on, so the starts are the array moved up by one.
+    m.flags.assign(n, 0);
     std::size_t g = 0;
     std::uint32_t rows = 0;
     m.tallest = 0;
-    for (std::size_t i = 0; i < n; ++i)
-        if (ground_of(i, g, rows)) ++m.shown_start[g + 1], m.tallest = std::max(m.tallest, int(rows));
+    for (std::size_t i = 0; i < n; ++i) {
+        m.flags[i] |= std::uint8_t(m.spans[i].any() ? OccluderMap::has_span : 0);
+        if (ground_of(i, g, rows)) {
+            ++m.shown_start[g + 1];
+            m.flags[g] |= OccluderMap::has_shown;
+            m.tallest = std::max(m.tallest, int(rows));
+        }
+    }
     for (std::size_t i = 0; i < n; ++i) m.shown_start[i + 1] += m.shown_start[i];
     m.shown.assign(m.shown_start[n], OccluderMap::Shown{});
-    std::vector<std::uint32_t> next(m.shown_start.begin(), m.shown_start.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
-        if (ground_of(i, g, rows)) m.shown[next[g]++] = {std::max(s.height[i], 0.f), rows};
-    m.flags.assign(n, 0);
-    for (std::size_t i = 0; i < n; ++i)
-        m.flags[i] = std::uint8_t((m.spans[i].any() ? OccluderMap::has_span : 0) |
-                                  (m.shown_start[i + 1] > m.shown_start[i] ? OccluderMap::has_shown : 0));
+        if (ground_of(i, g, rows)) m.shown[m.shown_start[g]++] = {std::max(s.height[i], 0.f), rows};
+    std::memmove(&m.shown_start[1], &m.shown_start[0], n * sizeof(std::uint32_t));
+    m.shown_start[0] = 0;
 }
 
 namespace {

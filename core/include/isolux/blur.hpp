@@ -34,15 +34,21 @@ struct SurfaceIds {
     std::vector<std::int32_t> id;  // rect.w * rect.h, row by row
     // Per pixel, how far its surface reaches around it: the Chebyshev
     // distance to the nearest pixel of another surface (outside `rect`
-    // counting as the ground), capped at 255; index_surfaces fills it. A
-    // texel whose distance exceeds the blur's radius blurs as box_blur does.
+    // counting as the ground), capped at surface_reach_cap; index_surfaces
+    // fills it. A texel whose distance exceeds the blur's radius blurs as
+    // box_blur does.
     std::vector<std::uint8_t> reach;
     std::int32_t at(int wx, int wy) const {
         return rect.contains(wx, wy) ? id[std::size_t(wy - rect.y) * rect.w + std::size_t(wx - rect.x)] : -1;
     }
 };
 
-// Fills `ids.reach` from `ids.id` (two passes, O(1) per pixel).
+// The largest reach index_surfaces stores: one past the largest radius the
+// blur compares a reach with (past it the blur never reads the reach).
+constexpr int surface_reach_cap = 8;
+
+// Fills `ids.reach` from `ids.id` (a pass along the rows, then one reading
+// the surface_reach_cap - 1 rows each side: O(1) per pixel).
 void index_surfaces(SurfaceIds& ids);
 
 // Each texel becomes the mean, rounded to nearest, of the texels reached from
