@@ -280,6 +280,15 @@ TEST(BlurWithinSurfaces, TheFrameBlursWithinTheSurfacesWithSolidsOnly) {
         s.lights[0].x += 9;
         render_frame(st, w, s, Camera{100, 60, 700, 420}, 1);
         EXPECT_EQ(st.cache.blurred.texels, box_blur_within(st.traced, 2, st.surface_ids).texels);
+        // The app's options (its GPU blurs): the same ids, and no reach made for them.
+        FrameState gpu;
+        gpu.options.grey_when_lights_are = false;
+        gpu.options.cpu_sprites = false;
+        gpu.options.cpu_blur_and_composite = false;
+        render_frame(gpu, w, s, Camera{100, 60, 700, 420}, 1);
+        EXPECT_EQ(gpu.surface_ids.id, st.surface_ids.id);
+        EXPECT_NE(gpu.surface_ids_revision, 0u);
+        EXPECT_TRUE(gpu.surface_ids.reach.empty());
     }
 }
 

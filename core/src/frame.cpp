@@ -672,7 +672,11 @@ void surface_ids_step(FrameState& st, const Params& p, FrameReport& rep) {
     Timer t{rep, Stage::obstacle_map};
     st.surface_ids.rect = st.occluders.surface.rect;
     st.surface_ids.id = st.occluders.surface.instance;
-    index_surfaces(st.surface_ids);
+    // The reach serves the CPU blur alone: the app's GPU blur reads the ids.
+    if (st.options.cpu_blur_and_composite)
+        index_surfaces(st.surface_ids);
+    else
+        st.surface_ids.reach.clear();
     st.surface_ids_revision = st.obstacles_revision;
 }
 

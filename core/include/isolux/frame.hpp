@@ -174,7 +174,8 @@ struct FrameState {
     OccluderMap occluders;             // with occluders solids or shapes: spans and surface heights
     // With blur_within_surfaces: which surface each pixel of the occluders'
     // region shows (world pixels, as `occluders`), what the blur stays
-    // within, and a new value whenever it changes (0: none).
+    // within, and a new value whenever it changes (0: none). Its reach is
+    // filled only with cpu_blur_and_composite (the CPU blur's alone).
     SurfaceIds surface_ids;
     std::uint64_t surface_ids_revision = 0;
     LightTexture traced;         // the last trace: corrected light texture, world-anchored
