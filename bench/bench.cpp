@@ -173,6 +173,13 @@ void register_solids() {
 // each ground pixel holds; sprites' solids kept, as the frame keeps them),
 // the surfaces' reach for the blur within surfaces, and a floor: copying
 // the surface's ids, 4 bytes a pixel, once.
+// A view's obstacle region (a 1280x720 view, its lights' areas and the
+// 256-px margin) before and after a pan of 256 px right, on the 24x24 map.
+std::pair<Rect, Rect> pan_regions(const World& w) {
+    const Rect b = w.placed.bounds, from = intersect(Rect{b.x + 200, b.y + 100, 2048, 1480}, b);
+    return {from, intersect(Rect{from.x + 256, from.y, from.w, from.h}, b)};
+}
+
 void register_occluder_map() {
     const World& w = bench::world("default", 24);
     static Params p;
@@ -186,6 +193,26 @@ void register_occluder_map() {
         st.counters["ns_per_pixel"] = benchmark::Counter(double(region.w) * region.h,
                                                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     })->Unit(benchmark::kMillisecond);
+    // A pan past the obstacle region's margin, in a view's region: the
+    // update (the 256-px strip that came in, the rest copied, the index
+    // whole) against building that region whole.
+    for (const bool update : {true, false})
+        benchmark::RegisterBenchmark(update ? "occluders/pan_update/solids/default" : "occluders/pan_build/solids/default",
+                                     [update](benchmark::State& st) {
+            const World& w = bench::world("default", 24);
+            const auto [from, to] = pan_regions(w);
+            SolidsCache cache;
+            // Back and forth: each update pans the map it keeps by 256 px.
+            OccluderMap m = build_occluders(w, p, from, &cache);
+            bool there = false;
+            for (auto _ : st) {
+                if (update) update_occluders(m, w, p, there ? from : to, Rect{}, &cache), there = !there;
+                else m = build_occluders(w, p, to, &cache);
+                benchmark::DoNotOptimize(m.flags.data());
+            }
+            st.counters["ns_per_pixel"] = benchmark::Counter(double(to.w) * to.h,
+                                                             benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+        })->Unit(benchmark::kMillisecond);
     static const OccluderMap occ = build_occluders(w, p, region);
     benchmark::RegisterBenchmark("occluders/index_surfaces/default", [](benchmark::State& st) {
         SurfaceIds ids{occ.surface.rect, occ.surface.instance, {}};
@@ -398,6 +425,21 @@ void print_walk_ratios(int pairs) {
     // opacity correction), every frame.
     auto walk_solids = walk(1, Occluders::solids), walk_footprints = walk(1, Occluders::footprints);
     bench::print_ratio("solids_trace_cost", bench::interleaved_costs(walk_solids, walk_footprints, pairs), "<= 1.5");
+    // A pan past the obstacle region's margin with solids: update_occluders
+    // (the strip that came in, the index whole) over building the region whole.
+    const World& w = bench::world("default", 24);
+    const auto [from, to] = pan_regions(w);
+    Params p;
+    p.occluders = Occluders::solids;
+    SolidsCache cache;
+    OccluderMap panned = build_occluders(w, p, from, &cache), built;
+    bool there = false;  // back and forth: each update pans the map it keeps by 256 px
+    auto update = [&] {
+        update_occluders(panned, w, p, there ? from : to, Rect{}, &cache), there = !there;
+        benchmark::DoNotOptimize(panned.flags.data());
+    };
+    auto build = [&] { built = build_occluders(w, p, to, &cache), benchmark::DoNotOptimize(built.flags.data()); };
+    bench::print_ratio("pan_occluders_cost", bench::interleaved(update, 2, build, 2, pairs), "<= 0.5");
 }
 
 int ratios() {

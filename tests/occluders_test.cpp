@@ -446,3 +446,151 @@ TEST(Occluders, theTreePassesGiveTheRaysBytes) {
     EXPECT_GT(shaded_ground, 10000);
     EXPECT_GT(lit_sprites, 10000);
 }
+
+namespace {
+
+// Every field of two occluder maps, equal.
+void expect_same_map(const OccluderMap& a, const OccluderMap& b, const std::string& what) {
+    SCOPED_TRACE(what);
+    EXPECT_EQ(a.rect, b.rect);
+    EXPECT_TRUE(a.spans == b.spans);
+    EXPECT_EQ(a.surface.instance, b.surface.instance);
+    EXPECT_EQ(a.surface.height, b.surface.height);
+    EXPECT_EQ(a.shown_start, b.shown_start);
+    EXPECT_TRUE(a.shown == b.shown);
+    EXPECT_EQ(a.flags, b.flags);
+    EXPECT_EQ(a.tallest, b.tallest);
+}
+
+}  // namespace
+
+// Each pixel of the occluder map depends only on the sprites near it, so a
+// region's map is the whole map's there, and update_occluders (what a pan
+// and an edit do) gives what building the region whole gives: on drawn
+// regions of the default map, pans every way, and drawn edits.
+TEST(Occluders, anUpdatedMapIsTheMapBuiltWhole) {
+    Scene s;
+    s.width = s.height = 10;
+    s.params.occluders = Occluders::solids;
+    World w = make_world(test::default_tileset(), s);
+    const Rect b = w.placed.bounds;
+    const OccluderMap whole = build_occluders(w, s.params, b);
+    Pcg32 rng(33);
+    const auto drawn_region = [&] {
+        const int rw = 64 + int(rng.below(std::uint32_t(b.w / 2))), rh = 64 + int(rng.below(std::uint32_t(b.h / 2)));
+        return Rect{b.x + int(rng.below(std::uint32_t(b.w - rw))), b.y + int(rng.below(std::uint32_t(b.h - rh))), rw, rh};
+    };
+    for (int k = 0; k < 6; ++k) {
+        const Rect r = drawn_region();
+        const OccluderMap part = build_occluders(w, s.params, r);
+        bool same = true;
+        for (int y = r.y; y < r.y + r.h && same; ++y)
+            for (int x = r.x; x < r.x + r.w && same; ++x) {
+                const std::size_t i = std::size_t(y - r.y) * r.w + std::size_t(x - r.x);
+                const std::size_t j = std::size_t(y - b.y) * b.w + std::size_t(x - b.x);
+                same = part.spans[i] == whole.spans[j] && part.surface.instance[i] == whole.surface.instance[j] &&
+                       part.surface.height[i] == whole.surface.height[j];
+            }
+        EXPECT_TRUE(same) << "region " << r.x << "," << r.y << " " << r.w << "x" << r.h;
+    }
+    // Pans: right, left and down, up, into a larger and a smaller region.
+    for (int k = 0; k < 6; ++k) {
+        const Rect from = drawn_region(), to = drawn_region();
+        if (intersect(from, to).empty()) continue;
+        OccluderMap m = build_occluders(w, s.params, from);
+        update_occluders(m, w, s.params, to, Rect{});
+        expect_same_map(m, build_occluders(w, s.params, to), "pan " + std::to_string(k));
+        // The same size moved every way: in place.
+        for (const auto& [dx, dy] : {std::pair{37, 0}, {-37, 0}, {0, 21}, {0, -21}, {29, -13}, {-29, 13}}) {
+            const Rect moved{from.x + dx, from.y + dy, from.w, from.h};
+            if (!b.contains(moved.x, moved.y) || !b.contains(moved.x + moved.w - 1, moved.y + moved.h - 1)) continue;
+            OccluderMap panned = build_occluders(w, s.params, from);
+            update_occluders(panned, w, s.params, moved, Rect{});
+            expect_same_map(panned, build_occluders(w, s.params, moved), "pan by " + std::to_string(dx) + "," + std::to_string(dy));
+        }
+    }
+    OccluderMap grown = build_occluders(w, s.params, Rect{b.x + 40, b.y + 30, 200, 150});
+    update_occluders(grown, w, s.params, b, Rect{});
+    expect_same_map(grown, whole, "a region grown to the map");
+    // Edits: the edited sprites' rectangles, grown by occluder_reach.
+    const char* overlays[] = {"oak", "pine", "bush", "rock", "wall"};
+    for (int k = 0; k < 4; ++k) {
+        OccluderMap m = build_occluders(w, s.params, b);
+        TileEdit e;
+        e.col = rng.below(10);
+        e.row = rng.below(10);
+        e.overlays = std::vector<std::string>{overlays[rng.below(5)]};
+        if (k == 3) e.overlays = std::vector<std::string>{};
+        const Rect changed = set_edits(w, {e});
+        if (w.placed.bounds != b) continue;  // an edit that grows the map moves every pixel
+        const int reach = occluder_reach(w.tileset);
+        const Rect around{changed.x - reach, changed.y - reach, changed.w + 2 * reach, changed.h + 2 * reach};
+        update_occluders(m, w, s.params, b, around);
+        expect_same_map(m, build_occluders(w, s.params, b), "edit " + std::to_string(k));
+    }
+}
+
+// The app's frame, panning across a map wider than its obstacle region's
+// margin: the occluder map it keeps is the one built whole for its region.
+TEST(Occluders, aPanningFrameKeepsTheMapBuiltWhole) {
+    Scene s;
+    s.width = s.height = 24;
+    s.params.falloff_scale = 8;
+    s.params.occluders = Occluders::solids;
+    const World w = make_world(test::default_tileset(), s);
+    const Rect b = w.placed.bounds;
+    FrameState st;
+    Rect first;
+    for (long f = 0; f < 6; ++f) {
+        const Camera cam{double(b.x + 150 * f), double(b.y + 60 * f), 400, 300};
+        Scene at = s;
+        at.lights = {Light{cam.x + 200.5, cam.y + 150.5}};
+        render_frame(st, w, at, cam, f);
+        if (f == 0) first = st.cache.obstacle_region;
+    }
+    ASSERT_NE(st.cache.obstacle_region, first);  // the region moved
+    expect_same_map(st.occluders, build_occluders(w, s.params, st.cache.obstacle_region), "after the pan");
+}
+
+// A sprite cut off just below its foot: its solids' ground reaches past its
+// rectangle (a canopy's disc stands over ground up to its radius / sqrt(2)
+// below the foot), so a region's map must take in the sprites up to
+// occluder_reach above it to be the whole map's there.
+TEST(Occluders, aRegionTakesInSolidsStandingOverItFromSpritesAbove) {
+    Tileset ts = test::default_tileset();
+    for (Sprite& sp : ts.sprites) {
+        if (sp.kind != SpriteKind::overlay) continue;
+        const int h = std::min(sp.image.height, sp.anchor_y + 2);
+        sp.image.rgba.resize(std::size_t(sp.image.width) * h * 4);
+        if (!sp.image.alpha16.empty()) sp.image.alpha16.resize(std::size_t(sp.image.width) * h);
+        if (!sp.height.empty()) sp.height.resize(std::size_t(sp.image.width) * h);
+        sp.image.height = h;
+    }
+    Scene s;
+    s.width = s.height = 8;
+    s.params.occluders = Occluders::solids;
+    const World w = make_world(ts, s);
+    const Rect b = w.placed.bounds;
+    SolidsCache cache;
+    const OccluderMap whole = build_occluders(w, s.params, b, &cache);
+    long reaching = 0, differ = 0;  // ground pixels below every sprite that holds them
+    for (int y0 = b.y; y0 < b.y + b.h; y0 += 16) {
+        const Rect r{b.x, y0, b.w, std::min(16, b.y + b.h - y0)};
+        const OccluderMap band = build_occluders(w, s.params, r, &cache);
+        for (std::size_t i = 0; i < band.spans.size(); ++i) {
+            const std::size_t j = std::size_t(r.y - b.y) * b.w + i;
+            differ += !(band.spans[i] == whole.spans[j]);
+        }
+    }
+    // Some ground does lie below every sprite over it: the case is real.
+    for (int y = b.y; y < b.y + b.h; ++y)
+        for (int x = b.x; x < b.x + b.w; ++x) {
+            const std::size_t j = std::size_t(y - b.y) * b.w + std::size_t(x - b.x);
+            if (!whole.spans[j].any()) continue;
+            std::vector<std::uint32_t> over;
+            instances_in(w.placed, Rect{x, y, 1, 1}, true, over);
+            reaching += over.empty();
+        }
+    EXPECT_GT(reaching, 0);
+    EXPECT_EQ(differ, 0);
+}

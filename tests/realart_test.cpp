@@ -16,7 +16,10 @@
 
 #include "isolux/files.hpp"
 #include "isolux/footprint.hpp"
+#include "isolux/hash.hpp"
+#include "isolux/occluders.hpp"
 #include "isolux/solid_estimate.hpp"
+#include "isolux/world.hpp"
 
 using namespace isolux;
 namespace fs = std::filesystem;
@@ -261,4 +264,40 @@ TEST(RealArt, hiddenStemRatioIsTheRealTreesMedian) {
     std::cout << "hidden_stem_ratio " << hidden_stem_ratio << ", the lone real trees' median " << median << " over "
               << n << " trees\n";
     EXPECT_NEAR(hidden_stem_ratio, median, 0.03);
+}
+
+// Each pixel of the occluder map depends only on the sprites within
+// occluder_reach of it (update_occluders builds a pan's strips and an edit's
+// surroundings alone on it): on maps of each real tileset, the maps of drawn
+// regions equal the whole map's there.
+TEST(RealArt, anOccluderMapOfARegionIsTheWholeMapsThere) {
+    const std::vector<std::pair<std::string, std::string>> sets = {{"freedroidrpg", "freedroidrpg-data"},
+                                                                   {"widelands", "widelands-data"},
+                                                                   {"lincity-ng", "lincity-ng-data"},
+                                                                   {"flare", "flare-game"},
+                                                                   {"freeciv", "freeciv-data"}};
+    Pcg32 rng(7);
+    for (const auto& [name, package] : sets) {
+        Scene s;
+        s.width = s.height = 8;
+        s.params.occluders = Occluders::solids;
+        const World w = make_world(load(name, package).tileset, s);
+        const Rect b = w.placed.bounds;
+        ASSERT_GT(w.placed.instances.size(), w.placed.first_overlay) << name << ": no overlay placed";
+        SolidsCache cache;  // each sprite's solids estimated once
+        const OccluderMap whole = build_occluders(w, s.params, b, &cache);
+        for (int k = 0; k < 8; ++k) {
+            const int rw = 16 + int(rng.below(std::uint32_t(b.w / 3))), rh = 16 + int(rng.below(std::uint32_t(b.h / 3)));
+            const Rect r{b.x + int(rng.below(std::uint32_t(b.w - rw))), b.y + int(rng.below(std::uint32_t(b.h - rh))), rw, rh};
+            const OccluderMap part = build_occluders(w, s.params, r, &cache);
+            long differ = 0;
+            for (int y = r.y; y < r.y + r.h; ++y)
+                for (int x = r.x; x < r.x + r.w; ++x) {
+                    const std::size_t i = std::size_t(y - r.y) * r.w + std::size_t(x - r.x);
+                    const std::size_t j = std::size_t(y - b.y) * b.w + std::size_t(x - b.x);
+                    differ += !(part.spans[i] == whole.spans[j]) || part.surface.height[i] != whole.surface.height[j];
+                }
+            EXPECT_EQ(differ, 0) << name << ": region " << r.x << "," << r.y << " " << r.w << "x" << r.h;
+        }
+    }
 }

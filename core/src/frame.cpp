@@ -203,7 +203,8 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
             if (p.rays_over_obstacles)
                 st.obstacle_heights = build_obstacle_heights(world.tileset, world.placed, p, st.obstacles);
             if (p.occluders != Occluders::footprints)
-                st.occluders = build_occluders(world, p, c.obstacle_region, &c.solids);
+                update_occluders(st.occluders, world, p, c.obstacle_region, grow(delta.region, occluder_reach(world.tileset)),
+                                 &c.solids);
             repaint_ground_lines(c.ground, world.placed, st.opacity, ch.part);
             st.obstacles_revision = next_obstacles_revision();
         }
@@ -214,6 +215,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     }
     // Some room around what is needed, so a panning camera does not rebuild
     // every frame; never more than the map.
+    const Rect old_region = c.obstacle_region;
     c.obstacle_region = needed.empty() ? needed : intersect(grow(needed, 256), world.placed.bounds);
     // Per sprite: its Algorithm 1 mask and its opacity map, which depend on
     // the tileset and the parameters only (not on a larger region, nor on edits).
@@ -241,8 +243,12 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
     // Beyond the paper: solids with height stop the rays (occluders.hpp).
-    st.occluders =
-        p.occluders != Occluders::footprints ? build_occluders(world, p, c.obstacle_region, &c.solids) : OccluderMap{};
+    // A pan keeps what the old region and the new share: only the strips
+    // that came into it are built.
+    if (p.occluders == Occluders::footprints) st.occluders = OccluderMap{};
+    else if (!changed && st.occluders.rect == old_region)
+        update_occluders(st.occluders, world, p, c.obstacle_region, Rect{}, &c.solids);
+    else st.occluders = build_occluders(world, p, c.obstacle_region, &c.solids);
     c.ground = ground_lines(world.placed, st.opacity, c.obstacle_region);
     st.obstacles_revision = next_obstacles_revision();
     c.obstacle_params = p;

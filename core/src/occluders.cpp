@@ -194,37 +194,38 @@ void index_occluders(OccluderMap& m) {
     const std::size_t n = s.instance.size();
     if (n >= std::numeric_limits<std::uint32_t>::max())
         throw Error("occluders: the region of " + std::to_string(n) + " pixels is too large to trace against solids");
-    m.shown_start.assign(n + 1, 0);
-    const std::size_t w = std::size_t(s.rect.w);
-    // The ground pixel under sprite pixel i, h rows below it; false where it
-    // shows the ground or its ground pixel lies below the map.
-    auto ground_of = [&](std::size_t i, std::size_t& g, std::uint32_t& rows) {
-        if (s.instance[i] < 0) return false;
-        rows = std::uint32_t(rows_above(s.height[i]));
-        if (i / w + rows >= std::size_t(s.rect.h)) return false;
-        g = i + rows * w;
-        return true;
+    const std::size_t w = std::size_t(std::max(0, s.rect.w)), h = std::size_t(std::max(0, s.rect.h));
+    // The spans' flags first, in a loop of their own: a stream over the
+    // spans the compiler can keep simple.
+    m.flags.resize(n);
+    for (std::size_t i = 0; i < n; ++i) m.flags[i] = std::uint8_t(m.spans[i].any() ? OccluderMap::has_span : 0);
+    // Each sprite pixel of row y shows a point `rows` high over ground pixel
+    // i + rows * w; `visit` gets those whose ground pixel lies in the map.
+    auto each_point = [&](auto&& visit) {
+        for (std::size_t y = 0; y < h; ++y)
+            for (std::size_t i = y * w; i < (y + 1) * w; ++i) {
+                if (s.instance[i] < 0) continue;
+                const std::uint32_t rows = std::uint32_t(rows_above(s.height[i]));
+                if (y + rows < h) visit(i, i + rows * w, rows);
+            }
     };
-    // A counting sort of the sprite pixels by ground pixel, the flags set on
-    // the way: counts into shown_start[g + 1], their running sums, then each
-    // point placed at its ground pixel's cursor shown_start[g]; the cursors
-    // end one ground pixel on, so the starts are the array moved up by one.
-    m.flags.assign(n, 0);
-    std::size_t g = 0;
-    std::uint32_t rows = 0;
-    m.tallest = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        m.flags[i] |= std::uint8_t(m.spans[i].any() ? OccluderMap::has_span : 0);
-        if (ground_of(i, g, rows)) {
-            ++m.shown_start[g + 1];
-            m.flags[g] |= OccluderMap::has_shown;
-            m.tallest = std::max(m.tallest, int(rows));
-        }
-    }
+    // A counting sort of the sprite pixels by ground pixel: counts into
+    // shown_start[g + 1], their running sums, then each point placed at its
+    // ground pixel's cursor shown_start[g]; the cursors end one ground pixel
+    // on, so the starts are the array moved up by one.
+    m.shown_start.assign(n + 1, 0);
+    std::uint32_t tallest = 0;
+    each_point([&](std::size_t, std::size_t g, std::uint32_t rows) {
+        ++m.shown_start[g + 1];
+        m.flags[g] |= OccluderMap::has_shown;
+        tallest = std::max(tallest, rows);
+    });
+    m.tallest = int(tallest);
     for (std::size_t i = 0; i < n; ++i) m.shown_start[i + 1] += m.shown_start[i];
-    m.shown.assign(m.shown_start[n], OccluderMap::Shown{});
-    for (std::size_t i = 0; i < n; ++i)
-        if (ground_of(i, g, rows)) m.shown[m.shown_start[g]++] = {std::max(s.height[i], 0.f), rows};
+    m.shown.resize(m.shown_start[n]);
+    each_point([&](std::size_t i, std::size_t g, std::uint32_t rows) {
+        m.shown[m.shown_start[g]++] = {std::max(s.height[i], 0.f), rows};
+    });
     std::memmove(&m.shown_start[1], &m.shown_start[0], n * sizeof(std::uint32_t));
     m.shown_start[0] = 0;
 }
@@ -317,29 +318,115 @@ bool own_line_lit(const OccluderMap& occ, std::int64_t cx, std::int64_t cy, std:
 
 }  // namespace
 
-OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache) {
+int occluder_reach(const Tileset& ts) {
+    // A disc's ellipse fits its sprite's width (2 r sqrt(2) <= w), so the
+    // ground it stands over lies at most r / sqrt(2) <= w / 4 rows below the
+    // foot, and the foot lies inside the sprite; 4 more for the box's rounding.
+    int reach = 0;
+    for (const Sprite& s : ts.sprites) reach = std::max(reach, s.image.width / 4 + 4);
+    return reach;
+}
+
+namespace {
+
+// The spans and the surface of `region`, without the index: each pixel's
+// values depend only on the sprites near it, so the map of a part of a
+// region equals that part of the region's map.
+OccluderMap occluders_without_index(const World& world, const Params& p, Rect region, SolidsCache* cache) {
     OccluderMap m;
     m.rect = region;
     const std::size_t n = std::size_t(std::max(0, region.w)) * std::max(0, region.h);
     m.spans.assign(n, Spans{});
     if (region.empty() || p.occluders == Occluders::footprints) {
         m.surface = build_surface(world, region, p.opacity_threshold);
-        index_occluders(m);
         return m;
     }
-    std::vector<std::uint32_t> near;
-    instances_in(world.placed, region, true, near);
     if (p.occluders == Occluders::shapes) {
         fill_shapes(m, world, region);
         m.surface = build_surface(world, region, p.opacity_threshold);
-    } else {
-        std::vector<std::vector<float>> heights(world.tileset.sprites.size());
-        SolidsCache own;
-        fill_estimated(m, world, p, near, cache ? *cache : own, heights);
-        m.surface = build_surface(world, region, p.opacity_threshold, &heights);
+        return m;
     }
+    // The sprites whose solids stand over the region: a solid's ground lies
+    // up to occluder_reach below its sprite.
+    std::vector<std::uint32_t> near;
+    instances_in(world.placed, region, true, near, occluder_reach(world.tileset));
+    std::vector<std::vector<float>> heights(world.tileset.sprites.size());
+    SolidsCache own;
+    fill_estimated(m, world, p, near, cache ? *cache : own, heights);
+    m.surface = build_surface(world, region, p.opacity_threshold, &heights);
+    return m;
+}
+
+// Copies `from`'s spans and surface inside `r` (in both maps) into `to`.
+void copy_part(OccluderMap& to, const OccluderMap& from, Rect r) {
+    for (int y = r.y; y < r.y + r.h; ++y) {
+        const std::size_t i = std::size_t(y - to.rect.y) * to.rect.w + std::size_t(r.x - to.rect.x);
+        const std::size_t j = std::size_t(y - from.rect.y) * from.rect.w + std::size_t(r.x - from.rect.x);
+        std::copy_n(&from.spans[j], r.w, &to.spans[i]);
+        std::copy_n(&from.surface.instance[j], r.w, &to.surface.instance[i]);
+        std::copy_n(&from.surface.height[j], r.w, &to.surface.height[i]);
+    }
+}
+
+// `region` less `keep` (which it holds): the rows above and below keep,
+// then the columns left and right of it.
+std::vector<Rect> outside(Rect region, Rect keep) {
+    std::vector<Rect> parts{Rect{region.x, region.y, region.w, keep.y - region.y},
+                            Rect{region.x, keep.y + keep.h, region.w, region.y + region.h - keep.y - keep.h},
+                            Rect{region.x, keep.y, keep.x - region.x, keep.h},
+                            Rect{keep.x + keep.w, keep.y, region.x + region.w - keep.x - keep.w, keep.h}};
+    std::erase_if(parts, [](Rect r) { return r.empty(); });
+    return parts;
+}
+
+}  // namespace
+
+OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache) {
+    OccluderMap m = occluders_without_index(world, p, region, cache);
     index_occluders(m);
     return m;
+}
+
+void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, Rect changed, SolidsCache* cache) {
+    const Rect keep = intersect(m.rect, region);
+    // The manifest's shapes may stand anywhere around their sprites: no
+    // bound says which sprites reach a part, so shapes are built whole.
+    if (p.occluders == Occluders::shapes || keep.empty() || region.empty()) {
+        m = build_occluders(world, p, region, cache);
+        return;
+    }
+    if (region.w == m.rect.w && region.h == m.rect.h) {
+        // A pan: the kept pixels move within the same arrays, each row by
+        // the same offset, in the order that reads a row before it is written.
+        const std::ptrdiff_t w = region.w, offset = std::ptrdiff_t(region.y - m.rect.y) * w + (region.x - m.rect.x);
+        auto move_row = [&](int y) {
+            const std::ptrdiff_t from = std::ptrdiff_t(y - m.rect.y) * w + (keep.x - m.rect.x), to = from - offset;
+            std::memmove(&m.spans[std::size_t(to)], &m.spans[std::size_t(from)], std::size_t(keep.w) * sizeof(Spans));
+            std::memmove(&m.surface.instance[std::size_t(to)], &m.surface.instance[std::size_t(from)],
+                         std::size_t(keep.w) * sizeof(std::int32_t));
+            std::memmove(&m.surface.height[std::size_t(to)], &m.surface.height[std::size_t(from)], std::size_t(keep.w) * sizeof(float));
+        };
+        if (offset > 0)
+            for (int y = keep.y; y < keep.y + keep.h; ++y) move_row(y);
+        else
+            for (int y = keep.y + keep.h - 1; y >= keep.y; --y) move_row(y);
+        m.rect = m.surface.rect = region;
+    } else {
+        OccluderMap grown;
+        grown.rect = region;
+        const std::size_t n = std::size_t(region.w) * std::size_t(region.h);
+        grown.spans.assign(n, Spans{});
+        grown.surface.rect = region;
+        grown.surface.instance.assign(n, -1);
+        grown.surface.height.assign(n, 0.f);
+        copy_part(grown, m, keep);
+        m = std::move(grown);
+    }
+    // What came into the region, and what the world changed: built.
+    std::vector<Rect> parts = outside(region, keep);
+    if (const Rect c = intersect(changed, region); !c.empty()) parts.push_back(c);
+    for (Rect r : parts) copy_part(m, occluders_without_index(world, p, r, cache), r);
+    index_occluders(m);
 }
 
 namespace {

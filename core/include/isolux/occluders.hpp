@@ -113,6 +113,19 @@ struct SolidsCache {
 // sprite when an overlay has none).
 OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache = nullptr);
 
+// Makes `m` (built with the same parameters) the occluder map of `region`,
+// keeping what it holds there: only the parts of `region` that `m` did not
+// cover, and `changed` (where the world changed since: the sprites edited,
+// grown by occluder_reach), are built, and the index is redone. The same map
+// as build_occluders (each pixel depends only on the sprites near it), at the
+// cost of the parts. With shapes, the whole region is built.
+void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, Rect changed,
+                      SolidsCache* cache = nullptr);
+
+// How far below its sprite's rectangle an estimated solid's ground reaches:
+// the margin around a changed sprite that update_occluders rebuilds.
+int occluder_reach(const Tileset& tileset);
+
 // Fills `m.shown` from its surface and `m.flags` from its spans and surface
 // (build_occluders does; a map made by hand calls it once its spans and
 // surface are set). Error when the region has 2^32 pixels or more.
