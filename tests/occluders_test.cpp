@@ -13,7 +13,9 @@
 #include "isolux/error.hpp"
 #include "isolux/hash.hpp"
 #include "isolux/frame.hpp"
+#include "isolux/obstacle_map.hpp"
 #include "isolux/occluders.hpp"
+#include "isolux/opacity_correction.hpp"
 #include "isolux/scene_file.hpp"
 #include "test_util.hpp"
 
@@ -531,25 +533,47 @@ TEST(Occluders, anUpdatedMapIsTheMapBuiltWhole) {
 }
 
 // The app's frame, panning across a map wider than its obstacle region's
-// margin: the occluder map it keeps is the one built whole for its region.
-TEST(Occluders, aPanningFrameKeepsTheMapBuiltWhole) {
-    Scene s;
-    s.width = s.height = 24;
-    s.params.falloff_scale = 8;
-    s.params.occluders = Occluders::solids;
-    const World w = make_world(test::default_tileset(), s);
-    const Rect b = w.placed.bounds;
-    FrameState st;
-    Rect first;
-    for (long f = 0; f < 6; ++f) {
-        const Camera cam{double(b.x + 150 * f), double(b.y + 60 * f), 400, 300};
+// margin: the obstacle map, the ground lines and (with solids) the occluder
+// map it keeps are the ones built whole for its region, and its light the
+// light of a frame that starts there.
+TEST(Occluders, aPanningFrameKeepsTheMapsBuiltWhole) {
+    for (const Occluders o : {Occluders::footprints, Occluders::solids}) {
+        SCOPED_TRACE(o == Occluders::solids ? "solids" : "footprints");
+        Scene s;
+        s.width = s.height = 24;
+        s.params.falloff_scale = 8;
+        s.params.occluders = o;
+        const World w = make_world(test::default_tileset(), s);
+        const Rect b = w.placed.bounds;
+        FrameState st;
+        std::vector<Rect> regions;
         Scene at = s;
-        at.lights = {Light{cam.x + 200.5, cam.y + 150.5}};
-        render_frame(st, w, at, cam, f);
-        if (f == 0) first = st.cache.obstacle_region;
+        Camera cam;
+        for (long f = 0; f < 12; ++f) {
+            cam = Camera{double(b.x + 600 + 150 * f), double(b.y + 500 + 30 * f), 400, 300};
+            at.lights = {Light{cam.x + 200.5, cam.y + 150.5}};
+            render_frame(st, w, at, cam, f);
+            if (regions.empty() || regions.back() != st.cache.obstacle_region) regions.push_back(st.cache.obstacle_region);
+        }
+        // The region moved at least twice, keeping its size: pans.
+        int pans = 0;
+        for (std::size_t k = 1; k < regions.size(); ++k)
+            pans += regions[k].w == regions[k - 1].w && regions[k].h == regions[k - 1].h && regions[k] != regions[k - 1];
+        ASSERT_GE(pans, 2);
+        const Rect region = st.cache.obstacle_region;
+        const Mask obstacles = build_obstacle_map(w.tileset, w.placed, s.params, region, &st.cache.footprints);
+        EXPECT_EQ(st.obstacles.rect(), region);
+        EXPECT_EQ(st.obstacles.bits, obstacles.bits);
+        const GroundLines lines = ground_lines(w.placed, st.opacity, region);
+        EXPECT_EQ(st.cache.ground.rect, lines.rect);
+        EXPECT_EQ(st.cache.ground.below, lines.below);
+        EXPECT_EQ(st.cache.ground.below8, lines.below8);
+        EXPECT_EQ(st.cache.ground.wide, lines.wide);
+        if (o == Occluders::solids) expect_same_map(st.occluders, build_occluders(w, s.params, region), "after the pan");
+        FrameState fresh;
+        render_frame(fresh, w, at, cam, 0);
+        EXPECT_EQ(st.light.texels, fresh.light.texels);
     }
-    ASSERT_NE(st.cache.obstacle_region, first);  // the region moved
-    expect_same_map(st.occluders, build_occluders(w, s.params, st.cache.obstacle_region), "after the pan");
 }
 
 // A sprite cut off just below its foot: its solids' ground reaches past its

@@ -178,6 +178,15 @@ int obstacle_reach(const Tileset& ts, const Params& p) {
     return reach + p.noise_window;
 }
 
+// The obstacle map's `part` (inside its rectangle) built again: the build
+// is exact per region.
+void build_obstacle_part(Mask& obstacles, const World& world, const Params& p, Rect part, const std::vector<Mask>& footprints) {
+    const Mask built = build_obstacle_map(world.tileset, world.placed, p, part, &footprints);
+    for (int y = 0; y < part.h; ++y)
+        std::copy_n(&built.bits[std::size_t(y) * part.w], part.w,
+                    &obstacles.bits[std::size_t(part.y + y - obstacles.y0) * obstacles.width + (part.x - obstacles.x0)]);
+}
+
 // Paper 3.1: the obstacle map and the sprites' opacity maps. Their content
 // changes only with the world, Δy, n or the threshold; a larger region is the
 // same map over more pixels (the build is exact per region), so it alone does
@@ -195,11 +204,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
         ObstacleChange ch;
         ch.part = intersect(grow(delta.region, obstacle_reach(world.tileset, p)), c.obstacle_region);
         if (!ch.part.empty()) {
-            const Mask part = build_obstacle_map(world.tileset, world.placed, p, ch.part, &c.footprints);
-            for (int y = 0; y < ch.part.h; ++y)
-                std::copy_n(&part.bits[std::size_t(y) * ch.part.w], ch.part.w,
-                            &st.obstacles.bits[std::size_t(ch.part.y + y - st.obstacles.y0) * st.obstacles.width +
-                                               (ch.part.x - st.obstacles.x0)]);
+            build_obstacle_part(st.obstacles, world, p, ch.part, c.footprints);
             if (p.rays_over_obstacles)
                 st.obstacle_heights = build_obstacle_heights(world.tileset, world.placed, p, st.obstacles);
             if (p.occluders != Occluders::footprints)
@@ -219,6 +224,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     c.obstacle_region = needed.empty() ? needed : intersect(grow(needed, 256), world.placed.bounds);
     // Per sprite: its Algorithm 1 mask and its opacity map, which depend on
     // the tileset and the parameters only (not on a larger region, nor on edits).
+    bool sprites_made = false;
     if (params_changed || c.sprites_built != world.built_revision || world.built_revision == 0 ||
         c.footprints.size() != world.tileset.sprites.size()) {
         c.footprints.clear();
@@ -237,19 +243,31 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
             st.opacity.push_back(std::move(r.estimate));
         }
         c.sprites_built = world.built_revision;
+        sprites_made = true;
     }
-    st.obstacles = st.options.obstacle_map ? st.options.obstacle_map(world, p, c.obstacle_region, c.footprints)
-                                           : build_obstacle_map(world.tileset, world.placed, p, c.obstacle_region, &c.footprints);
+    // A pan (the region moved, its size, the world and the parameters the
+    // same) keeps what the old region and the new share: only the strips
+    // that came in are built. Each map is exact per region, so the result is
+    // what a whole build gives.
+    const Rect region = c.obstacle_region, kept = intersect(old_region, region);
+    const bool pan = !changed && !sprites_made && !kept.empty() && old_region.w == region.w && old_region.h == region.h;
+    if (pan && !st.options.obstacle_map && st.obstacles.rect() == old_region) {
+        pan_grid(st.obstacles.bits.data(), old_region, region);
+        st.obstacles.x0 = region.x, st.obstacles.y0 = region.y;
+        for (const Rect& r : outside(region, kept)) build_obstacle_part(st.obstacles, world, p, r, c.footprints);
+    } else {
+        st.obstacles = st.options.obstacle_map ? st.options.obstacle_map(world, p, region, c.footprints)
+                                               : build_obstacle_map(world.tileset, world.placed, p, region, &c.footprints);
+    }
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
     // Beyond the paper: solids with height stop the rays (occluders.hpp).
-    // A pan keeps what the old region and the new share: only the strips
-    // that came into it are built.
     if (p.occluders == Occluders::footprints) st.occluders = OccluderMap{};
-    else if (!changed && st.occluders.rect == old_region)
-        update_occluders(st.occluders, world, p, c.obstacle_region, Rect{}, &c.solids);
-    else st.occluders = build_occluders(world, p, c.obstacle_region, &c.solids);
-    c.ground = ground_lines(world.placed, st.opacity, c.obstacle_region);
+    else if (!changed && !sprites_made && !kept.empty() && st.occluders.rect == old_region)
+        update_occluders(st.occluders, world, p, region, Rect{}, &c.solids);  // a pan, or a region grown or cut
+    else st.occluders = build_occluders(world, p, region, &c.solids);
+    if (pan && c.ground.exact && c.ground.rect == old_region) pan_ground_lines(c.ground, world.placed, st.opacity, region);
+    else c.ground = ground_lines(world.placed, st.opacity, region);
     st.obstacles_revision = next_obstacles_revision();
     c.obstacle_params = p;
     c.world_revision = world.revision;

@@ -13,6 +13,15 @@ Rect bounding(const Rect& a, const Rect& b) {
     return {x0, y0, x1 - x0, y1 - y0};
 }
 
+std::vector<Rect> outside(Rect region, Rect keep) {
+    std::vector<Rect> parts{Rect{region.x, region.y, region.w, keep.y - region.y},
+                            Rect{region.x, keep.y + keep.h, region.w, region.y + region.h - keep.y - keep.h},
+                            Rect{region.x, keep.y, keep.x - region.x, keep.h},
+                            Rect{keep.x + keep.w, keep.y, region.x + region.w - keep.x - keep.w, keep.h}};
+    std::erase_if(parts, [](Rect r) { return r.empty(); });
+    return parts;
+}
+
 std::vector<Rect> disjoint_union(std::vector<Rect> parts, int gap) {
     std::erase_if(parts, [](const Rect& r) { return r.empty(); });
     if (parts.size() <= 1) return parts;

@@ -368,17 +368,6 @@ void copy_part(OccluderMap& to, const OccluderMap& from, Rect r) {
     }
 }
 
-// `region` less `keep` (which it holds): the rows above and below keep,
-// then the columns left and right of it.
-std::vector<Rect> outside(Rect region, Rect keep) {
-    std::vector<Rect> parts{Rect{region.x, region.y, region.w, keep.y - region.y},
-                            Rect{region.x, keep.y + keep.h, region.w, region.y + region.h - keep.y - keep.h},
-                            Rect{region.x, keep.y, keep.x - region.x, keep.h},
-                            Rect{keep.x + keep.w, keep.y, region.x + region.w - keep.x - keep.w, keep.h}};
-    std::erase_if(parts, [](Rect r) { return r.empty(); });
-    return parts;
-}
-
 }  // namespace
 
 OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache) {
@@ -395,21 +384,10 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
         m = build_occluders(world, p, region, cache);
         return;
     }
-    if (region.w == m.rect.w && region.h == m.rect.h) {
-        // A pan: the kept pixels move within the same arrays, each row by
-        // the same offset, in the order that reads a row before it is written.
-        const std::ptrdiff_t w = region.w, offset = std::ptrdiff_t(region.y - m.rect.y) * w + (region.x - m.rect.x);
-        auto move_row = [&](int y) {
-            const std::ptrdiff_t from = std::ptrdiff_t(y - m.rect.y) * w + (keep.x - m.rect.x), to = from - offset;
-            std::memmove(&m.spans[std::size_t(to)], &m.spans[std::size_t(from)], std::size_t(keep.w) * sizeof(Spans));
-            std::memmove(&m.surface.instance[std::size_t(to)], &m.surface.instance[std::size_t(from)],
-                         std::size_t(keep.w) * sizeof(std::int32_t));
-            std::memmove(&m.surface.height[std::size_t(to)], &m.surface.height[std::size_t(from)], std::size_t(keep.w) * sizeof(float));
-        };
-        if (offset > 0)
-            for (int y = keep.y; y < keep.y + keep.h; ++y) move_row(y);
-        else
-            for (int y = keep.y + keep.h - 1; y >= keep.y; --y) move_row(y);
+    if (region.w == m.rect.w && region.h == m.rect.h) {  // a pan: in place
+        pan_grid(m.spans.data(), m.rect, region);
+        pan_grid(m.surface.instance.data(), m.rect, region);
+        pan_grid(m.surface.height.data(), m.rect, region);
         m.rect = m.surface.rect = region;
     } else {
         OccluderMap grown;

@@ -118,6 +118,17 @@ void repaint_ground_lines(GroundLines& lines, const PlacedMap& placed, const std
     paint(lines, placed, opacity, part);
 }
 
+void pan_ground_lines(GroundLines& lines, const PlacedMap& placed, const std::vector<Mask>& opacity, Rect region) {
+    const Rect from = lines.rect;
+    pan_grid(lines.below.data(), from, region);
+    pan_grid(lines.below8.data(), from, region);
+    lines.rect = region;
+    // Columns moved into and out of every row: each row's wide pixels counted again.
+    for (int y = region.y; y < region.y + region.h; ++y)
+        lines.wide[std::size_t(y - region.y)] = wide_pixels(lines, y, region.x, region.x + region.w);
+    for (const Rect& r : outside(region, intersect(from, region))) paint(lines, placed, opacity, r);
+}
+
 namespace {
 
 // 32 pixels of a row as one value: GCC's vector extensions, which the

@@ -1,7 +1,9 @@
 // Plain rasters shared by every stage: RGBA sprites and frames, boolean masks
 // (opacity maps, obstacle maps) and rectangles in world pixels.
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace isolux {
@@ -36,6 +38,29 @@ Rect bounding(const Rect& a, const Rect& b);
 // the pixels between them (for a pass that may redo pixels: fewer, longer
 // rows cost less than the pixels they add).
 std::vector<Rect> disjoint_union(std::vector<Rect> parts, int gap = 0);
+
+// `region` less `keep` (a rectangle inside it): the rows above and below
+// keep, then the columns left and right of it; the empty ones left out.
+std::vector<Rect> outside(Rect region, Rect keep);
+
+// A pan of a row-major grid of values per pixel: the grid over `from`
+// becomes the grid over `to` (the same size), the values of the pixels both
+// hold moved in place, each row by the same offset, in the order that reads
+// a row before it is overwritten. The pixels `to` adds keep stale values.
+template <class T>
+void pan_grid(T* grid, Rect from, Rect to) {
+    const Rect keep = intersect(from, to);
+    if (keep.empty()) return;
+    const std::ptrdiff_t w = from.w, offset = std::ptrdiff_t(to.y - from.y) * w + (to.x - from.x);
+    auto move_row = [&](int y) {
+        const std::ptrdiff_t at = std::ptrdiff_t(y - from.y) * w + (keep.x - from.x);
+        std::memmove(grid + (at - offset), grid + at, std::size_t(keep.w) * sizeof(T));
+    };
+    if (offset > 0)
+        for (int y = keep.y; y < keep.y + keep.h; ++y) move_row(y);
+    else
+        for (int y = keep.y + keep.h - 1; y >= keep.y; --y) move_row(y);
+}
 
 // An 8-bit RGBA image, row-major, straight (not premultiplied) alpha.
 struct Image {
