@@ -440,6 +440,29 @@ void print_walk_ratios(int pairs) {
     };
     auto build = [&] { built = build_occluders(w, p, to, &cache), benchmark::DoNotOptimize(built.flags.data()); };
     bench::print_ratio("pan_occluders_cost", bench::interleaved(update, 2, build, 2, pairs), "<= 0.5");
+    // The frame's obstacle stage when the camera passes the region's margin
+    // (a 1280x720 view moved 320 px, back and forth: each frame moves the
+    // region, its size the same), against the same frames with the kept maps
+    // dropped first (each built whole), per model; 8 frames a side.
+    for (const Occluders o : {Occluders::footprints, Occluders::solids}) {
+        auto panning = [o](bool whole) {
+            return [o, whole, st = lighting_state(1), f = long(0)]() mutable {
+                const World& w = bench::world("default", 24);
+                Scene s;
+                s.params.occluders = o;
+                double ms = 0;
+                for (int i = 0; i < 8; ++i, ++f) {
+                    const Camera cam{600.0 + 320.0 * (f % 2), 300.0, 1280, 720};
+                    s.lights = {Light{cam.x + 640.5, cam.y + 360.5}};
+                    if (whole) st.obstacles = Mask{}, st.occluders = OccluderMap{}, st.cache.ground = GroundLines{};
+                    ms += render_frame(st, w, s, cam, f).ms[int(Stage::obstacle_map)];
+                }
+                return ms;
+            };
+        };
+        bench::print_ratio(o == Occluders::solids ? "pan_obstacle_stage_cost_solids" : "pan_obstacle_stage_cost",
+                           bench::interleaved_costs(panning(false), panning(true), pairs), "<= 0.5");
+    }
 }
 
 int ratios() {

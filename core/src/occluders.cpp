@@ -189,16 +189,38 @@ SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) 
     return out;
 }
 
+namespace {
+
+// The has_span flags of the pixels of `part` (inside the map), from their spans.
+void flag_spans(OccluderMap& m, Rect part) {
+    for (int y = part.y; y < part.y + part.h; ++y) {
+        const std::size_t at = std::size_t(y - m.rect.y) * std::size_t(m.rect.w) + std::size_t(part.x - m.rect.x);
+        for (std::size_t i = at; i < at + std::size_t(part.w); ++i)
+            m.flags[i] = std::uint8_t(m.spans[i].any() ? OccluderMap::has_span : 0);
+    }
+}
+
+// The sprite points by ground pixel, and the has_shown flags (the has_span
+// flags set).
+void index_shown(OccluderMap& m);
+
+}  // namespace
+
 void index_occluders(OccluderMap& m) {
+    m.flags.resize(m.surface.instance.size());
+    flag_spans(m, m.rect);
+    index_shown(m);
+}
+
+namespace {
+
+void index_shown(OccluderMap& m) {
     const Surface& s = m.surface;
     const std::size_t n = s.instance.size();
     if (n >= std::numeric_limits<std::uint32_t>::max())
         throw Error("occluders: the region of " + std::to_string(n) + " pixels is too large to trace against solids");
     const std::size_t w = std::size_t(std::max(0, s.rect.w)), h = std::size_t(std::max(0, s.rect.h));
-    // The spans' flags first, in a loop of their own: a stream over the
-    // spans the compiler can keep simple.
-    m.flags.resize(n);
-    for (std::size_t i = 0; i < n; ++i) m.flags[i] = std::uint8_t(m.spans[i].any() ? OccluderMap::has_span : 0);
+    for (std::uint8_t& f : m.flags) f &= OccluderMap::has_span;
     // Each sprite pixel of row y shows a point `rows` high over ground pixel
     // i + rows * w; `visit` gets those whose ground pixel lies in the map.
     auto each_point = [&](auto&& visit) {
@@ -229,6 +251,8 @@ void index_occluders(OccluderMap& m) {
     std::memmove(&m.shown_start[1], &m.shown_start[0], n * sizeof(std::uint32_t));
     m.shown_start[0] = 0;
 }
+
+}  // namespace
 
 namespace {
 
@@ -380,7 +404,7 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
     const Rect keep = intersect(m.rect, region);
     // The manifest's shapes may stand anywhere around their sprites: no
     // bound says which sprites reach a part, so shapes are built whole.
-    if (p.occluders == Occluders::shapes || keep.empty() || region.empty()) {
+    if (p.occluders == Occluders::shapes || keep.empty() || region.empty() || m.flags.size() != m.spans.size()) {
         m = build_occluders(world, p, region, cache);
         return;
     }
@@ -388,6 +412,7 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
         pan_grid(m.spans.data(), m.rect, region);
         pan_grid(m.surface.instance.data(), m.rect, region);
         pan_grid(m.surface.height.data(), m.rect, region);
+        pan_grid(m.flags.data(), m.rect, region);  // the kept pixels' has_span flags hold
         m.rect = m.surface.rect = region;
     } else {
         OccluderMap grown;
@@ -399,12 +424,17 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
         grown.surface.height.assign(n, 0.f);
         copy_part(grown, m, keep);
         m = std::move(grown);
+        m.flags.assign(n, 0);
+        flag_spans(m, keep);
     }
     // What came into the region, and what the world changed: built.
     std::vector<Rect> parts = outside(region, keep);
     if (const Rect c = intersect(changed, region); !c.empty()) parts.push_back(c);
-    for (Rect r : parts) copy_part(m, occluders_without_index(world, p, r, cache), r);
-    index_occluders(m);
+    for (Rect r : parts) {
+        copy_part(m, occluders_without_index(world, p, r, cache), r);
+        flag_spans(m, r);
+    }
+    index_shown(m);
 }
 
 namespace {
