@@ -549,17 +549,24 @@ TEST(Occluders, aPanningFrameKeepsTheMapsBuiltWhole) {
         std::vector<Rect> regions;
         Scene at = s;
         Camera cam;
-        for (long f = 0; f < 12; ++f) {
-            cam = Camera{double(b.x + 600 + 150 * f), double(b.y + 500 + 30 * f), 400, 300};
+        // From the map's top left corner to its right edge, which cut the region.
+        for (long f = 0; f < 20; ++f) {
+            cam = Camera{double(b.x + 100 + 150 * f), double(b.y + 100 + 30 * f), 400, 300};
             at.lights = {Light{cam.x + 200.5, cam.y + 150.5}};
             render_frame(st, w, at, cam, f);
             if (regions.empty() || regions.back() != st.cache.obstacle_region) regions.push_back(st.cache.obstacle_region);
         }
-        // The region moved at least twice, keeping its size: pans.
-        int pans = 0;
-        for (std::size_t k = 1; k < regions.size(); ++k)
-            pans += regions[k].w == regions[k - 1].w && regions[k].h == regions[k - 1].h && regions[k] != regions[k - 1];
+        // The region moved at least twice keeping its size (pans, in place),
+        // and changed its size at least twice (grown at the start, cut by
+        // the map's edge at the end).
+        int pans = 0, resized = 0;
+        for (std::size_t k = 1; k < regions.size(); ++k) {
+            const bool same_size = regions[k].w == regions[k - 1].w && regions[k].h == regions[k - 1].h;
+            pans += same_size;
+            resized += !same_size;
+        }
         ASSERT_GE(pans, 2);
+        ASSERT_GE(resized, 2);
         const Rect region = st.cache.obstacle_region;
         const Mask obstacles = build_obstacle_map(w.tileset, w.placed, s.params, region, &st.cache.footprints);
         EXPECT_EQ(st.obstacles.rect(), region);

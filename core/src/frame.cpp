@@ -245,15 +245,15 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
         c.sprites_built = world.built_revision;
         sprites_made = true;
     }
-    // A pan (the region moved, its size, the world and the parameters the
-    // same) keeps what the old region and the new share: only the strips
+    // A pan (the region moved, grown or cut, the world and the parameters
+    // the same) keeps what the old region and the new share: only the strips
     // that came in are built. Each map is exact per region, so the result is
     // what a whole build gives.
     const Rect region = c.obstacle_region, kept = intersect(old_region, region);
-    const bool pan = !changed && !sprites_made && !kept.empty() && old_region.w == region.w && old_region.h == region.h;
+    const bool pan = !changed && !sprites_made && !kept.empty();
     if (pan && !st.options.obstacle_map && st.obstacles.rect() == old_region) {
-        pan_grid(st.obstacles.bits.data(), old_region, region);
-        st.obstacles.x0 = region.x, st.obstacles.y0 = region.y;
+        move_grid(st.obstacles.bits, old_region, region);
+        st.obstacles.x0 = region.x, st.obstacles.y0 = region.y, st.obstacles.width = region.w, st.obstacles.height = region.h;
         for (const Rect& r : outside(region, kept)) build_obstacle_part(st.obstacles, world, p, r, c.footprints);
     } else {
         st.obstacles = st.options.obstacle_map ? st.options.obstacle_map(world, p, region, c.footprints)
@@ -263,8 +263,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
                                                 : ObstacleHeights{};
     // Beyond the paper: solids with height stop the rays (occluders.hpp).
     if (p.occluders == Occluders::footprints) st.occluders = OccluderMap{};
-    else if (!changed && !sprites_made && !kept.empty() && st.occluders.rect == old_region)
-        update_occluders(st.occluders, world, p, region, Rect{}, &c.solids);  // a pan, or a region grown or cut
+    else if (pan && st.occluders.rect == old_region) update_occluders(st.occluders, world, p, region, Rect{}, &c.solids);
     else st.occluders = build_occluders(world, p, region, &c.solids);
     if (pan && c.ground.exact && c.ground.rect == old_region) pan_ground_lines(c.ground, world.placed, st.opacity, region);
     else c.ground = ground_lines(world.placed, st.opacity, region);

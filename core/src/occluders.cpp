@@ -408,25 +408,13 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
         m = build_occluders(world, p, region, cache);
         return;
     }
-    if (region.w == m.rect.w && region.h == m.rect.h) {  // a pan: in place
-        pan_grid(m.spans.data(), m.rect, region);
-        pan_grid(m.surface.instance.data(), m.rect, region);
-        pan_grid(m.surface.height.data(), m.rect, region);
-        pan_grid(m.flags.data(), m.rect, region);  // the kept pixels' has_span flags hold
-        m.rect = m.surface.rect = region;
-    } else {
-        OccluderMap grown;
-        grown.rect = region;
-        const std::size_t n = std::size_t(region.w) * std::size_t(region.h);
-        grown.spans.assign(n, Spans{});
-        grown.surface.rect = region;
-        grown.surface.instance.assign(n, -1);
-        grown.surface.height.assign(n, 0.f);
-        copy_part(grown, m, keep);
-        m = std::move(grown);
-        m.flags.assign(n, 0);
-        flag_spans(m, keep);
-    }
+    // The kept pixels' spans, surface and has_span flags hold where they are
+    // (in place when the size is the same: a pan).
+    move_grid(m.spans, m.rect, region);
+    move_grid(m.surface.instance, m.rect, region, -1);
+    move_grid(m.surface.height, m.rect, region);
+    move_grid(m.flags, m.rect, region);
+    m.rect = m.surface.rect = region;
     // What came into the region, and what the world changed: built.
     std::vector<Rect> parts = outside(region, keep);
     if (const Rect c = intersect(changed, region); !c.empty()) parts.push_back(c);

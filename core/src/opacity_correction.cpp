@@ -120,10 +120,11 @@ void repaint_ground_lines(GroundLines& lines, const PlacedMap& placed, const std
 
 void pan_ground_lines(GroundLines& lines, const PlacedMap& placed, const std::vector<Mask>& opacity, Rect region) {
     const Rect from = lines.rect;
-    pan_grid(lines.below.data(), from, region);
-    pan_grid(lines.below8.data(), from, region);
+    move_grid(lines.below, from, region, GroundLines::none);
+    move_grid(lines.below8, from, region);
     lines.rect = region;
     // Columns moved into and out of every row: each row's wide pixels counted again.
+    lines.wide.assign(std::size_t(region.h), 0);
     for (int y = region.y; y < region.y + region.h; ++y)
         lines.wide[std::size_t(y - region.y)] = wide_pixels(lines, y, region.x, region.x + region.w);
     for (const Rect& r : outside(region, intersect(from, region))) paint(lines, placed, opacity, r);

@@ -43,18 +43,27 @@ std::vector<Rect> disjoint_union(std::vector<Rect> parts, int gap = 0);
 // keep, then the columns left and right of it; the empty ones left out.
 std::vector<Rect> outside(Rect region, Rect keep);
 
-// A pan of a row-major grid of values per pixel: the grid over `from`
-// becomes the grid over `to` (the same size), the values of the pixels both
-// hold moved in place, each row by the same offset, in the order that reads
-// a row before it is overwritten. The pixels `to` adds keep stale values.
+// A row-major grid of values per pixel over `from` made the grid over `to`
+// (a pan, or a region grown or cut): the values of the pixels both hold are
+// kept, the others are `fill`, or stale when the sizes match. With the same
+// size the values move in place, each row by one offset, in the order that
+// reads a row before it is overwritten.
 template <class T>
-void pan_grid(T* grid, Rect from, Rect to) {
+void move_grid(std::vector<T>& grid, Rect from, Rect to, const T& fill = T{}) {
     const Rect keep = intersect(from, to);
+    if (from.w != to.w || from.h != to.h) {
+        std::vector<T> moved(std::size_t(to.w) * std::size_t(to.h), fill);
+        for (int y = keep.y; y < keep.y + keep.h; ++y)
+            std::memcpy(&moved[std::size_t(y - to.y) * to.w + std::size_t(keep.x - to.x)],
+                        &grid[std::size_t(y - from.y) * from.w + std::size_t(keep.x - from.x)], std::size_t(keep.w) * sizeof(T));
+        grid = std::move(moved);
+        return;
+    }
     if (keep.empty()) return;
     const std::ptrdiff_t w = from.w, offset = std::ptrdiff_t(to.y - from.y) * w + (to.x - from.x);
     auto move_row = [&](int y) {
         const std::ptrdiff_t at = std::ptrdiff_t(y - from.y) * w + (keep.x - from.x);
-        std::memmove(grid + (at - offset), grid + at, std::size_t(keep.w) * sizeof(T));
+        std::memmove(grid.data() + (at - offset), grid.data() + at, std::size_t(keep.w) * sizeof(T));
     };
     if (offset > 0)
         for (int y = keep.y; y < keep.y + keep.h; ++y) move_row(y);

@@ -53,8 +53,8 @@ struct GroundLines {
 GroundLines ground_lines(const PlacedMap& placed, const std::vector<Mask>& opacity, Rect region);
 // Paints `part` again (after an edit), within the lines' rectangle.
 void repaint_ground_lines(GroundLines& lines, const PlacedMap& placed, const std::vector<Mask>& opacity, Rect part);
-// Moves the lines to `region`, the same size as their rectangle (a pan):
-// the pixels both hold keep their values, the rest is painted.
+// Moves the lines to `region` (a pan, or a region grown or cut): the pixels
+// both rectangles hold keep their values, the rest is painted.
 void pan_ground_lines(GroundLines& lines, const PlacedMap& placed, const std::vector<Mask>& opacity, Rect region);
 
 // correct_with_opacity_maps's bytes from the ground lines (which must be
