@@ -213,6 +213,13 @@ void register_occluder_map() {
             st.counters["ns_per_pixel"] = benchmark::Counter(double(to.w) * to.h,
                                                              benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
         })->Unit(benchmark::kMillisecond);
+    // The first frame with solids estimates every sprite's solids once.
+    benchmark::RegisterBenchmark("occluders/sprite_solids/default", [](benchmark::State& st) {
+        const World& w = bench::world("default", 24);
+        for (auto _ : st)
+            for (const Sprite& s : w.tileset.sprites)
+                if (s.kind == SpriteKind::overlay) benchmark::DoNotOptimize(sprite_solids(w.tileset, s, p).heights.data());
+    })->Unit(benchmark::kMillisecond);
     static const OccluderMap occ = build_occluders(w, p, region);
     benchmark::RegisterBenchmark("occluders/index_surfaces/default", [](benchmark::State& st) {
         SurfaceIds ids{occ.surface.rect, occ.surface.instance, {}};

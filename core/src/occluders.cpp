@@ -11,6 +11,7 @@
 
 #include "isolux/error.hpp"
 #include "isolux/footprint.hpp"
+#include "isolux/opacity_map.hpp"
 #include "isolux/solid_estimate.hpp"
 #include "occluders_tree.hpp"
 
@@ -165,14 +166,26 @@ SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) 
     for (std::size_t k = 0; k < front_first.size(); ++k) front_first[k] = k;
     std::stable_sort(front_first.begin(), front_first.end(),
                      [&](std::size_t a, std::size_t b) { return out.objects[a].center_y > out.objects[b].center_y; });
+    // Only the pixels the surface shows (opaque at the preset's threshold)
+    // read their height; the others keep 0. A disc of radius r holds the
+    // point z high only where 2 (sy + z)^2 <= r^2, so each pixel tests the
+    // heights within the widest disc's r / sqrt(2) of -sy alone: the same
+    // halves from the solid's top down, the others failing anyway.
+    const Mask shown = opacity_map(s.image, sprite_threshold(s, p.opacity_threshold));
+    std::vector<double> reach;  // per object: its widest disc's radius / sqrt(2)
+    for (const EstimatedObject& o : out.objects)
+        reach.push_back(*std::max_element(o.radius.begin(), o.radius.end()) / sqrt2 + 1e-9);
     out.heights.assign(std::size_t(s.image.width) * s.image.height, 0.f);
     for (int y = 0; y < s.image.height; ++y)
         for (int x = 0; x < s.image.width; ++x) {
+            if (!shown.get(x, y)) continue;
             float best = -1;
             for (std::size_t k : front_first) {
                 const EstimatedObject& o = out.objects[k];
-                const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y;
-                for (double z = o.height() - 0.5; z >= 0 && best < 0; z -= 0.5) {
+                const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y, top = o.height() - 0.5;
+                const double z_low = std::max(0.0, -sy - reach[k]);
+                int j = std::max(0, int(std::ceil((top - (-sy + reach[k])) * 2)));  // z = top - j / 2
+                for (double z = top - 0.5 * j; z >= z_low && best < 0; z = top - 0.5 * ++j) {
                     const double r = o.radius[std::size_t(z)];
                     const double d2 = 2 * (sy + z) * (sy + z) + sx * sx / 2;
                     if (r > 0 && d2 <= r * r) best = float(z);
