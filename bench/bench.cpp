@@ -167,12 +167,6 @@ void register_solids() {
     }
 }
 
-// Beyond the paper: what a frame rebuilds when the obstacle map's region
-// changes (the first frame, a camera past the region, Δy or n changed),
-// over the default 24x24 map: the occluder map (spans, surface, the points
-// each ground pixel holds; sprites' solids kept, as the frame keeps them),
-// the surfaces' reach for the blur within surfaces, and a floor: copying
-// the surface's ids, 4 bytes a pixel, once.
 // A view's obstacle region (a 1280x720 view, its lights' areas and the
 // 256-px margin) before and after a pan of 256 px right, on the 24x24 map.
 std::pair<Rect, Rect> pan_regions(const World& w) {
@@ -180,6 +174,13 @@ std::pair<Rect, Rect> pan_regions(const World& w) {
     return {from, intersect(Rect{from.x + 256, from.y, from.w, from.h}, b)};
 }
 
+// Beyond the paper: what a frame builds when the obstacle map's region is
+// made (the first frame, Δy or n changed), over the default 24x24 map: the
+// occluder map (spans, surface, the points each ground pixel holds; sprites'
+// solids kept, as the frame keeps them), the sprites' solids themselves, the
+// surfaces' reach for the blur within surfaces, and a floor: copying the
+// surface's ids, 4 bytes a pixel, once; and what a pan past the region's
+// margin builds (update_occluders) against building the panned region whole.
 void register_occluder_map() {
     const World& w = bench::world("default", 24);
     static Params p;

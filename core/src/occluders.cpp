@@ -215,18 +215,6 @@ void flag_spans(OccluderMap& m, Rect part) {
 
 // The sprite points by ground pixel, and the has_shown flags (the has_span
 // flags set).
-void index_shown(OccluderMap& m);
-
-}  // namespace
-
-void index_occluders(OccluderMap& m) {
-    m.flags.resize(m.surface.instance.size());
-    flag_spans(m, m.rect);
-    index_shown(m);
-}
-
-namespace {
-
 void index_shown(OccluderMap& m) {
     const Surface& s = m.surface;
     const std::size_t n = s.instance.size();
@@ -266,6 +254,12 @@ void index_shown(OccluderMap& m) {
 }
 
 }  // namespace
+
+void index_occluders(OccluderMap& m) {
+    m.flags.resize(m.surface.instance.size());
+    flag_spans(m, m.rect);
+    index_shown(m);
+}
 
 namespace {
 
