@@ -37,9 +37,8 @@ const Solid canopy{SolidKind::ellipsoid, {0, 0, 45}, {28, 28, 24}};
 
 // A tree drawn from its true shapes: the estimate stands a canopy off the
 // ground above a thin trunk and shares most of the tree's volume. A dome's
-// outline reaches above its top (seen from above at an angle), so the top is
-// estimated a few pixels low: the discs stop once their ellipses reach the
-// outline's top row.
+// outline reaches above its top (seen from above at an angle), and the discs
+// go up to the outline's top row: the top is estimated a few pixels high.
 TEST(SolidEstimate, aTreeGetsATrunkAndACanopyStandingOffTheGround) {
     const int w = 200, h = 170, ax = 100, ay = 150;
     const Mask object = drawn({trunk, canopy}, w, h, ax, ay);
@@ -66,7 +65,10 @@ TEST(SolidEstimate, aTreeGetsATrunkAndACanopyStandingOffTheGround) {
 // A bush whose footprint Algorithm 1 puts at its widest row (its equator,
 // 10 px above where it stands): the foot moves down to where the bush meets
 // the ground, so the solid is a dome on the ground, not a pancake at the
-// equator.
+// equator. Its discs reach the outline's top row: the ellipsoid's outline
+// tops out sqrt(13^2 + 17^2 / 2) = 17.7 px above its centre, 27.7 px up.
+// The equator's lines may also have put the footprint a column or two off
+// the axis: the axis moves back to it.
 TEST(SolidEstimate, aBushsFootMovesDownFromItsEquatorToWhereItStands) {
     const int w = 120, h = 120, ax = 60, ay = 100;
     const std::vector<Solid> bush{{SolidKind::ellipsoid, {0, 0, 10}, {17, 17, 13}}};
@@ -74,9 +76,15 @@ TEST(SolidEstimate, aBushsFootMovesDownFromItsEquatorToWhereItStands) {
     const auto at_equator = estimate_objects(object, foot(w, h, ax, ay - 10));
     ASSERT_EQ(at_equator.size(), 1u);
     EXPECT_NEAR(at_equator[0].center_y, ay, 3);
-    EXPECT_GT(at_equator[0].height(), 12);  // a dome (its top a few pixels low, as a canopy's)
-    EXPECT_LE(at_equator[0].height(), 10 + 13 + 2);
+    EXPECT_GE(at_equator[0].height(), 10 + 13);  // a dome up to the outline's top
+    EXPECT_LE(at_equator[0].height(), 28);
     EXPECT_GT(volume_overlap(at_equator, ax, ay, bush), 0.6);
+    for (int off : {-2, 2}) {
+        const auto off_axis = estimate_objects(object, foot(w, h, ax + off, ay - 10));
+        ASSERT_EQ(off_axis.size(), 1u);
+        EXPECT_NEAR(off_axis[0].center_x, ax, 0.5) << "footprint " << off << " px off the axis";
+        EXPECT_NEAR(off_axis[0].center_y, ay, 3);
+    }
     // A footprint already where it stands stays there.
     const auto at_foot = estimate_objects(object, foot(w, h, ax, ay));
     ASSERT_EQ(at_foot.size(), 1u);
@@ -158,12 +166,17 @@ TEST(SolidEstimate, aCorrectionSetsTheFootAndTheHeight) {
     EXPECT_EQ(objects[0].rect, (Rect{ax - 3, ay - 2, 1, 1}));
 }
 
-// A box standing on its footprint, and an empty footprint or sprite.
+// A cylinder standing on its whole base (a building) is itself: its flat
+// top is one disc's ellipse. On a footprint (a trunk, a bush) it is the
+// largest solid of revolution its outline allows: the cylinder, and above
+// its top the discs that fit inside the top's ellipse, up to the outline's
+// top row (20 / sqrt(2) px higher), which the camera cannot tell from a
+// dome. And an empty footprint or sprite gives no object.
 TEST(SolidEstimate, aCylinderIsItselfAndEmptyInputsGiveNoObject) {
     const int w = 120, h = 120, ax = 60, ay = 100;
     const Solid post{SolidKind::cylinder, {0, 0, 0}, {20, 20, 50}};
     const Mask object = drawn({post}, w, h, ax, ay);
-    const auto objects = estimate_objects(object, foot(w, h, ax, ay));
+    const auto objects = estimate_objects(object, foot(w, h, ax, ay), nullptr, nullptr, true);
     ASSERT_EQ(objects.size(), 1u);
     EXPECT_NEAR(objects[0].height(), 50, 3);
     double lo = 0, hi = 0;
@@ -171,6 +184,13 @@ TEST(SolidEstimate, aCylinderIsItselfAndEmptyInputsGiveNoObject) {
     EXPECT_EQ(lo, 0);
     EXPECT_NEAR(hi, 50, 3);
     EXPECT_GT(volume_overlap(objects, ax, ay, {post}), 0.85);
+    const auto on_footprint = estimate_objects(object, foot(w, h, ax, ay));
+    ASSERT_EQ(on_footprint.size(), 1u);
+    EXPECT_NEAR(on_footprint[0].height(), 50 + 20 / std::sqrt(2.0), 3);
+    const std::vector<double>& r = on_footprint[0].radius;
+    for (std::size_t z = 0; z + 3 < 50; ++z) EXPECT_NEAR(r[z], 20, 1) << "the cylinder's disc at " << z;
+    for (std::size_t z = 53; z < r.size(); ++z) EXPECT_LT(r[z], 20 - 1) << "the cap's disc at " << z;
+    EXPECT_GT(volume_overlap(on_footprint, ax, ay, {post}), 0.8);
     EXPECT_TRUE(estimate_objects(object, Mask(Rect{0, 0, w, h})).empty());
     EXPECT_TRUE(estimate_objects(Mask(Rect{0, 0, w, h}), foot(w, h, ax, ay)).empty());
 }

@@ -14,6 +14,9 @@ namespace isolux {
 namespace {
 
 constexpr double sqrt2 = 1.4142135623730951;
+// How many columns an axis whose foot moved off the footprint may move
+// sideways: the rounding of a footprint's centre on an equator's lines.
+constexpr int axis_shift = 2;
 
 // Per row of the object's mask: the opaque run through column `c`, as the
 // first and last column (first > last: column c is transparent there).
@@ -90,18 +93,21 @@ int top_row(const Mask& object) {
 }
 
 // The discs of a solid whose axis meets the ground at screen (fx, fy): one
-// per pixel of height, from the ground up, each the largest that fits (a
-// bisection: a smaller disc of the same centre fits wherever a larger one
-// does), until the discs' ellipses reach the top row: a flat top seen from
-// above is one disc's ellipse, not a dome of small discs. With `height` (a
-// user's correction) exactly that many discs, one that does not fit taking
-// the radius of the one below.
-std::vector<double> fit_discs(const RunsThrough& runs, double fx, double fy, int top, double widest, int height = 0) {
+// per pixel of height, from the ground up to the outline's top row, each the
+// largest that fits (a bisection: a smaller disc of the same centre fits
+// wherever a larger one does), so the solid is the largest of its kind the
+// outline allows. A dome's outline reaches above its top, and the discs up
+// there are small. With `flat_top` the discs stop once their ellipses reach
+// the top row: a flat roof seen from above is one disc's ellipse. With
+// `height` (a user's correction) exactly that many discs, one that does not
+// fit taking the radius of the one below.
+std::vector<double> fit_discs(const RunsThrough& runs, double fx, double fy, int top, double widest, bool flat_top,
+                              int height = 0) {
     std::vector<double> radius;
     double reached = fy;  // the highest screen row the discs' ellipses reach
     for (int z = 0;; ++z) {
         const double yc = fy - (z + 0.5);
-        if (height > 0 ? z >= height : (yc < top || reached <= top + 0.5)) break;
+        if (height > 0 ? z >= height : (yc < top || (flat_top && reached <= top + 0.5))) break;
         double r = 0;
         if (disc_fits(runs, fx, yc, 0.5)) {
             double lo = 0.5, hi = widest;
@@ -145,6 +151,38 @@ void stand_on_hidden_stem(const Mask& object, EstimatedObject& o) {
     for (std::size_t z = 0; z < widest; ++z) o.radius[z] = std::min(o.radius[z], stem);
 }
 
+// A solid standing at one foot, and how many of the object's pixels it covers.
+struct FootCandidate {
+    EstimatedObject object;
+    long covered = 0;
+};
+
+FootCandidate fit_at(const Mask& object, const EstimatedObject& o, int column, double fx, double fy, int top,
+                     double widest, int height) {
+    FootCandidate f{o, 0};
+    f.object.center_x = fx;
+    f.object.center_y = fy;
+    f.object.radius = fit_discs(runs_through(object, column), fx, fy, top, widest, false, height);
+    f.covered = covered(object, f.object);
+    return f;
+}
+
+// The best of `best` and the feet in column (footprint column + dx), from the
+// footprint's row (the row below it in the footprint's own column) down to
+// the object's lowest row there: the one covering most, the first among equals.
+FootCandidate lowest_best_foot(const Mask& object, const EstimatedObject& o, int c, int dx, int top, double widest,
+                               int height, FootCandidate best) {
+    const RunsThrough runs = runs_through(object, c + dx);
+    int bottom = int(std::floor(o.center_y));
+    for (int j = 0; j < int(runs.first.size()); ++j)
+        if (runs.first[std::size_t(j)] <= runs.last[std::size_t(j)]) bottom = std::max(bottom, runs.y0 + j);
+    for (double fy = o.center_y + (dx == 0 ? 1 : 0); fy <= bottom + 1; fy += 1) {
+        FootCandidate t = fit_at(object, o, c + dx, o.center_x + dx, fy, top, widest, height);
+        if (t.covered > best.covered) best = std::move(t);
+    }
+    return best;
+}
+
 // One object per trunk: the object's pixels go to the trunk whose column is
 // nearest (the lower index on a tie), and each part gets its solid of
 // revolution standing on its trunk's foot, with a 5 x 3 footprint there.
@@ -167,7 +205,7 @@ std::vector<EstimatedObject> grove_objects(const Mask& object, const std::vector
         o.center_y = feet[k].y + 0.5;
         o.rect = Rect{int(std::floor(feet[k].x)) - 2, feet[k].y - 2, 5, 3};
         const RunsThrough runs = runs_through(part, int(std::floor(o.center_x)));
-        o.radius = fit_discs(runs, o.center_x, o.center_y, top_row(part), part.width / sqrt2 + 1);
+        o.radius = fit_discs(runs, o.center_x, o.center_y, top_row(part), part.width / sqrt2 + 1, false);
         if (o.radius.empty()) continue;
         stand_on_hidden_stem(part, o);
         out.push_back(std::move(o));
@@ -227,39 +265,36 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     const int top = top_row(object);
     const double widest = object.width / sqrt2 + 1;
     if (corrected || whole_base) {  // a whole base's centre is where it stands
-        o.radius = fit_discs(runs, o.center_x, o.center_y, top, widest, height);
+        o.radius = fit_discs(runs, o.center_x, o.center_y, top, widest, whole_base, height);
         if (o.radius.empty()) return {};
         if (!whole_base) stand_on_hidden_stem(object, o);  // a building rests on its whole base
         return {o};
     }
     // Where the axis meets the ground. Algorithm 1's footprint centre is a
-    // trunk's base, but a bush's or a rock's widest row: its equator, not
+    // trunk's base, but a bush's or a rock's widest rows: its equator, not
     // where it stands. So the foot may move down, to the object's lowest
     // row at most, to the row whose solid covers most of the object's pixels
     // (the nearest to the footprint among equals: moving a solid down only
     // lifts it off the ground without covering more), when that covers at
-    // least 2 % more of them.
-    int bottom = int(std::floor(o.center_y));
-    for (int j = 0; j < int(runs.first.size()); ++j)
-        if (runs.first[std::size_t(j)] <= runs.last[std::size_t(j)]) bottom = std::max(bottom, runs.y0 + j);
-    EstimatedObject at_footprint_row = o;
-    at_footprint_row.radius = fit_discs(runs, o.center_x, o.center_y, top, widest, height);
-    EstimatedObject best = at_footprint_row;
-    const long at_footprint = covered(object, best);
-    long best_covered = at_footprint;
-    for (double fy = o.center_y + 1; fy <= bottom + 1; fy += 1) {
-        EstimatedObject t = o;
-        t.center_y = fy;
-        t.radius = fit_discs(runs, o.center_x, fy, top, widest, height);
-        const long n = covered(object, t);
-        if (n > best_covered) best = std::move(t), best_covered = n;
-    }
+    // least 2 % more of them. The footprint's column then came from the
+    // equator's lines too, so the axis may also move sideways, up to
+    // `axis_shift` columns, where that covers more.
+    const FootCandidate at_footprint = fit_at(object, o, c, o.center_x, o.center_y, top, widest, height);
+    FootCandidate best = lowest_best_foot(object, o, c, 0, top, widest, height, at_footprint);
     // A pixel row's worth of gain is an outline's rounding, not a better foot.
-    if (best_covered <= at_footprint + object.count() / 50) best = std::move(at_footprint_row);
-    best.rect.y += int(std::lround(best.center_y - o.center_y));  // the footprint, moved with the foot
-    if (best.radius.empty()) return {};
-    stand_on_hidden_stem(object, best);
-    return {best};
+    const long rounding = object.count() / 50;
+    if (best.covered <= at_footprint.covered + rounding) {
+        best = at_footprint;
+    } else {
+        for (int shift = 1; shift <= axis_shift; ++shift)
+            for (int dx : {-shift, shift}) best = lowest_best_foot(object, o, c, dx, top, widest, height, best);
+    }
+    EstimatedObject moved = std::move(best.object);
+    moved.rect.x += int(std::lround(moved.center_x - o.center_x));  // the footprint, moved with the foot
+    moved.rect.y += int(std::lround(moved.center_y - o.center_y));
+    if (moved.radius.empty()) return {};
+    stand_on_hidden_stem(object, moved);
+    return {moved};
 }
 
 std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite& s, const Params& p) {
