@@ -157,12 +157,13 @@ struct FootCandidate {
     long covered = 0;
 };
 
-FootCandidate fit_at(const Mask& object, const EstimatedObject& o, int column, double fx, double fy, int top,
-                     double widest, int height) {
+// `runs`: the object's runs through the axis's column.
+FootCandidate fit_at(const Mask& object, const EstimatedObject& o, const RunsThrough& runs, double fx, double fy,
+                     int top, double widest, int height) {
     FootCandidate f{o, 0};
     f.object.center_x = fx;
     f.object.center_y = fy;
-    f.object.radius = fit_discs(runs_through(object, column), fx, fy, top, widest, false, height);
+    f.object.radius = fit_discs(runs, fx, fy, top, widest, false, height);
     f.covered = covered(object, f.object);
     return f;
 }
@@ -177,7 +178,7 @@ FootCandidate lowest_best_foot(const Mask& object, const EstimatedObject& o, int
     for (int j = 0; j < int(runs.first.size()); ++j)
         if (runs.first[std::size_t(j)] <= runs.last[std::size_t(j)]) bottom = std::max(bottom, runs.y0 + j);
     for (double fy = o.center_y + (dx == 0 ? 1 : 0); fy <= bottom + 1; fy += 1) {
-        FootCandidate t = fit_at(object, o, c + dx, o.center_x + dx, fy, top, widest, height);
+        FootCandidate t = fit_at(object, o, runs, o.center_x + dx, fy, top, widest, height);
         if (t.covered > best.covered) best = std::move(t);
     }
     return best;
@@ -279,7 +280,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     // least 2 % more of them. The footprint's column then came from the
     // equator's lines too, so the axis may also move sideways, up to
     // `axis_shift` columns, where that covers more.
-    const FootCandidate at_footprint = fit_at(object, o, c, o.center_x, o.center_y, top, widest, height);
+    const FootCandidate at_footprint = fit_at(object, o, runs, o.center_x, o.center_y, top, widest, height);
     FootCandidate best = lowest_best_foot(object, o, c, 0, top, widest, height, at_footprint);
     // A pixel row's worth of gain is an outline's rounding, not a better foot.
     const long rounding = object.count() / 50;
