@@ -125,13 +125,52 @@ std::vector<double> fit_discs(const RunsThrough& runs, double fx, double fy, int
     return radius;
 }
 
-// How many of the object's pixels the discs' ellipses cover.
-long covered(const Mask& object, const EstimatedObject& o) {
-    const Mask drawn = solid_silhouette({o}, object.x0 + object.width, object.y0 + object.height);
+// The object's pixels, and per row how many of them lie left of each column,
+// so that a row's count between two columns is two reads.
+struct ObjectPixels {
+    const Mask& mask;
+    std::vector<int> before;  // per row, width + 1 counts
+
+    explicit ObjectPixels(const Mask& m) : mask(m), before(std::size_t(m.height) * std::size_t(m.width + 1), 0) {
+        for (int j = 0; j < m.height; ++j) {
+            int* row = &before[std::size_t(j) * std::size_t(m.width + 1)];
+            for (int i = 0; i < m.width; ++i) row[i + 1] = row[i] + (m.bits[std::size_t(j) * m.width + i] != 0);
+        }
+    }
+    // The object's pixels of row y in columns [x0, x1].
+    long in_row(int y, int x0, int x1) const {
+        const int j = y - mask.y0;
+        if (j < 0 || j >= mask.height) return 0;
+        x0 = std::max(x0 - mask.x0, 0), x1 = std::min(x1 - mask.x0, mask.width - 1);
+        if (x0 > x1) return 0;
+        const int* row = &before[std::size_t(j) * std::size_t(mask.width + 1)];
+        return row[x1 + 1] - row[x0];
+    }
+};
+
+// How many of the object's pixels the discs' ellipses cover (the pixels
+// solid_silhouette draws there). The discs share their axis, so on a row
+// their runs are nested: the widest disc's run is the union of them all.
+long covered(const ObjectPixels& object, const EstimatedObject& o) {
+    const Mask& m = object.mask;
+    std::vector<double> widest(std::size_t(m.height), -1);  // per row: the widest run's half-width
+    for (std::size_t z = 0; z < o.radius.size(); ++z) {
+        const double r = o.radius[z], a = r * sqrt2, b = r / sqrt2, yc = o.center_y - (double(z) + 0.5);
+        if (r <= 0) continue;
+        for (int y = std::max(int(std::floor(yc - b)), m.y0); y <= std::min(int(std::ceil(yc + b)), m.y0 + m.height - 1); ++y) {
+            const double v = (y + 0.5 - yc) / b;
+            if (v * v > 1) continue;
+            double& w = widest[std::size_t(y - m.y0)];
+            w = std::max(w, a * std::sqrt(1 - v * v));
+        }
+    }
     long n = 0;
-    for (int j = 0; j < object.height; ++j)
-        for (int i = 0; i < object.width; ++i)
-            n += object.bits[std::size_t(j) * object.width + i] && drawn.get(object.x0 + i, object.y0 + j);
+    for (int j = 0; j < m.height; ++j) {
+        const double hw = widest[std::size_t(j)];
+        if (hw < 0 || m.y0 + j < 0) continue;  // solid_silhouette draws no row above 0
+        const int x0 = std::max(int(std::ceil(o.center_x - hw - 0.5)), 0);
+        n += object.in_row(m.y0 + j, x0, int(std::floor(o.center_x + hw - 0.5)));
+    }
     return n;
 }
 
@@ -158,7 +197,7 @@ struct FootCandidate {
 };
 
 // `runs`: the object's runs through the axis's column.
-FootCandidate fit_at(const Mask& object, const EstimatedObject& o, const RunsThrough& runs, double fx, double fy,
+FootCandidate fit_at(const ObjectPixels& object, const EstimatedObject& o, const RunsThrough& runs, double fx, double fy,
                      int top, double widest, int height) {
     FootCandidate f{o, 0};
     f.object.center_x = fx;
@@ -171,9 +210,9 @@ FootCandidate fit_at(const Mask& object, const EstimatedObject& o, const RunsThr
 // The best of `best` and the feet in column (footprint column + dx), from the
 // footprint's row (the row below it in the footprint's own column) down to
 // the object's lowest row there: the one covering most, the first among equals.
-FootCandidate lowest_best_foot(const Mask& object, const EstimatedObject& o, int c, int dx, int top, double widest,
-                               int height, FootCandidate best) {
-    const RunsThrough runs = runs_through(object, c + dx);
+FootCandidate lowest_best_foot(const ObjectPixels& object, const EstimatedObject& o, int c, int dx, int top,
+                               double widest, int height, FootCandidate best) {
+    const RunsThrough runs = runs_through(object.mask, c + dx);
     int bottom = int(std::floor(o.center_y));
     for (int j = 0; j < int(runs.first.size()); ++j)
         if (runs.first[std::size_t(j)] <= runs.last[std::size_t(j)]) bottom = std::max(bottom, runs.y0 + j);
@@ -280,15 +319,16 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     // least 2 % more of them. The footprint's column then came from the
     // equator's lines too, so the axis may also move sideways, up to
     // `axis_shift` columns, where that covers more.
-    const FootCandidate at_footprint = fit_at(object, o, runs, o.center_x, o.center_y, top, widest, height);
-    FootCandidate best = lowest_best_foot(object, o, c, 0, top, widest, height, at_footprint);
+    const ObjectPixels pixels(object);
+    const FootCandidate at_footprint = fit_at(pixels, o, runs, o.center_x, o.center_y, top, widest, height);
+    FootCandidate best = lowest_best_foot(pixels, o, c, 0, top, widest, height, at_footprint);
     // A pixel row's worth of gain is an outline's rounding, not a better foot.
     const long rounding = object.count() / 50;
     if (best.covered <= at_footprint.covered + rounding) {
         best = at_footprint;
     } else {
         for (int shift = 1; shift <= axis_shift; ++shift)
-            for (int dx : {-shift, shift}) best = lowest_best_foot(object, o, c, dx, top, widest, height, best);
+            for (int dx : {-shift, shift}) best = lowest_best_foot(pixels, o, c, dx, top, widest, height, best);
     }
     EstimatedObject moved = std::move(best.object);
     moved.rect.x += int(std::lround(moved.center_x - o.center_x));  // the footprint, moved with the foot
