@@ -194,6 +194,19 @@ void register_occluder_map() {
         st.counters["ns_per_pixel"] = benchmark::Counter(double(region.w) * region.h,
                                                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     })->Unit(benchmark::kMillisecond);
+    // The same map rebuilt in the storage it holds, as the frame does when a
+    // parameter changes and the camera stays.
+    benchmark::RegisterBenchmark("occluders/rebuild/solids/default", [region](benchmark::State& st) {
+        const World& w = bench::world("default", 24);
+        SolidsCache cache;
+        OccluderMap m = build_occluders(w, p, region, &cache);
+        for (auto _ : st) {
+            rebuild_occluders(m, w, p, region, &cache);
+            benchmark::DoNotOptimize(m.flags.data());
+        }
+        st.counters["ns_per_pixel"] = benchmark::Counter(double(region.w) * region.h,
+                                                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    })->Unit(benchmark::kMillisecond);
     // A pan past the obstacle region's margin, in a view's region: the
     // update (the 256-px strip that came in, the rest copied, the index
     // whole) against building that region whole.

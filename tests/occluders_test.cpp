@@ -533,6 +533,34 @@ TEST(Occluders, anUpdatedMapIsTheMapBuiltWhole) {
     }
 }
 
+// A map rebuilt in the storage of another (what the frame does when a
+// parameter changes) is the map built fresh: from a map of other parameters
+// (another Δy, shapes) over the same region, a larger one and a smaller one,
+// and from the footprints' map, which holds no spans.
+TEST(Occluders, aRebuiltMapIsTheMapBuiltFresh) {
+    Scene s;
+    s.width = s.height = 10;
+    s.params.occluders = Occluders::solids;
+    const World w = make_world(test::default_tileset(), s);
+    const Rect b = w.placed.bounds;
+    const Rect inner{b.x + 60, b.y + 40, b.w / 2, b.h / 2};
+    Params other = s.params;
+    other.delta_y = 9;
+    Params shapes = s.params;
+    shapes.occluders = Occluders::shapes;
+    Params footprints = s.params;
+    footprints.occluders = Occluders::footprints;
+    for (const auto& [from_params, from_region, to_region, what] :
+         {std::tuple{other, b, b, "another delta_y, the same region"}, {shapes, b, b, "from shapes"},
+          {other, b, inner, "a smaller region"}, {other, inner, b, "a larger region"},
+          {footprints, b, b, "from footprints"}}) {
+        OccluderMap m = build_occluders(w, from_params, from_region);
+        ASSERT_FALSE(from_params.occluders != Occluders::footprints && m.shown.empty());
+        rebuild_occluders(m, w, s.params, to_region);
+        expect_same_map(m, build_occluders(w, s.params, to_region), what);
+    }
+}
+
 // The app's frame, panning across a map wider than its obstacle region's
 // margin: the obstacle map, the ground lines and (with solids) the occluder
 // map it keeps are the ones built whole for its region, and its light the

@@ -264,7 +264,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     // Beyond the paper: solids with height stop the rays (occluders.hpp).
     if (p.occluders == Occluders::footprints) st.occluders = OccluderMap{};
     else if (pan && st.occluders.rect == old_region) update_occluders(st.occluders, world, p, region, Rect{}, &c.solids);
-    else st.occluders = build_occluders(world, p, region, &c.solids);
+    else rebuild_occluders(st.occluders, world, p, region, &c.solids);
     if (pan && c.ground.exact && c.ground.rect == old_region) pan_ground_lines(c.ground, world.placed, st.opacity, region);
     else c.ground = ground_lines(world.placed, st.opacity, region);
     st.obstacles_revision = next_obstacles_revision();

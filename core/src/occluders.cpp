@@ -360,22 +360,21 @@ int occluder_reach(const Tileset& ts) {
 
 namespace {
 
-// The spans and the surface of `region`, without the index: each pixel's
-// values depend only on the sprites near it, so the map of a part of a
-// region equals that part of the region's map.
-OccluderMap occluders_without_index(const World& world, const Params& p, Rect region, SolidsCache* cache) {
-    OccluderMap m;
+// `m` made the spans and the surface of `region`, without the index, in the
+// storage it has: each pixel's values depend only on the sprites near it, so
+// the map of a part of a region equals that part of the region's map.
+void fill_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, SolidsCache* cache) {
     m.rect = region;
     const std::size_t n = std::size_t(std::max(0, region.w)) * std::max(0, region.h);
     m.spans.assign(n, Spans{});
     if (region.empty() || p.occluders == Occluders::footprints) {
-        m.surface = build_surface(world, region, p.opacity_threshold);
-        return m;
+        build_surface_into(m.surface, world, region, p.opacity_threshold);
+        return;
     }
     if (p.occluders == Occluders::shapes) {
         fill_shapes(m, world, region);
-        m.surface = build_surface(world, region, p.opacity_threshold);
-        return m;
+        build_surface_into(m.surface, world, region, p.opacity_threshold);
+        return;
     }
     // The sprites whose solids stand over the region: a solid's ground lies
     // up to occluder_reach below its sprite.
@@ -384,8 +383,7 @@ OccluderMap occluders_without_index(const World& world, const Params& p, Rect re
     std::vector<std::vector<float>> heights(world.tileset.sprites.size());
     SolidsCache own;
     fill_estimated(m, world, p, near, cache ? *cache : own, heights);
-    m.surface = build_surface(world, region, p.opacity_threshold, &heights);
-    return m;
+    build_surface_into(m.surface, world, region, p.opacity_threshold, &heights);
 }
 
 // Copies `from`'s spans and surface inside `r` (in both maps) into `to`.
@@ -402,9 +400,14 @@ void copy_part(OccluderMap& to, const OccluderMap& from, Rect r) {
 }  // namespace
 
 OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache) {
-    OccluderMap m = occluders_without_index(world, p, region, cache);
-    index_occluders(m);
+    OccluderMap m;
+    rebuild_occluders(m, world, p, region, cache);
     return m;
+}
+
+void rebuild_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, SolidsCache* cache) {
+    fill_occluders(m, world, p, region, cache);
+    index_occluders(m);
 }
 
 void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, Rect changed, SolidsCache* cache) {
@@ -412,7 +415,7 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
     // The manifest's shapes may stand anywhere around their sprites: no
     // bound says which sprites reach a part, so shapes are built whole.
     if (p.occluders == Occluders::shapes || keep.empty() || region.empty() || m.flags.size() != m.spans.size()) {
-        m = build_occluders(world, p, region, cache);
+        rebuild_occluders(m, world, p, region, cache);
         return;
     }
     // The kept pixels' spans, surface and has_span flags hold where they are
@@ -426,7 +429,9 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
     std::vector<Rect> parts = outside(region, keep);
     if (const Rect c = intersect(changed, region); !c.empty()) parts.push_back(c);
     for (Rect r : parts) {
-        copy_part(m, occluders_without_index(world, p, r, cache), r);
+        OccluderMap part;
+        fill_occluders(part, world, p, r, cache);
+        copy_part(m, part, r);
         flag_spans(m, r);
     }
     index_shown(m);

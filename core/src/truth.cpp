@@ -64,10 +64,16 @@ double light_height(const Light& l, const Params& p) { return l.height.value_or(
 Surface build_surface(const World& world, Rect rect, double opacity_threshold,
                       const std::vector<std::vector<float>>* heights) {
     Surface s;
+    build_surface_into(s, world, rect, opacity_threshold, heights);
+    return s;
+}
+
+void build_surface_into(Surface& s, const World& world, Rect rect, double opacity_threshold,
+                        const std::vector<std::vector<float>>* heights) {
     s.rect = rect;
     s.instance.assign(std::size_t(std::max(0, rect.w)) * std::max(0, rect.h), -1);
     s.height.assign(s.instance.size(), 0.0f);
-    if (rect.empty()) return s;
+    if (rect.empty()) return;
     std::vector<Mask> opacity(world.tileset.sprites.size());
     std::vector<char> made(opacity.size(), 0);
     std::vector<std::uint32_t> near;
@@ -99,7 +105,6 @@ Surface build_surface(const World& world, Rect rect, double opacity_threshold,
                 }
             }
     }
-    return s;
 }
 
 WorldSolids world_solids(const World& world, Rect region) {

@@ -113,6 +113,13 @@ struct SolidsCache {
 // sprite when an overlay has none).
 OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache = nullptr);
 
+// Makes `m` build_occluders(world, p, region, cache) in the storage it holds:
+// a map rebuilt over a region no larger (a parameter changed, the camera
+// still) touches no new memory, where a fresh one faults in every page of
+// its 30-odd bytes a pixel.
+void rebuild_occluders(OccluderMap& m, const World& world, const Params& p, Rect region,
+                       SolidsCache* cache = nullptr);
+
 // Makes `m` (built with the same parameters) the occluder map of `region`,
 // keeping what it holds there: only the parts of `region` that `m` did not
 // cover, and `changed` (where the world changed since: the sprites edited,

@@ -36,6 +36,10 @@ struct Surface {
 // pixels, in place of its height map or shape (an estimate's).
 Surface build_surface(const World& world, Rect rect, double opacity_threshold,
                       const std::vector<std::vector<float>>* heights = nullptr);
+// The same into `s`, reusing its storage (a map rebuilt over the same
+// region touches no new memory).
+void build_surface_into(Surface& s, const World& world, Rect rect, double opacity_threshold,
+                        const std::vector<std::vector<float>>* heights = nullptr);
 
 // The overlay solids whose sprites meet `region`, in the world's ground frame
 // (each sprite's shape moved to its anchor). Throws Error naming the tileset
