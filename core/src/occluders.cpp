@@ -52,11 +52,12 @@ constexpr double sqrt2 = 1.4142135623730951;
 // hold that solid's span at about its height.
 constexpr int own_steps = 2;
 
-// Widens the span at ground pixel i to hold [lo, hi).
+// Widens the span at ground pixel i to hold [lo, hi), and flags it.
 void fill(OccluderMap& m, std::size_t i, double lo, double hi) {
     lo = std::max(0.0, lo);
     if (hi <= lo) return;
     m.spans[i].add(float(lo), float(hi));
+    m.flags[i] = OccluderMap::has_span;
 }
 
 // The heights the solid fills on the vertical line through ground point (X, Y).
@@ -360,13 +361,14 @@ int occluder_reach(const Tileset& ts) {
 
 namespace {
 
-// `m` made the spans and the surface of `region`, without the index, in the
-// storage it has: each pixel's values depend only on the sprites near it, so
+// `m` made the spans, their has_span flags and the surface of `region`,
+// without the index, in the storage it has: each pixel's values depend only on the sprites near it, so
 // the map of a part of a region equals that part of the region's map.
 void fill_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, SolidsCache* cache) {
     m.rect = region;
     const std::size_t n = std::size_t(std::max(0, region.w)) * std::max(0, region.h);
     m.spans.assign(n, Spans{});
+    m.flags.assign(n, 0);  // has_span set where a span is filled in
     if (region.empty() || p.occluders == Occluders::footprints) {
         build_surface_into(m.surface, world, region, p.opacity_threshold);
         return;
@@ -386,12 +388,13 @@ void fill_occluders(OccluderMap& m, const World& world, const Params& p, Rect re
     build_surface_into(m.surface, world, region, p.opacity_threshold, &heights);
 }
 
-// Copies `from`'s spans and surface inside `r` (in both maps) into `to`.
+// Copies `from`'s spans, their flags and surface inside `r` (in both maps) into `to`.
 void copy_part(OccluderMap& to, const OccluderMap& from, Rect r) {
     for (int y = r.y; y < r.y + r.h; ++y) {
         const std::size_t i = std::size_t(y - to.rect.y) * to.rect.w + std::size_t(r.x - to.rect.x);
         const std::size_t j = std::size_t(y - from.rect.y) * from.rect.w + std::size_t(r.x - from.rect.x);
         std::copy_n(&from.spans[j], r.w, &to.spans[i]);
+        std::copy_n(&from.flags[j], r.w, &to.flags[i]);
         std::copy_n(&from.surface.instance[j], r.w, &to.surface.instance[i]);
         std::copy_n(&from.surface.height[j], r.w, &to.surface.height[i]);
     }
@@ -407,7 +410,7 @@ OccluderMap build_occluders(const World& world, const Params& p, Rect region, So
 
 void rebuild_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, SolidsCache* cache) {
     fill_occluders(m, world, p, region, cache);
-    index_occluders(m);
+    index_shown(m);
 }
 
 void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, Rect changed, SolidsCache* cache) {
@@ -432,7 +435,6 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
         OccluderMap part;
         fill_occluders(part, world, p, r, cache);
         copy_part(m, part, r);
-        flag_spans(m, r);
     }
     index_shown(m);
 }
