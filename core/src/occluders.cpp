@@ -219,39 +219,44 @@ void flag_spans(OccluderMap& m, Rect part) {
 void index_shown(OccluderMap& m) {
     const Surface& s = m.surface;
     const std::size_t n = s.instance.size();
-    if (n >= std::numeric_limits<std::uint32_t>::max())
+    if (n >= std::numeric_limits<std::uint32_t>::max() - 1)
         throw Error("occluders: the region of " + std::to_string(n) + " pixels is too large to trace against solids");
     const std::size_t w = std::size_t(std::max(0, s.rect.w)), h = std::size_t(std::max(0, s.rect.h));
     for (std::uint8_t& f : m.flags) f &= OccluderMap::has_span;
     // Each sprite pixel of row y shows a point `rows` high over ground pixel
-    // i + rows * w; `visit` gets those whose ground pixel lies in the map.
-    auto each_point = [&](auto&& visit) {
-        for (std::size_t y = 0; y < h; ++y)
-            for (std::size_t i = y * w; i < (y + 1) * w; ++i) {
-                if (s.instance[i] < 0) continue;
-                const std::uint32_t rows = std::uint32_t(rows_above(s.height[i]));
-                if (y + rows < h) visit(i, i + rows * w, rows);
-            }
+    // i + rows * w: listed, in the map's order, where that ground pixel lies
+    // in the map. (Most pixels are ground: one pass over the surface, then
+    // the list.)
+    struct Point {
+        std::uint32_t ground;
+        OccluderMap::Shown shown;
     };
-    // A counting sort of the sprite pixels by ground pixel: counts into
-    // shown_start[g + 1], their running sums, then each point placed at its
-    // ground pixel's cursor shown_start[g]; the cursors end one ground pixel
-    // on, so the starts are the array moved up by one.
-    m.shown_start.assign(n + 1, 0);
+    thread_local std::vector<Point> points;
+    points.clear();
+    // A counting sort of the points by ground pixel: counts into
+    // shown_start[g + 2], their running sums (shown_start[g + 1] is then
+    // where g's points start), each point placed at its ground pixel's cursor
+    // shown_start[g + 1], which ends where g + 1's start: the starts, with
+    // one last entry to drop.
+    std::vector<std::uint32_t>& start = m.shown_start;
+    start.assign(n + 2, 0);
     std::uint32_t tallest = 0;
-    each_point([&](std::size_t, std::size_t g, std::uint32_t rows) {
-        ++m.shown_start[g + 1];
-        m.flags[g] |= OccluderMap::has_shown;
-        tallest = std::max(tallest, rows);
-    });
+    for (std::size_t y = 0; y < h; ++y)
+        for (std::size_t i = y * w; i < (y + 1) * w; ++i) {
+            if (s.instance[i] < 0) continue;
+            const std::uint32_t rows = std::uint32_t(rows_above(s.height[i]));
+            if (y + rows >= h) continue;
+            const std::size_t g = i + rows * w;
+            points.push_back({std::uint32_t(g), {std::max(s.height[i], 0.f), rows}});
+            ++start[g + 2];
+            m.flags[g] |= OccluderMap::has_shown;
+            tallest = std::max(tallest, rows);
+        }
     m.tallest = int(tallest);
-    for (std::size_t i = 0; i < n; ++i) m.shown_start[i + 1] += m.shown_start[i];
-    m.shown.resize(m.shown_start[n]);
-    each_point([&](std::size_t i, std::size_t g, std::uint32_t rows) {
-        m.shown[m.shown_start[g]++] = {std::max(s.height[i], 0.f), rows};
-    });
-    std::memmove(&m.shown_start[1], &m.shown_start[0], n * sizeof(std::uint32_t));
-    m.shown_start[0] = 0;
+    for (std::size_t i = 1; i < n + 2; ++i) start[i] += start[i - 1];
+    m.shown.resize(points.size());
+    for (const Point& p : points) m.shown[start[p.ground + 1]++] = p.shown;
+    start.pop_back();
 }
 
 }  // namespace
