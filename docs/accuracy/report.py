@@ -113,7 +113,10 @@ out("# Accuracy against time",
     f"medians of 3 runs per frame on one thread of {machine()} (Debian 12, GCC 12, Release), with their",
     "min-max spread in the CSVs and charts; *app CPU* is what the editor runs on the CPU (obstacle map, trace,",
     "opacity correction), *CPU only* what the CPU renderer adds and the app's GPU does instead (blur, shift,",
-    "composite). The machine is shared, so times measured one setting after another swing between runs: read",
+    "composite). A time per frame is the mean over the 8: the first frame also builds the obstacle map (with",
+    "`occluders` `solids` or `shapes`, the occluder map too, and with `solids` estimates each sprite's solids), an",
+    "eighth of which each figure holds; the others trace what moved and reuse the rest. The machine is",
+    "shared, so times measured one setting after another swing between runs: read",
     f"the app CPU column and the spread, not single lighting figures ({largest_stage()}).",
     "")
 
