@@ -367,8 +367,9 @@ int occluder_reach(const Tileset& ts) {
 namespace {
 
 // `m` made the spans, their has_span flags and the surface of `region`,
-// without the index, in the storage it has: each pixel's values depend only on the sprites near it, so
-// the map of a part of a region equals that part of the region's map.
+// without the index, in the storage it has: each pixel's values depend only
+// on the sprites near it, so the map of a part of a region equals that part
+// of the region's map.
 void fill_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, SolidsCache* cache) {
     m.rect = region;
     const std::size_t n = std::size_t(std::max(0, region.w)) * std::max(0, region.h);

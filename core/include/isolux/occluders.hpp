@@ -134,8 +134,9 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
 int occluder_reach(const Tileset& tileset);
 
 // Fills `m.shown` from its surface and `m.flags` from its spans and surface
-// (build_occluders does; a map made by hand calls it once its spans and
-// surface are set). Error when the region has 2^32 pixels or more.
+// (build_occluders does the same, flagging spans as it fills them; a map
+// made by hand calls it once its spans and surface are set). Error when the
+// region has 2^32 - 2 pixels or more.
 void index_occluders(OccluderMap& m);
 
 // One light at (cx, cy), half-extents a, b, at `height` above the ground,
