@@ -244,7 +244,7 @@ void index_shown(OccluderMap& m) {
     for (std::size_t y = 0; y < h; ++y)
         for (std::size_t i = y * w; i < (y + 1) * w; ++i) {
             if (s.instance[i] < 0) continue;
-            const std::uint32_t rows = std::uint32_t(rows_above(s.height[i]));
+            const std::uint32_t rows = std::uint32_t(rows_above(std::max(s.height[i], 0.f)));
             if (y + rows >= h) continue;
             const std::size_t g = i + rows * w;
             points.push_back({std::uint32_t(g), {std::max(s.height[i], 0.f), rows}});
@@ -268,34 +268,6 @@ void index_occluders(OccluderMap& m) {
 }
 
 namespace {
-
-// The descents u = (H - z) / s (per step of a ray) that the spans a ray has
-// passed block, as disjoint intervals (from, to], sorted: a segment from the
-// light down to a point h high d steps out descends (H - h) / d per step, and
-// a span [lo, hi) s steps out blocks it when lo <= H - u s < hi.
-class BlockedDescents {
-public:
-    void clear() { iv_.clear(); }
-    void add(double from, double to) {
-        auto it = std::lower_bound(iv_.begin(), iv_.end(), from, [](const Iv& v, double x) { return v.to < x; });
-        auto end = it;
-        while (end != iv_.end() && end->from <= to) {
-            from = std::min(from, end->from);
-            to = std::max(to, end->to);
-            ++end;
-        }
-        it = iv_.erase(it, end);
-        iv_.insert(it, Iv{from, to});
-    }
-    bool blocks(double u) const {
-        auto it = std::lower_bound(iv_.begin(), iv_.end(), u, [](const Iv& v, double x) { return v.to < x; });
-        return it != iv_.end() && it->from < u;
-    }
-
-private:
-    struct Iv { double from, to; };
-    std::vector<Iv> iv_;
-};
 
 // Walks the Bresenham ray from (cx, cy) to (tx, ty), calling
 // body(i, x, y, g, v) at each step: g the step's index in `grid` (-1 off
@@ -583,22 +555,12 @@ void sprite_points_by_rays(LightMask& m, const OccluderMap& occ, double height, 
     // own_steps before (the last steps hold the point's own solid at about
     // its height), then the points over this step's ground pixel.
     const std::vector<std::uint8_t> table = falloff_table(m.a, m.b, p.falloff_scale);
-    BlockedDescents blocked;
     std::array<Spans, own_steps + 1> passed{};  // the spans of the last steps
-    const double inf = std::numeric_limits<double>::infinity();
     auto sprite_ray = [&](std::int64_t tx, std::int64_t ty) {
-        blocked.clear();
+        RayShadow blocked;
         walk_ray(cx, cy, tx, ty, occ.rect, m.clip, [&](std::int64_t i, std::int64_t x, std::int64_t y, std::ptrdiff_t g, std::ptrdiff_t) {
             const std::int64_t s = i - own_steps;
-            if (s >= 0)
-                for (const Span& sp : {passed[std::size_t(s) % passed.size()].lower, passed[std::size_t(s) % passed.size()].upper}) {
-                    if (!sp.any()) continue;
-                    if (s == 0) {  // the light's own pixel: a light inside a solid is hidden from all
-                        if (sp.low <= H && H < sp.high) blocked.add(-inf, inf);
-                    } else {
-                        blocked.add((H - sp.high) / double(s), (H - sp.low) / double(s));
-                    }
-                }
+            if (s >= 0) blocked.pass(passed[std::size_t(s) % passed.size()], int(s), H);
             const std::uint8_t f = g >= 0 ? occ.flags[std::size_t(g)] : 0;
             passed[std::size_t(i) % passed.size()] = f & OccluderMap::has_span ? occ.spans[std::size_t(g)] : Spans{};
             if (!(f & OccluderMap::has_shown)) return;

@@ -309,125 +309,69 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     std::uint8_t* value = m.value.data();
     const std::uint32_t W = std::uint32_t(rays.w);
     const std::uint32_t first_row = std::uint32_t(occ.tallest), last_row = first_row + std::uint32_t(2 * m.b);
+    const double top = occ.tallest + 0.5;  // no point stands higher
+    constexpr std::uint32_t depth_mask = (1u << depth_bits) - 1;
     // The sprite pixels standing over ground pixel o of the rays' area (its
-    // map index g), lit unless `blocked(u)` for the descent u of the segment
-    // down to them; those in the light's area only.
-    auto light_shown = [&](std::uint32_t o, std::uint32_t k, auto&& blocked) {
+    // map index g), lit unless the ray's shadow blocks the descent down to
+    // them; those in the light's area only. Several rays reach a pixel: any
+    // one lights it.
+    auto light_shown = [&](std::uint32_t o, std::uint32_t k, const RayShadow* r) {
         const std::size_t g = in.map(o);
-        const std::uint32_t r = in.row(o), c = o - r * W;
+        const std::uint32_t row = in.row(o), c = o - row * W;
         for (std::uint32_t e = occ.shown_start[g]; e < occ.shown_start[g + 1]; ++e) {
-            const double h = occ.shown[e].height;
             const std::uint32_t rows = occ.shown[e].rows;
-            if (rows > r || r - rows < first_row || r - rows > last_row) continue;  // outside the light's area
-            std::uint8_t& v = value[(r - rows - first_row) * W + c];
+            if (rows > row || row - rows < first_row || row - rows > last_row) continue;  // outside the light's area
+            std::uint8_t& v = value[(row - rows - first_row) * W + c];
             if (v) continue;
-            const double u = k > 0 ? (H - h) / double(k) : 0;
-            if (int(k) <= own_steps || !blocked(u))
-                v = table[std::size_t(std::max(std::abs(int(c) - m.a), std::abs(int(r) - int(rows) - b)))];
+            if (int(k) <= own_steps || !r->blocks((H - occ.shown[e].height) / double(k)))
+                v = table[std::size_t(std::max(std::abs(int(c) - m.a), std::abs(int(row) - int(rows) - b)))];
         }
     };
-    // Below a span: per depth on the current path, the node's span; and the
-    // descents the spans passed block, one set changed in place down a chain
-    // of single children and saved at each branch (a node with two or more
-    // children), restored when the walk comes back to take its next child.
-    // A tree has about as many branches as rays, far fewer than nodes.
+    // Below a span: per depth on the current path, the node's spans and
+    // the ray's shadow after it (a node's parent is the last node walked
+    // one depth up, so the path's shadows need no stack): shadow[k + 1]
+    // after the node at depth k, the parent's own unless a span passed there.
     const int depths = std::max(m.a, b) + 1;
-    // A span standing on the ground (low <= 0) s steps out blocks the
-    // descents ((H - high) / s, (H - low) / s], and every point's descent
-    // (H - h) / d, h >= 0, d > s, lies at or below the top of it: such spans
-    // together block every descent above the least of their lower ends.
-    // The others (crowns over the ground) keep their intervals.
-    struct Blocked {
-        double standing = inf;  // every descent above it is blocked
-        std::vector<std::pair<double, double>> iv;  // disjoint (from, to], sorted: the union of the others
-        void clear() {
-            standing = inf;
-            iv.clear();
-        }
-        void add(double from, double to) {
-            auto it = std::lower_bound(iv.begin(), iv.end(), from, [](const auto& v, double x) { return v.second < x; });
-            if (it == iv.end() || to < it->first) {  // apart from all: no merge
-                iv.insert(it, {from, to});
-                return;
-            }
-            auto end = it;
-            while (end != iv.end() && end->first <= to) {
-                from = std::min(from, end->first);
-                to = std::max(to, end->second);
-                ++end;
-            }
-            *it = {from, to};
-            iv.erase(it + 1, end);
-        }
-        bool blocks(double u) const {
-            if (u > standing) return true;
-            auto it = std::lower_bound(iv.begin(), iv.end(), u, [](const auto& v, double x) { return v.second < x; });
-            return it != iv.end() && it->first < u;
-        }
-    };
-    struct Branch {
-        std::int32_t end;  // the branch's subtree ends there
-        Blocked saved;     // the set after the branch node
-    };
-    thread_local std::vector<Branch> branches;  // a stack: the current path's branch nodes
-    thread_local Blocked blocked;
     thread_local std::vector<const Spans*> span;  // none: nullptr
-    thread_local std::vector<std::int32_t> next_shown;  // per node: the first node from it with points
+    thread_local std::vector<RayShadow> changed;  // changed[k + 1]: the shadow after a span passed at depth k
+    thread_local std::vector<const RayShadow*> shadow;
     span.assign(std::size_t(depths), nullptr);
-    next_shown.resize(std::size_t(n) + 1);
+    changed.resize(std::size_t(depths) + 1);
+    shadow.resize(std::size_t(depths) + 1);
+    const RayShadow clear;
     for (std::int32_t i = 0; i < n;) {
+        // Before any span on its rays a node lights every point over it.
         i = walk_clear(node, i, n, flags, OccluderMap::has_shown,
-                       [&](std::uint32_t o, std::uint32_t k) { light_shown(o, k, [](double) { return false; }); });
+                       [&](std::uint32_t o, std::uint32_t k) { light_shown(o, k, &clear); });
         if (i >= n) break;
         // Node i holds a span and no node before it on its rays does.
         const std::int32_t last = node[i].end;
-        const int first = int(node[i].at_depth & ((1u << depth_bits) - 1));
-        // A subtree with no points has nothing to light: what its spans
-        // block matters only within it, so the walk skips it whole.
-        next_shown[std::size_t(last)] = last;
-        for (std::int32_t j = last - 1; j >= i; --j)
-            next_shown[std::size_t(j)] = flags[node[j].at_depth >> depth_bits] & OccluderMap::has_shown ? j : next_shown[std::size_t(j) + 1];
-        if (next_shown[std::size_t(i)] >= last) {
-            i = last;
-            continue;
-        }
+        const int first = int(node[i].at_depth & depth_mask);
         for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = nullptr;
-        blocked.clear();
-        std::size_t top = 0;  // branches in use
-        int previous = first - 1;
+        shadow[std::size_t(first)] = &clear;
         for (; i < last; ++i) {
             ask_for_spans(occ, in, flags, node, i + spans_ahead, last);
             const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
-            const int k = int(w & ((1u << depth_bits) - 1));
-            if (k <= previous) {  // back up to the branch whose next child this is
-                while (branches[top - 1].end <= i) --top;
-                blocked = branches[top - 1].saved;
-            }
-            previous = k;
+            const int k = int(w & depth_mask);
             const std::uint8_t f = flags[o];
-            if ((f & moving_away) || next_shown[std::size_t(i)] >= node[i].end) {
+            if (f & moving_away) {
                 i = node[i].end - 1;
                 continue;
             }
             span[std::size_t(k)] = (f & OccluderMap::has_span) ? &occ.spans[in.map(o)] : nullptr;
+            const RayShadow* r = shadow[std::size_t(k)];
             const int s = k - own_steps;
-            if (s >= 0 && span[std::size_t(s)])
-                for (const Span& sp : {span[std::size_t(s)]->lower, span[std::size_t(s)]->upper}) {
-                    if (!sp.any() || (s == 0 && !(sp.low <= H && H < sp.high))) continue;
-                    if (s == 0)  // the light's own pixel: a light inside a solid is hidden from all
-                        blocked.standing = -inf;
-                    else if (sp.low <= 0)
-                        blocked.standing = std::min(blocked.standing, (H - sp.high) / double(s));
-                    else
-                        blocked.add((H - sp.high) / double(s), (H - sp.low) / double(s));
-                }
-            if (f & OccluderMap::has_shown) light_shown(o, std::uint32_t(k), [&](double u) { return blocked.blocks(u); });
-            if (node[i].end > i + 1 && node[i + 1].end < node[i].end) {  // a branch
-                if (branches.size() <= top) branches.emplace_back();
-                branches[top].end = node[i].end;
-                branches[top].saved = blocked;
-                ++top;
+            if (s >= 0 && span[std::size_t(s)]) {
+                changed[std::size_t(k) + 1].set(*r);
+                changed[std::size_t(k) + 1].pass(*span[std::size_t(s)], s, H);
+                r = &changed[std::size_t(k) + 1];
             }
+            shadow[std::size_t(k) + 1] = r;
+            if (f & OccluderMap::has_shown) light_shown(o, std::uint32_t(k), r);
+            // Hidden from here on, or the horizon past every point's top and
+            // only rising (a span as tall as the light): nothing below lit.
+            if (k >= own_steps && (r->hidden() || (r->standing <= 0 && H - double(k) * r->standing > top)))
+                i = node[i].end - 1;
         }
     }
 }

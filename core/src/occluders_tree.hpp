@@ -4,7 +4,10 @@
 // same bytes as the ray-by-ray passes (tests/occluders_test.cpp holds them
 // to it); those stay the reference and serve every case these do not.
 #pragma once
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "isolux/light_trace.hpp"
@@ -24,11 +27,101 @@ bool occluder_tree_serves(const OccluderMap& occ, Rect area, const Params& p);
 void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
                        const Params& p, Rect wanted);
 
+// What the spans a ray of the sprite pass has passed (all but its last
+// own_steps steps, which hold a point's own solid at about its height)
+// block: a segment from the light down to a point h high d steps out
+// descends u = (H - h) / d per step, and a span [lo, hi) s steps out blocks
+// it when lo <= H - u s < hi. The spans standing on the ground block every
+// descent above the least of their (H - hi) / s (the ray's horizon); each
+// crown over the ground the descents ((H - hi) / s, (H - lo) / s], kept as
+// up to `most` disjoint intervals (beyond, the two nearest join, blocking
+// their gap too: a bounded state, cheap to carry down the tree).
+struct RayShadow {
+    static constexpr double inf = std::numeric_limits<double>::infinity();
+    static constexpr int most = 16;  // crowns' blocked descents kept apart (more join the nearest two)
+    double standing = inf;          // every descent above it is blocked
+    int crowns = 0;
+    std::array<double, most> from{}, to{};  // disjoint (from, to], sorted
+
+    // The spans s steps out (s >= 0; s = 0 the light's own pixel: a light
+    // inside a solid is hidden from every point).
+    void pass(const Spans& sps, int s, double H) {
+        for (const Span& sp : {sps.lower, sps.upper}) {
+            if (!sp.any()) continue;
+            if (s == 0) {
+                if (sp.low <= H && H < sp.high) standing = -inf;
+            } else if (sp.low <= 0) {
+                standing = std::min(standing, (H - sp.high) / double(s));
+            } else {
+                add((H - sp.high) / double(s), (H - sp.low) / double(s));
+            }
+        }
+    }
+    bool hidden() const { return standing == -inf; }
+    // Copies `o`'s crowns in use alone (a ray rarely keeps more than a few).
+    void set(const RayShadow& o) {
+        standing = o.standing;
+        crowns = o.crowns;
+        for (int j = 0; j < crowns; ++j) from[std::size_t(j)] = o.from[std::size_t(j)], to[std::size_t(j)] = o.to[std::size_t(j)];
+    }
+    // Whether the segment descending u per step to a point is blocked.
+    bool blocks(double u) const {
+        if (u > standing) return true;
+        for (int j = 0; j < crowns; ++j)
+            if (from[std::size_t(j)] < u && u <= to[std::size_t(j)]) return true;
+        return false;
+    }
+
+private:
+    void add(double f, double t) {
+        int i = 0;
+        while (i < crowns && to[std::size_t(i)] < f) ++i;  // the first that ends at or after f
+        int j = i;
+        while (j < crowns && from[std::size_t(j)] <= t) {  // those it meets join it
+            f = std::min(f, from[std::size_t(j)]);
+            t = std::max(t, to[std::size_t(j)]);
+            ++j;
+        }
+        const int removed = j - i;  // [i, j) become one
+        if (removed == 0) {  // a new one: make room (crowns < most, or join the two nearest first)
+            if (crowns == most) {
+                // crowns + 1 intervals with the new one at i: join the
+                // neighbours with the least gap.
+                std::array<double, most + 1> fr{}, tt{};
+                for (int k = 0, m = 0; k <= most; ++k) {
+                    if (k == i) fr[std::size_t(k)] = f, tt[std::size_t(k)] = t;
+                    else fr[std::size_t(k)] = from[std::size_t(m)], tt[std::size_t(k)] = to[std::size_t(m)], ++m;
+                }
+                int best = 0;
+                for (int k = 1; k < most; ++k)
+                    if (fr[std::size_t(k + 1)] - tt[std::size_t(k)] < fr[std::size_t(best + 1)] - tt[std::size_t(best)]) best = k;
+                for (int k = 0, m = 0; k <= most; ++k) {
+                    if (k == best + 1) continue;
+                    from[std::size_t(m)] = fr[std::size_t(k)];
+                    to[std::size_t(m)] = k == best ? tt[std::size_t(k + 1)] : tt[std::size_t(k)];
+                    ++m;
+                }
+                return;
+            }
+            for (int k = crowns; k > i; --k) from[std::size_t(k)] = from[std::size_t(k - 1)], to[std::size_t(k)] = to[std::size_t(k - 1)];
+            ++crowns;
+        } else {  // the rest shift down
+            for (int k = j; k < crowns; ++k)
+                from[std::size_t(k - removed + 1)] = from[std::size_t(k)], to[std::size_t(k - removed + 1)] = to[std::size_t(k)];
+            crowns -= removed - 1;
+        }
+        from[std::size_t(i)] = f;
+        to[std::size_t(i)] = t;
+    }
+};
+
 // The sprite pass's rays (light_sprite_points, after its sprite pixels are
 // unlit) over the tree of its rays' area (the light's grown by occ.tallest
 // rows up and down, which the caller checks the tree serves), the mask's
 // clip the light's whole area; only the sprite pixels in `wanted` (within
-// the area) are sure to be lit: the walk skips what lights no other.
+// the area) are sure to be lit: the walk leaves the rays once they move
+// away from it, and a ray from where no point below can be lit (hidden, or
+// its horizon past every point's top behind a span as tall as the light).
 void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
                               const Params& p, int own_steps, Rect wanted);
 
