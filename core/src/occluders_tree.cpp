@@ -338,6 +338,8 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     span.assign(std::size_t(depths), nullptr);
     changed.resize(std::size_t(depths) + 1);
     shadow.resize(std::size_t(depths) + 1);
+    thread_local std::vector<std::int32_t> next_shown;  // per node: the first node from it with points
+    next_shown.resize(std::size_t(n) + 1);
     const RayShadow clear;
     for (std::int32_t i = 0; i < n;) {
         // Before any span on its rays a node lights every point over it.
@@ -347,6 +349,15 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
         // Node i holds a span and no node before it on its rays does.
         const std::int32_t last = node[i].end;
         const int first = int(node[i].at_depth & depth_mask);
+        // A subtree with no points has nothing to light: what its spans
+        // block matters only within it, so the walk skips it whole.
+        next_shown[std::size_t(last)] = last;
+        for (std::int32_t j = last - 1; j >= i; --j)
+            next_shown[std::size_t(j)] = flags[node[j].at_depth >> depth_bits] & OccluderMap::has_shown ? j : next_shown[std::size_t(j) + 1];
+        if (next_shown[std::size_t(i)] >= last) {
+            i = last;
+            continue;
+        }
         for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = nullptr;
         shadow[std::size_t(first)] = &clear;
         for (; i < last; ++i) {
@@ -354,7 +365,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
             const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
             const int k = int(w & depth_mask);
             const std::uint8_t f = flags[o];
-            if (f & moving_away) {
+            if ((f & moving_away) || next_shown[std::size_t(i)] >= node[i].end) {
                 i = node[i].end - 1;
                 continue;
             }
