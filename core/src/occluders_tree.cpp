@@ -25,7 +25,6 @@ namespace isolux {
 namespace {
 
 constexpr int max_extent = 512;  // as the paper's tracer: larger areas go ray by ray
-constexpr double inf = std::numeric_limits<double>::infinity();
 
 // A node as the walks read it: its area index (from the top-left) times 1024
 // plus its depth (< 1024), and the end of its subtree.
