@@ -244,10 +244,11 @@ void index_shown(OccluderMap& m) {
     for (std::size_t y = 0; y < h; ++y)
         for (std::size_t i = y * w; i < (y + 1) * w; ++i) {
             if (s.instance[i] < 0) continue;
-            const std::uint32_t rows = std::uint32_t(rows_above(std::max(s.height[i], 0.f)));
+            const float height = std::max(s.height[i], 0.f);  // one below the ground counts as on it
+            const std::uint32_t rows = std::uint32_t(rows_above(height));
             if (y + rows >= h) continue;
             const std::size_t g = i + rows * w;
-            points.push_back({std::uint32_t(g), {std::max(s.height[i], 0.f), rows}});
+            points.push_back({std::uint32_t(g), {height, rows}});
             ++start[g + 2];
             m.flags[g] |= OccluderMap::has_shown;
             tallest = std::max(tallest, rows);

@@ -41,7 +41,7 @@ struct RayShadow {
     static constexpr int most = 16;  // crowns' blocked descents kept apart (more join the nearest two)
     double standing = inf;          // every descent above it is blocked
     int crowns = 0;
-    std::array<double, most> from{}, to{};  // disjoint (from, to], sorted
+    std::array<double, most + 1> from{}, to{};  // disjoint (from, to], sorted (one spare while joining)
 
     // The spans s steps out (s >= 0; s = 0 the light's own pixel: a light
     // inside a solid is hidden from every point).
@@ -73,6 +73,7 @@ struct RayShadow {
     }
 
 private:
+    void move(int from_k, int to_k) { from[std::size_t(to_k)] = from[std::size_t(from_k)], to[std::size_t(to_k)] = to[std::size_t(from_k)]; }
     void add(double f, double t) {
         int i = 0;
         while (i < crowns && to[std::size_t(i)] < f) ++i;  // the first that ends at or after f
@@ -82,36 +83,23 @@ private:
             t = std::max(t, to[std::size_t(j)]);
             ++j;
         }
-        const int removed = j - i;  // [i, j) become one
-        if (removed == 0) {  // a new one: make room (crowns < most, or join the two nearest first)
-            if (crowns == most) {
-                // crowns + 1 intervals with the new one at i: join the
-                // neighbours with the least gap.
-                std::array<double, most + 1> fr{}, tt{};
-                for (int k = 0, m = 0; k <= most; ++k) {
-                    if (k == i) fr[std::size_t(k)] = f, tt[std::size_t(k)] = t;
-                    else fr[std::size_t(k)] = from[std::size_t(m)], tt[std::size_t(k)] = to[std::size_t(m)], ++m;
-                }
-                int best = 0;
-                for (int k = 1; k < most; ++k)
-                    if (fr[std::size_t(k + 1)] - tt[std::size_t(k)] < fr[std::size_t(best + 1)] - tt[std::size_t(best)]) best = k;
-                for (int k = 0, m = 0; k <= most; ++k) {
-                    if (k == best + 1) continue;
-                    from[std::size_t(m)] = fr[std::size_t(k)];
-                    to[std::size_t(m)] = k == best ? tt[std::size_t(k + 1)] : tt[std::size_t(k)];
-                    ++m;
-                }
-                return;
-            }
-            for (int k = crowns; k > i; --k) from[std::size_t(k)] = from[std::size_t(k - 1)], to[std::size_t(k)] = to[std::size_t(k - 1)];
-            ++crowns;
-        } else {  // the rest shift down
-            for (int k = j; k < crowns; ++k)
-                from[std::size_t(k - removed + 1)] = from[std::size_t(k)], to[std::size_t(k - removed + 1)] = to[std::size_t(k)];
-            crowns -= removed - 1;
-        }
+        // [i, j) become one interval at i: the rest move by 1 - (j - i).
+        const int shift = 1 - (j - i);
+        if (shift > 0)
+            for (int k = crowns - 1; k >= j; --k) move(k, k + shift);
+        else if (shift < 0)
+            for (int k = j; k < crowns; ++k) move(k, k + shift);
+        crowns += shift;
         from[std::size_t(i)] = f;
         to[std::size_t(i)] = t;
+        if (crowns <= most) return;
+        // One too many: the two with the least gap between them join.
+        int best = 0;
+        for (int k = 1; k + 1 < crowns; ++k)
+            if (from[std::size_t(k + 1)] - to[std::size_t(k)] < from[std::size_t(best + 1)] - to[std::size_t(best)]) best = k;
+        to[std::size_t(best)] = to[std::size_t(best + 1)];
+        for (int k = best + 2; k < crowns; ++k) move(k, k - 1);
+        --crowns;
     }
 };
 
