@@ -295,7 +295,9 @@ namespace {
 void expect_gpu_frames_are_cpu_frames(GpuTracer& tracer, const World& w, Scene s, FrameState& cpu, FrameState& gpu) {
     gpu.options.tracer = [&tracer](const Mask& ob, std::uint64_t rev, const OccluderMap* occ,
                                    const std::vector<LightMask*>& masks, const std::vector<double>& heights,
-                                   const Params& p) { return gpu_trace_frame(tracer, ob, rev, occ, masks, heights, p); };
+                                   const Params& p, bool sprite_points) {
+        return gpu_trace_frame(tracer, ob, rev, occ, masks, heights, p, sprite_points);
+    };
     for (long f = 0; f < 3; ++f) {
         s.lights[0].x += 9;
         const FrameReport rc = render_frame(cpu, w, s, Camera{}, f);
@@ -334,11 +336,12 @@ TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
 }
 
 // Beyond the paper: the ground pass against solids with height on the GPU
-// (shaders/trace_solids.comp) gives trace_light_solids's bytes, estimated
-// solids and the manifest's shapes, light and shadow modes, ray skips, every
-// pixel, light heights from the ground to above every solid, clipped views
-// and centres near and past the map's edge; and whole frames (the sprite
-// pass on the CPU) equal the CPU's.
+// (shaders/trace_solids.comp) gives trace_light_solids's bytes, and the
+// sprite pass after it (shaders/sprite_points.comp) light_sprite_points's:
+// estimated solids and the manifest's shapes, light and shadow modes, ray
+// skips, every pixel, light heights from the ground to above every solid,
+// clipped views and centres near and past the map's edge; and whole frames
+// equal the CPU's.
 TEST(Gl, theGpuTracesAgainstSolidsAsTheCpuDoes) {
     ASSERT_NE(gl().window, nullptr) << "no GL context (run under xvfb-run): " << gl().error;
     GpuTracer tracer;
@@ -346,7 +349,7 @@ TEST(Gl, theGpuTracesAgainstSolidsAsTheCpuDoes) {
     ASSERT_TRUE(gpu_tracer_init(tracer, error)) << error;
     const World& w = world();
     const Rect b = w.placed.bounds;
-    int compared = 0, lit_pixels = 0, shaded_pixels = 0;
+    int compared = 0, lit_pixels = 0, shaded_pixels = 0, sprites_lit = 0, sprites_shaded = 0;
     std::uint64_t revision = 1000;
     for (Occluders kind : {Occluders::solids, Occluders::shapes}) {
         Params base;
@@ -369,14 +372,25 @@ TEST(Gl, theGpuTracesAgainstSolidsAsTheCpuDoes) {
                 Rect clip{int(cx) - a, int(cy) - bb, 2 * a + 1, 2 * bb + 1};
                 if (variant == 3) clip = intersect(clip, {int(cx) - a / 3, int(cy) - bb, a, 2 * bb});  // a view cuts it
                 const LightMask want = trace_light_solids(occ, cx, cy, a, bb, height, p, clip);
-                LightMask got;
+                LightMask got, got_points;
                 start_mask(got, cx, cy, a, bb, p, clip, mode == Mode::shadow);
-                std::vector<LightMask*> masks{&got};
-                ASSERT_TRUE(gpu_trace_solids(tracer, occ, revision, masks, {height}, p)) << to_string(mode) << " " << variant;
+                start_mask(got_points, cx, cy, a, bb, p, clip, mode == Mode::shadow);
+                std::vector<LightMask*> masks{&got}, with_points{&got_points};
+                ASSERT_TRUE(gpu_trace_solids(tracer, occ, revision, masks, {height}, p, false)) << to_string(mode) << " " << variant;
+                ASSERT_TRUE(gpu_trace_solids(tracer, occ, revision, with_points, {height}, p, true)) << to_string(mode) << " " << variant;
                 const std::string where = std::string(kind == Occluders::solids ? "solids " : "shapes ") + std::string(to_string(mode)) +
                                           " variant " + std::to_string(variant);
                 EXPECT_EQ(got.value, want.value) << where;
                 EXPECT_EQ(got.reached, want.reached) << where;
+                LightMask want_points = want;
+                light_sprite_points(want_points, occ, height, p);
+                EXPECT_EQ(got_points.value, want_points.value) << where << " with the sprite pass";
+                EXPECT_EQ(got_points.reached, want_points.reached) << where << " with the sprite pass";
+                // The sprite pass both lights and unlights sprite pixels the ground pass left.
+                for (std::size_t i = 0; i < want.value.size(); ++i) {
+                    sprites_lit += want_points.value[i] != 0 && want.value[i] == 0;
+                    sprites_shaded += want_points.value[i] == 0 && want.value[i] != 0;
+                }
                 // What the ground pass would light with nothing in the way: some of it is shaded.
                 const LightMask open = trace_light_solids(OccluderMap{}, cx, cy, a, bb, height, p, clip);
                 for (std::size_t i = 0; i < want.value.size(); ++i) {
@@ -389,6 +403,8 @@ TEST(Gl, theGpuTracesAgainstSolidsAsTheCpuDoes) {
     EXPECT_EQ(compared, 24);
     EXPECT_GT(lit_pixels, 100000) << "the cases must light something";
     EXPECT_GT(shaded_pixels, 5000) << "and solids must shade some of it";
+    EXPECT_GT(sprites_lit, 1000) << "the sprite pass must light sprite pixels the ground pass did not";
+    EXPECT_GT(sprites_shaded, 1000) << "and shade some it did";
 
     Scene s;
     s.params.occluders = Occluders::solids;

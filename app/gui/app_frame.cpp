@@ -28,8 +28,9 @@ namespace {
 LightTracer chosen_tracer(App& app) {
     if (!gpu_tracer_chosen(app)) return {};
     return [&app](const Mask& obstacles, std::uint64_t revision, const OccluderMap* occluders,
-                  const std::vector<LightMask*>& masks, const std::vector<double>& heights, const Params& p) {
-        return gpu_trace_frame(app.gpu_tracer, obstacles, revision, occluders, masks, heights, p);
+                  const std::vector<LightMask*>& masks, const std::vector<double>& heights, const Params& p,
+                  bool sprite_points) {
+        return gpu_trace_frame(app.gpu_tracer, obstacles, revision, occluders, masks, heights, p, sprite_points);
     };
 }
 

@@ -21,6 +21,8 @@ struct GpuTracer {
     Rect obstacles_rect;
     GLuint solids_program = 0, spans = 0, overflow = 0;
     std::uint64_t spans_revision = ~0ull;  // what `spans` holds
+    GLuint points_program = 0, points = 0, shown_start = 0, shown = 0;  // the sprite pass
+    std::uint64_t shown_revision = ~0ull;  // what `shown_start` and `shown` hold
     Rect spans_rect;
     GLint max_storage = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
     int lit_w = 0, lit_h = 0;
@@ -47,18 +49,20 @@ bool gpu_trace(GpuTracer& t, const Mask& obstacles, std::uint64_t obstacles_revi
 // Traces the ground pass against solids with height (occluders solids or
 // shapes; light and shadow modes) into every mask, each light at its
 // `heights` entry: trace_light_solids's bytes, `occluders_revision` changing
-// whenever the occluder map does. False, leaving the masks to the CPU, for
-// what it does not do: centres beyond int range, a span map larger than a
-// storage buffer, or a ray with more live shades than the shader holds.
-// (The sprite pass, light_sprite_points, stays on the CPU, as the opacity
-// correction does.)
+// whenever the occluder map does; with `sprite_points`, the sprite pass
+// after it too (light_sprite_points's bytes; start_sprite_points, the
+// pixels no ray reaches, on the CPU). False, leaving the masks to the CPU,
+// for what it does not do: centres beyond int range, an occluder map larger
+// than a storage buffer, or a ray with more live shades than the shader
+// holds.
 bool gpu_trace_solids(GpuTracer& t, const OccluderMap& occluders, std::uint64_t occluders_revision,
-                      const std::vector<LightMask*>& masks, const std::vector<double>& heights, const Params& p);
+                      const std::vector<LightMask*>& masks, const std::vector<double>& heights, const Params& p,
+                      bool sprite_points);
 
 // What FrameOptions::tracer calls: gpu_trace_solids with occluders,
 // gpu_trace without; "gpu" when it traced them, "" to leave them to the CPU.
 std::string_view gpu_trace_frame(GpuTracer& t, const Mask& obstacles, std::uint64_t obstacles_revision,
                                  const OccluderMap* occluders, const std::vector<LightMask*>& masks,
-                                 const std::vector<double>& heights, const Params& p);
+                                 const std::vector<double>& heights, const Params& p, bool sprite_points);
 
 }  // namespace isolux::app

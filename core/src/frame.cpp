@@ -432,7 +432,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             heights.push_back(tl.height);
         }
         rep.tracer = st.options.tracer(st.obstacles, st.obstacles_revision, solids ? &st.occluders : nullptr, masks,
-                                       heights, p);
+                                       heights, p, solids && correct);
         traced_elsewhere = !rep.tracer.empty();
         if (traced_elsewhere) rep.ms[int(Stage::trace)] += ms_between(t0, Clock::now());
     }
@@ -459,10 +459,12 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
                 control.add(std::int64_t(light_trace_work(tl.a, tl.b, p)));  // progress by whole lights here
             }
             const auto t1 = Clock::now();
-            // The ground lines when every sprite's ground fits them; the reference otherwise.
-            if (correct && solids)
-                light_sprite_points(tl.mask, st.occluders, tl.height, p);
-            else if (correct && st.cache.ground.exact)
+            // With solids the sprite pass (unless another tracer took it with
+            // its rays); else the ground lines when every sprite's ground fits
+            // them, the reference otherwise.
+            if (correct && solids) {
+                if (!traced_elsewhere) light_sprite_points(tl.mask, st.occluders, tl.height, p);
+            } else if (correct && st.cache.ground.exact)
                 correct_with_ground_lines(tl.mask, st.cache.ground);
             else if (correct)
                 correct_with_opacity_maps(tl.mask, world.placed, st.opacity);

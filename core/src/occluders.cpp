@@ -521,37 +521,10 @@ namespace {
 // what serves every light the tree does not.
 void sprite_points_by_rays(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
     const double H = std::max(height, 0.0);
-    const Surface& surface = occ.surface;
     const std::int64_t cx = m.cx, cy = m.cy;
     const Rect area = intersect(Rect{int(cx) - m.a, int(cy) - m.b, 2 * m.a + 1, 2 * m.b + 1}, m.clip);
     auto index = [&](std::int64_t x, std::int64_t y) { return std::size_t(y - m.clip.y) * m.clip.w + std::size_t(x - m.clip.x); };
-    auto at = [&](std::int64_t x, std::int64_t y) {
-        return std::size_t(y - surface.rect.y) * surface.rect.w + std::size_t(x - surface.rect.x);
-    };
-    auto intensity = [&](std::int64_t x, std::int64_t y) {
-        return falloff(std::max(std::llabs(x - cx), std::llabs(y - cy)), p.falloff_scale);
-    };
-    const Rect ray_area{int(cx) - m.a, int(cy) - m.b - occ.tallest, 2 * m.a + 1, 2 * (m.b + occ.tallest) + 1};
-    // Every sprite pixel starts unlit; a ray that reaches its ground point
-    // unblocked lights it. The rays run to the border of the light's area
-    // grown by the tallest point's rows, so a sprite standing below the area
-    // whose top shows in it is reached too (the tree's rays are the same
-    // bytes). One whose ground point no ray walks (off the map) is tested
-    // along its own line (own_line_lit).
-    const Rect rows = intersect(area, surface.rect);  // outside the surface: no sprite
-    for (int y = rows.y; y < rows.y + rows.h; ++y) {
-        const std::int32_t* instance = &surface.instance[at(rows.x, y)];
-        const float* heights = &surface.height[at(rows.x, y)];
-        std::uint8_t* value = &m.value[index(rows.x, y)];
-        for (int i = 0; i < rows.w; ++i) {
-            if (instance[i] < 0) continue;
-            value[i] = 0;
-            const double h = heights[i];
-            const std::int64_t gx = rows.x + i, gy = y + rows_above(h);
-            if (ray_area.contains(int(gx), int(gy)) && surface.rect.contains(int(gx), int(gy))) continue;
-            if (own_line_lit(occ, cx, cy, gx, gy, h, H)) value[i] = intensity(gx, y);
-        }
-    }
+    start_sprite_points(m, occ, height, p);
     // Along each ray: the descents blocked by the spans passed at least
     // own_steps before (the last steps hold the point's own solid at about
     // its height), then the points over this step's ground pixel.
@@ -580,6 +553,38 @@ void sprite_points_by_rays(LightMask& m, const OccluderMap& occ, double height, 
 }
 
 }  // namespace
+
+void start_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
+    if (m.clip.empty()) return;
+    const double H = std::max(height, 0.0);
+    const Surface& surface = occ.surface;
+    const std::int64_t cx = m.cx, cy = m.cy;
+    const Rect area = intersect(Rect{int(cx) - m.a, int(cy) - m.b, 2 * m.a + 1, 2 * m.b + 1}, m.clip);
+    auto at = [&](std::int64_t x, std::int64_t y) {
+        return std::size_t(y - surface.rect.y) * surface.rect.w + std::size_t(x - surface.rect.x);
+    };
+    // The rays run to the border of the light's area grown by the tallest
+    // point's rows, so a sprite standing below the area whose top shows in
+    // it is reached too (the tree's rays are the same bytes). One whose
+    // ground point no ray walks (off the map) is tested along its own line
+    // (own_line_lit).
+    const Rect ray_area{int(cx) - m.a, int(cy) - m.b - occ.tallest, 2 * m.a + 1, 2 * (m.b + occ.tallest) + 1};
+    const Rect rows = intersect(area, surface.rect);  // outside the surface: no sprite
+    for (int y = rows.y; y < rows.y + rows.h; ++y) {
+        const std::int32_t* instance = &surface.instance[at(rows.x, y)];
+        const float* heights = &surface.height[at(rows.x, y)];
+        std::uint8_t* value = &m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(rows.x - m.clip.x)];
+        for (int i = 0; i < rows.w; ++i) {
+            if (instance[i] < 0) continue;
+            value[i] = 0;
+            const double h = heights[i];
+            const std::int64_t gx = rows.x + i, gy = y + rows_above(h);
+            if (ray_area.contains(int(gx), int(gy)) && surface.rect.contains(int(gx), int(gy))) continue;
+            if (own_line_lit(occ, cx, cy, gx, gy, h, H))
+                value[i] = falloff(std::max(std::llabs(gx - cx), std::llabs(std::int64_t(y) - cy)), p.falloff_scale);
+        }
+    }
+}
 
 void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
     if (m.clip.empty()) return;

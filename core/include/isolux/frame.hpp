@@ -54,14 +54,15 @@ struct FrameReport {
 // in shadow mode, sized and zero) with exactly trace_light's bytes for these
 // obstacles and parameters, or, with occluders solids or shapes (`occluders`
 // set, each light at its `heights` entry), trace_light_solids's bytes for
-// these occluders; and returns its name; or returns "" to leave them to the
-// CPU. Called on the frame's own thread, before the opacity correction or the
-// sprite pass; `obstacles_revision` changes whenever the obstacle map (and
-// with it the occluder map) does.
+// these occluders, and with `sprite_points` set light_sprite_points's after
+// them; and returns its name; or returns "" to leave them to the CPU. Called
+// on the frame's own thread, before the opacity correction (or, when the
+// tracer did not take it, the sprite pass); `obstacles_revision` changes
+// whenever the obstacle map (and with it the occluder map) does.
 using LightTracer =
     std::function<std::string_view(const Mask& obstacles, std::uint64_t obstacles_revision, const OccluderMap* occluders,
                                    const std::vector<LightMask*>& masks, const std::vector<double>& heights,
-                                   const Params& p)>;
+                                   const Params& p, bool sprite_points)>;
 
 struct FrameOptions {
     int margin = 64;                  // light texture = view + margin on each side (the paper's "slightly greater")

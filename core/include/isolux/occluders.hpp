@@ -154,10 +154,18 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
 // own line from the light's centre.
 void light_sprite_points(LightMask& mask, const OccluderMap& occ, double height, const Params& p);
 
+// The sprite pass's first step (light_sprite_points takes it; a tracer that
+// walks the sprite pass's rays elsewhere, the app's GPU, takes it before
+// them): every sprite pixel of the mask's area unlit, but those whose
+// ground point no ray of the pass walks (outside the map), each tested
+// along its own line from the light's centre. The rays then light what
+// they reach (shaders/sprite_points.comp).
+void start_sprite_points(LightMask& mask, const OccluderMap& occ, double height, const Params& p);
+
 // The same two passes ray by ray, every ray walked whole: the reference
 // whose bytes the passes above give (they walk the rays' shared prefixes
 // once, and only the parts that can light a pixel of the clip), and what
-// shaders/trace_solids.comp does on the GPU.
+// shaders/trace_solids.comp and shaders/sprite_points.comp do on the GPU.
 LightMask trace_light_solids_by_rays(const OccluderMap& occ, std::int64_t cx, std::int64_t cy, int a, int b,
                                      double height, const Params& p, Rect clip);
 void light_sprite_points_by_rays(LightMask& mask, const OccluderMap& occ, double height, const Params& p);
