@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "isolux/footprint.hpp"
 #include "isolux/solid_estimate.hpp"
 #include "test_util.hpp"
@@ -30,6 +32,12 @@ Mask foot(int w, int h, int ax, int ay) {
     return m;
 }
 
+// The heights the solid fills `d` ground pixels from its axis in depth
+// (toward the viewer), where its cross-sections are the discs it fitted.
+bool span_in_depth(const EstimatedObject& o, double d, double& lo, double& hi) {
+    return o.span_at(d / std::sqrt(2.0), d / std::sqrt(2.0), lo, hi);
+}
+
 const Solid trunk{SolidKind::cylinder, {0, 0, 0}, {4, 4, 30}};
 const Solid canopy{SolidKind::ellipsoid, {0, 0, 45}, {28, 28, 24}};
 
@@ -49,16 +57,16 @@ TEST(SolidEstimate, aTreeGetsATrunkAndACanopyStandingOffTheGround) {
     EXPECT_NEAR(o.center_y, ay, 0.01);
     EXPECT_NEAR(o.height(), 45 + 24, 10);
     double lo = 0, hi = 0;
-    ASSERT_TRUE(o.span_at(0, lo, hi));  // at the axis: from the ground to the top
+    ASSERT_TRUE(o.span_at(0, 0, lo, hi));  // at the axis: from the ground to the top
     EXPECT_EQ(lo, 0);
     EXPECT_EQ(hi, o.height());
     // 20 px from the axis, past the trunk: only the canopy, well off the ground.
-    ASSERT_TRUE(o.span_at(20, lo, hi));
+    ASSERT_TRUE(span_in_depth(o, 20, lo, hi));
     const double half = 24 * std::sqrt(1 - (20.0 / 28) * (20.0 / 28));
     EXPECT_NEAR(lo, 45 - half, 4);
     EXPECT_GT(lo, 20);
     EXPECT_NEAR(hi, 45 + half, 6);
-    EXPECT_FALSE(o.span_at(35, lo, hi));  // beyond the canopy: nothing
+    EXPECT_FALSE(span_in_depth(o, 35, lo, hi));  // beyond the canopy: nothing
     EXPECT_GT(volume_overlap(objects, ax, ay, {trunk, canopy}), 0.75);
 }
 
@@ -91,6 +99,35 @@ TEST(SolidEstimate, aBushsFootMovesDownFromItsEquatorToWhereItStands) {
     EXPECT_NEAR(at_foot[0].center_y, ay, 3);
 }
 
+// The default tileset's bush: a dome with two smaller clumps at its sides
+// (across the view), all sunk a little into the ground. The largest disc
+// that fits near the ground stops at the dome's lower front, short of the
+// clumps; widened across the view to the silhouette's width at their
+// height, the cross-sections near the ground reach them, as a low light's
+// shadow needs.
+TEST(SolidEstimate, aBushsSideClumpsNearTheGroundAreReachedAcrossTheView) {
+    const int w = 160, h = 130, ax = 80, ay = 110;
+    const std::vector<Solid> bush{{SolidKind::ellipsoid, {0, 0, 10}, {17, 17, 13}},
+                                  {SolidKind::ellipsoid, {9, -6, 8}, {11, 11, 9}},
+                                  {SolidKind::ellipsoid, {-7, 8, 9}, {11, 11, 10}}};
+    const auto objects = estimate_objects(drawn(bush, w, h, ax, ay), foot(w, h, ax, ay));
+    ASSERT_EQ(objects.size(), 1u);
+    const EstimatedObject& o = objects[0];
+    const Vec3 axis = ground_frame(o.center_x - ax, o.center_y - ay, 0);
+    for (const Vec3 clump : {Vec3{9, -6, 0}, Vec3{-7, 8, 0}}) {
+        // 7 px beyond the clump's centre, away from the axis, 2 px up: inside the clump.
+        const Vec3 out = clump + 7.0 * glm::normalize(clump);
+        bool in_shape = false;
+        for (const Solid& s : bush) in_shape = in_shape || solid_contains(s, Vec3{out.x, out.y, 2});
+        ASSERT_TRUE(in_shape);
+        double lo = 0, hi = 0;
+        ASSERT_TRUE(o.span_at(out.x - axis.x, out.y - axis.y, lo, hi)) << "clump at " << clump.x << "," << clump.y;
+        EXPECT_LT(lo, 4) << "the estimate stands there from near the ground";
+        EXPECT_FALSE(span_in_depth(o, glm::length(out - axis), lo, hi) && lo < 4)
+            << "in depth, where the silhouette says nothing, the same distance is past the discs near the ground";
+    }
+}
+
 // A skirted tree: a cone of foliage from 10 px up whose front edge hangs
 // lower on screen than its trunk's foot, so the sprite never shows the
 // trunk. Every disc below the skirt is hidden behind it: they stand on a
@@ -109,7 +146,7 @@ TEST(SolidEstimate, aSkirtThatHidesItsTrunkStandsOnAStem) {
     EXPECT_GT(r[widest], 18);
     for (std::size_t z = 0; z < widest; ++z) EXPECT_LE(r[z], hidden_stem_ratio * r[widest] + 1e-9) << z;
     double lo = 0, hi = 0;
-    ASSERT_TRUE(objects[0].span_at(12, lo, hi));  // under the skirt: the foliage starts off the ground
+    ASSERT_TRUE(span_in_depth(objects[0], 12, lo, hi));  // under the skirt: the foliage starts off the ground
     EXPECT_GE(lo, double(widest) - 1);
     EXPECT_GT(volume_overlap(objects, ax, ay, pine), 0.6);
 
@@ -180,7 +217,7 @@ TEST(SolidEstimate, aCylinderIsItselfAndEmptyInputsGiveNoObject) {
     ASSERT_EQ(objects.size(), 1u);
     EXPECT_NEAR(objects[0].height(), 50, 3);
     double lo = 0, hi = 0;
-    ASSERT_TRUE(objects[0].span_at(15, lo, hi));
+    ASSERT_TRUE(span_in_depth(objects[0], 15, lo, hi));
     EXPECT_EQ(lo, 0);
     EXPECT_NEAR(hi, 50, 3);
     EXPECT_GT(volume_overlap(objects, ax, ay, {post}), 0.85);
@@ -216,16 +253,33 @@ TEST(SolidEstimate, theDefaultTilesetsTreesShareMostOfTheirShapesVolume) {
     EXPECT_EQ(trees, 3);
 }
 
-// The estimate's silhouette lies inside the sprite's opaque pixels (each disc
-// is the largest that fits) and covers most of them.
-TEST(SolidEstimate, theSolidsSilhouetteLiesInsideTheSpriteAndCoversMostOfIt) {
+// The estimate's silhouette covers most of the sprite's opaque pixels. Each
+// disc is the largest that fits, and each cross-section reaches across the
+// view no farther than the sprite does on the row where its centre shows:
+// there every pixel it draws is opaque. (Below that row a widened
+// cross-section may draw past the outline, where the sprite narrows to
+// its front.)
+TEST(SolidEstimate, theSolidsSilhouetteCoversTheSpriteAndEachCrossSectionFitsItsRow) {
     const int w = 200, h = 170, ax = 100, ay = 150;
     const Mask object = drawn({trunk, canopy}, w, h, ax, ay);
-    const Mask drawn_solid = solid_silhouette(estimate_objects(object, foot(w, h, ax, ay)), w, h);
-    long inside = 0, outside = 0;
+    const auto objects = estimate_objects(object, foot(w, h, ax, ay));
+    ASSERT_EQ(objects.size(), 1u);
+    const EstimatedObject& o = objects[0];
+    const Mask drawn_solid = solid_silhouette(objects, w, h);
+    long inside = 0;
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            if (drawn_solid.get(x, y)) (object.get(x, y) ? inside : outside) += 1;
-    EXPECT_EQ(outside, 0);
+        for (int x = 0; x < w; ++x) inside += drawn_solid.get(x, y) && object.get(x, y);
     EXPECT_GT(double(inside), 0.85 * double(object.count()));
+    int widened = 0;
+    for (std::size_t z = 0; z < o.radius.size(); ++z) {
+        EXPECT_GE(o.across_at(z), o.radius[z]) << z;
+        if (o.radius[z] <= 0) continue;
+        widened += o.across_at(z) > o.radius[z] + 1;
+        // The centre row: the pixels whose centres the cross-section's ellipse holds there.
+        const int y = int(std::floor(o.center_y - (double(z) + 0.5)));
+        const double hw = o.across_at(z) * std::sqrt(2.0);
+        for (int x = int(std::ceil(o.center_x - hw - 0.5)); x <= int(std::floor(o.center_x + hw - 0.5)); ++x)
+            EXPECT_TRUE(object.get(x, y)) << "cross-section " << z << " draws " << x << "," << y << " outside the sprite";
+    }
+    EXPECT_GT(widened, 0) << "the canopy's underside reaches wider across than its discs";
 }

@@ -102,19 +102,12 @@ void fill_estimated(OccluderMap& m, const World& world, const Params& p, const s
         }
         const SpriteSolids& ss = cache.sprites[si];
         if (heights[si].empty()) heights[si] = ss.heights;
-        for (std::size_t j = 0; j < ss.objects.size(); ++j) {
-            const EstimatedObject& o = ss.objects[j];
-            const auto& table = ss.spans[j];
-            const double fx = in.x + o.center_x, fy = in.y + o.center_y, widest = (table.size() - 1) / 4.0;
-            const Rect box = intersect(Rect{int(std::floor(fx - widest * sqrt2)) - 1, int(std::floor(fy - widest / sqrt2)) - 1,
-                                            int(std::ceil(2 * widest * sqrt2)) + 3, int(std::ceil(2 * widest / sqrt2)) + 3},
-                                       m.rect);
+        for (const SpanStamp& stamp : ss.stamps) {
+            const Rect box = intersect(Rect{in.x + stamp.rect.x, in.y + stamp.rect.y, stamp.rect.w, stamp.rect.h}, m.rect);
             for (int y = box.y; y < box.y + box.h; ++y)
                 for (int x = box.x; x < box.x + box.w; ++x) {
-                    const Vec3 q = ground_frame(x + 0.5 - fx, y + 0.5 - fy, 0);
-                    const std::size_t t = std::size_t(std::ceil(std::hypot(q.x, q.y) * 4));
-                    if (t >= table.size() || table[t].second <= table[t].first) continue;
-                    fill(m, std::size_t(y - m.rect.y) * m.rect.w + (x - m.rect.x), table[t].first, table[t].second);
+                    const auto [lo, hi] = stamp.spans[std::size_t(y - in.y - stamp.rect.y) * stamp.rect.w + std::size_t(x - in.x - stamp.rect.x)];
+                    if (hi > lo) fill(m, std::size_t(y - m.rect.y) * m.rect.w + (x - m.rect.x), lo, hi);
                 }
         }
     }
@@ -146,20 +139,29 @@ SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) 
     SpriteSolids out;
     out.objects = sprite_objects(ts, s, p);
     for (const EstimatedObject& o : out.objects) {
-        double widest = 0;
-        for (double r : o.radius) widest = std::max(widest, r);
-        std::vector<std::pair<float, float>> table(std::size_t(std::ceil(widest * 4)) + 2, {0.f, 0.f});
-        for (std::size_t k = 0; k < table.size(); ++k) {
-            double lo = 0, hi = 0;
-            if (o.span_at(double(k) / 4, lo, hi)) table[k] = {float(lo), float(hi)};
-        }
-        out.spans.push_back(std::move(table));
+        // The ground under the widest cross-section: its ellipse on screen
+        // is across * sqrt(2) wide and radius / sqrt(2) high on each side.
+        double across = 0, depth = 0;
+        for (std::size_t z = 0; z < o.radius.size(); ++z)
+            across = std::max(across, o.across_at(z)), depth = std::max(depth, o.radius[z]);
+        SpanStamp stamp;
+        stamp.rect = Rect{int(std::floor(o.center_x - across * sqrt2)) - 1, int(std::floor(o.center_y - depth / sqrt2)) - 1,
+                          int(std::ceil(2 * across * sqrt2)) + 3, int(std::ceil(2 * depth / sqrt2)) + 3};
+        stamp.spans.assign(std::size_t(stamp.rect.w) * std::size_t(stamp.rect.h), {0.f, 0.f});
+        for (int j = 0; j < stamp.rect.h; ++j)
+            for (int i = 0; i < stamp.rect.w; ++i) {
+                const Vec3 q = ground_frame(stamp.rect.x + i + 0.5 - o.center_x, stamp.rect.y + j + 0.5 - o.center_y, 0);
+                double lo = 0, hi = 0;
+                if (o.span_at(q.x, q.y, lo, hi)) stamp.spans[std::size_t(j) * stamp.rect.w + std::size_t(i)] = {float(lo), float(hi)};
+            }
+        out.stamps.push_back(std::move(stamp));
     }
     // The point a pixel shows: the topmost point of a solid on its view line
     // (the first the viewer meets), else its row's height above the
     // footprint. On the view line through sprite pixel (sx, sy) relative to
-    // an axis's foot, the point z high lies 2 (sy + z)^2 + sx^2 / 2 squared
-    // ground pixels from the axis (screen x = X - Y, y = (X + Y) / 2 - z).
+    // an axis's foot, the point z high lies sx / sqrt(2) across the view and
+    // sqrt(2) (sy + z) in depth from the axis (screen x = X - Y, y = (X + Y)
+    // / 2 - z).
     // With several objects (a grove), the viewer meets the front one first
     // (the lowest foot on screen), and a pixel no solid shows takes its row's
     // height above the foot of the object whose axis is nearest.
@@ -168,9 +170,9 @@ SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) 
     std::stable_sort(front_first.begin(), front_first.end(),
                      [&](std::size_t a, std::size_t b) { return out.objects[a].center_y > out.objects[b].center_y; });
     // Only the pixels the surface shows (opaque at the preset's threshold)
-    // read their height; the others keep 0. A disc of radius r holds the
-    // point z high only where 2 (sy + z)^2 <= r^2, so each pixel tests the
-    // heights within the widest disc's r / sqrt(2) of -sy alone: the same
+    // read their height; the others keep 0. A cross-section of depth r holds
+    // the point z high only where 2 (sy + z)^2 <= r^2, so each pixel tests
+    // the heights within the deepest one's r / sqrt(2) of -sy alone: the same
     // halves from the solid's top down, the others failing anyway.
     const Mask shown = opacity_map(s.image, sprite_threshold(s, p.opacity_threshold));
     std::vector<double> reach;  // per object: its widest disc's radius / sqrt(2)
@@ -187,9 +189,9 @@ SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) 
                 const double z_low = std::max(0.0, -sy - reach[k]);
                 int j = std::max(0, int(std::ceil((top - (-sy + reach[k])) * 2)));  // z = top - j / 2
                 for (double z = top - 0.5 * j; z >= z_low && best < 0; z = top - 0.5 * ++j) {
-                    const double r = o.radius[std::size_t(z)];
-                    const double d2 = 2 * (sy + z) * (sy + z) + sx * sx / 2;
-                    if (r > 0 && d2 <= r * r) best = float(z);
+                    const double across = o.across_at(std::size_t(z)), depth = o.radius[std::size_t(z)];
+                    const double u = sx / sqrt2, v = sqrt2 * (sy + z);
+                    if (depth > 0 && (u * u) / (across * across) + (v * v) / (depth * depth) <= 1) best = float(z);
                 }
             }
             if (best < 0 && !out.objects.empty()) {

@@ -1,5 +1,4 @@
-// Beyond the paper: solids of revolution fitted to a sprite's silhouette
-// (solid_estimate.hpp).
+// Beyond the paper: solids fitted to a sprite's silhouette (solid_estimate.hpp).
 #include "isolux/solid_estimate.hpp"
 
 #include <algorithm>
@@ -63,10 +62,17 @@ bool disc_fits(const RunsThrough& runs, double fx, double yc, double r) {
 
 }  // namespace
 
-bool EstimatedObject::span_at(double d, double& z_low, double& z_high) const {
+bool EstimatedObject::holds(std::size_t z, double x, double y) const {
+    const double d = radius[z], a = across_at(z);
+    if (d <= 0) return false;
+    const double u = (x - y) / sqrt2, v = (x + y) / sqrt2;  // across the view, in depth
+    return (u * u) / (a * a) + (v * v) / (d * d) <= 1;
+}
+
+bool EstimatedObject::span_at(double x, double y, double& z_low, double& z_high) const {
     int lo = -1, hi = -1;
     for (std::size_t z = 0; z < radius.size(); ++z)
-        if (radius[z] >= d && radius[z] > 0) {
+        if (holds(z, x, y)) {
             if (lo < 0) lo = int(z);
             hi = int(z);
         }
@@ -78,8 +84,7 @@ bool EstimatedObject::span_at(double d, double& z_low, double& z_high) const {
 
 bool EstimatedObject::contains(Vec3 p) const {
     if (p.z < 0 || p.z >= height()) return false;
-    const double r = radius[std::size_t(p.z)];
-    return r > 0 && std::hypot(p.x, p.y) <= r;
+    return holds(std::size_t(p.z), p.x, p.y);
 }
 
 namespace {
@@ -155,7 +160,7 @@ long covered(const ObjectPixels& object, const EstimatedObject& o) {
     const Mask& m = object.mask;
     std::vector<double> widest(std::size_t(m.height), -1);  // per row: the widest run's half-width
     for (std::size_t z = 0; z < o.radius.size(); ++z) {
-        const double r = o.radius[z], a = r * sqrt2, b = r / sqrt2, yc = o.center_y - (double(z) + 0.5);
+        const double r = o.radius[z], a = o.across_at(z) * sqrt2, b = r / sqrt2, yc = o.center_y - (double(z) + 0.5);
         if (r <= 0) continue;
         for (int y = std::max(int(std::floor(yc - b)), m.y0); y <= std::min(int(std::ceil(yc + b)), m.y0 + m.height - 1); ++y) {
             const double v = (y + 0.5 - yc) / b;
@@ -188,6 +193,27 @@ void stand_on_hidden_stem(const Mask& object, EstimatedObject& o) {
     const std::size_t widest = widest_disc(o);
     const double stem = hidden_stem_ratio * o.radius[widest];
     for (std::size_t z = 0; z < widest; ++z) o.radius[z] = std::min(o.radius[z], stem);
+}
+
+// Each disc widened across the view to the silhouette's half-width (on its
+// narrower side) on the row where the disc's centre shows: a cross-section
+// there reaches that far left and right of the axis, and no farther. The
+// largest disc that fits stops at the narrowest part of its ellipse (a
+// bush's or a rock's lower front), while side lobes standing low (a bush's
+// smaller clumps) show as the silhouette's width at their height. The
+// depth stays the disc's radius: the silhouette cannot tell it. Discs on a
+// hidden stem stay round: the rows where they show are the foliage's.
+void widen_across_view(const Mask& object, EstimatedObject& o) {
+    const std::size_t stem_below = hidden_below_widest(object, o) ? widest_disc(o) : 0;
+    const RunsThrough runs = runs_through(object, int(std::floor(o.center_x)));
+    o.across = o.radius;
+    for (std::size_t z = stem_below; z < o.radius.size(); ++z) {
+        if (o.radius[z] <= 0) continue;
+        const int j = int(std::floor(o.center_y - (double(z) + 0.5))) - runs.y0;
+        if (j < 0 || j >= int(runs.first.size()) || runs.first[std::size_t(j)] > runs.last[std::size_t(j)]) continue;
+        const double half = std::min(o.center_x - runs.first[std::size_t(j)], runs.last[std::size_t(j)] + 1 - o.center_x);
+        o.across[z] = std::max(o.radius[z], half / sqrt2);
+    }
 }
 
 // A solid standing at one foot, and how many of the object's pixels it covers.
@@ -224,8 +250,8 @@ FootCandidate lowest_best_foot(const ObjectPixels& object, const EstimatedObject
 }
 
 // One object per trunk: the object's pixels go to the trunk whose column is
-// nearest (the lower index on a tie), and each part gets its solid of
-// revolution standing on its trunk's foot, with a 5 x 3 footprint there.
+// nearest (the lower index on a tie), and each part gets its solid standing
+// on its trunk's foot, with a 5 x 3 footprint there.
 std::vector<EstimatedObject> grove_objects(const Mask& object, const std::vector<TrunkFoot>& feet) {
     std::vector<Mask> parts(feet.size(), Mask(object.rect()));
     for (int j = 0; j < object.height; ++j)
@@ -248,6 +274,7 @@ std::vector<EstimatedObject> grove_objects(const Mask& object, const std::vector
         o.radius = fit_discs(runs, o.center_x, o.center_y, top_row(part), part.width / sqrt2 + 1, false);
         if (o.radius.empty()) continue;
         stand_on_hidden_stem(part, o);
+        widen_across_view(part, o);
         out.push_back(std::move(o));
     }
     return out;
@@ -308,6 +335,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
         o.radius = fit_discs(runs, o.center_x, o.center_y, top, widest, whole_base, height);
         if (o.radius.empty()) return {};
         if (!whole_base) stand_on_hidden_stem(object, o);  // a building rests on its whole base
+        widen_across_view(object, o);
         return {o};
     }
     // Where the axis meets the ground. Algorithm 1's footprint centre is a
@@ -335,6 +363,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     moved.rect.y += int(std::lround(moved.center_y - o.center_y));
     if (moved.radius.empty()) return {};
     stand_on_hidden_stem(object, moved);
+    widen_across_view(object, moved);
     return {moved};
 }
 
@@ -348,7 +377,7 @@ Mask solid_silhouette(const std::vector<EstimatedObject>& objects, int w, int h)
     Mask m(Rect{0, 0, w, h});
     for (const EstimatedObject& o : objects)
         for (std::size_t z = 0; z < o.radius.size(); ++z) {
-            const double r = o.radius[z], a = r * sqrt2, b = r / sqrt2, yc = o.center_y - (double(z) + 0.5);
+            const double r = o.radius[z], a = o.across_at(z) * sqrt2, b = r / sqrt2, yc = o.center_y - (double(z) + 0.5);
             if (r <= 0) continue;
             for (int y = int(std::floor(yc - b)); y <= int(std::ceil(yc + b)); ++y) {
                 const double v = (y + 0.5 - yc) / b;
@@ -370,7 +399,7 @@ double volume_overlap(const std::vector<EstimatedObject>& objects, int anchor_x,
         const Vec3 foot = ground_frame(o.center_x - anchor_x, o.center_y - anchor_y, 0);
         feet.push_back(foot);
         double r = 0;
-        for (double v : o.radius) r = std::max(r, v);
+        for (std::size_t z = 0; z < o.radius.size(); ++z) r = std::max(r, o.across_at(z));  // across >= radius
         lo = glm::min(lo, foot - Vec3{r, r, 0});
         hi = glm::max(hi, foot + Vec3{r, r, o.height()});
     }

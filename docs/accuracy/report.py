@@ -153,10 +153,11 @@ for scene, what in SCENES.items():
     out(f"The opacity correction moves the sprite mismatch against 3D from {', '.join(lines)}.", "")
 
 out("## Beyond the paper: solids with height (occluders)", "",
-    "`occluders` (`footprints` by default): `solids` traces against a solid of revolution estimated from each",
+    "`occluders` (`footprints` by default): `solids` traces against a solid estimated from each",
     "sprite's alpha, `shapes` against the manifest's own shapes, the light at its height, sprite pixels lit by the",
     "3D point they show in place of the opacity correction (`core/src/occluders.cpp`; docs/method.md). With",
-    "`shapes` what remains is the tracer's own error; the gap between `shapes` and `solids` is the estimate's.",
+    "`shapes` what remains is the tracer's own error; the gap between `shapes` and `solids` is the estimate's (it",
+    "may be below zero where the estimate's errors offset the tracer's).",
     "Lit mismatch against 3D inside the lights' areas, and the app's CPU time (obstacle map, trace and opacity",
     "correction or sprite points) per frame:", "")
 for scene in SCENES:

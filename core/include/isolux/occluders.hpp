@@ -88,12 +88,18 @@ struct OccluderMap {
     }
 };
 
-// One sprite's estimated objects, their spans by ground distance (a
-// quarter-pixel table per object, rounded outwards so a span is never wider
-// than the solid's), and the height of the point each sprite pixel shows.
+// One sprite's estimated objects, the spans each fills over the ground
+// pixels (a stamp per object: the pixels of `rect`, in sprite pixels, row
+// by row; (0, 0) where it fills none), and the height of the point each
+// sprite pixel shows. A world pixel's offset from its sprite is whole, so a
+// stamp holds exactly the spans at the pixels' centres wherever it lands.
+struct SpanStamp {
+    Rect rect;
+    std::vector<std::pair<float, float>> spans;
+};
 struct SpriteSolids {
     std::vector<EstimatedObject> objects;
-    std::vector<std::vector<std::pair<float, float>>> spans;
+    std::vector<SpanStamp> stamps;
     std::vector<float> heights;
 };
 SpriteSolids sprite_solids(const Tileset& tileset, const Sprite& s, const Params& p);

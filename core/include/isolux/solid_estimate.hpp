@@ -3,13 +3,16 @@
 // above a trunk) can cast a shadow. The paper keeps only where an object
 // meets the ground (Algorithm 1's footprint).
 //
-// Each object is a solid of revolution about the vertical axis through its
-// footprint's centre, in the ground frame of solid.hpp (screen x = X - Y,
-// screen y = (X + Y) / 2 - Z): a stack of discs, one per pixel of height. A
-// disc of radius r at height z is drawn as an ellipse r*sqrt(2) wide and
+// Each object is a stack of cross-sections about the vertical axis through
+// its footprint's centre, in the ground frame of solid.hpp (screen x = X - Y,
+// screen y = (X + Y) / 2 - Z), one per pixel of height. First each is a disc:
+// a disc of radius r at height z is drawn as an ellipse r*sqrt(2) wide and
 // r/sqrt(2) high on each side of screen row (footprint row - z); each disc is
 // the largest whose ellipse lies inside the object's opaque pixels, so the
-// solid is the largest of its kind the silhouette allows (docs/method.md).
+// solid is the largest of revolution the silhouette allows. Then each
+// widens across the view (ground direction (1, -1), screen x) to what the
+// silhouette shows at its height: its depth stays the disc's radius, which
+// the silhouette cannot tell (docs/method.md).
 #pragma once
 #include <vector>
 
@@ -23,13 +26,21 @@ namespace isolux {
 struct EstimatedObject {
     double center_x = 0, center_y = 0;  // the footprint's centre, sprite pixels (as check-tileset's obstacle_center)
     Rect rect;                          // the footprint's bounding box, sprite pixels
-    std::vector<double> radius;         // radius[z]: the disc from height z to z + 1, ground pixels (0: none)
+    // The cross-section from height z to z + 1, an ellipse about the axis,
+    // ground pixels: radius[z] its semi-axis in depth (ground direction
+    // (1, 1), along screen y; 0: none), across[z] its semi-axis across the
+    // view (ground (1, -1), screen x), at least radius[z]. `across` empty:
+    // every cross-section is a disc.
+    std::vector<double> radius, across;
 
     // The top of the solid above the ground, pixels (0: no solid).
     double height() const { return double(radius.size()); }
-    // The heights [z_low, z_high) the solid fills at ground distance `d` from
-    // its axis; false where it fills none.
-    bool span_at(double d, double& z_low, double& z_high) const;
+    double across_at(std::size_t z) const { return across.empty() ? radius[z] : across[z]; }
+    // Whether cross-section z holds the ground-frame point (x, y) relative to the axis's foot.
+    bool holds(std::size_t z, double x, double y) const;
+    // The heights [z_low, z_high) the solid fills over the ground-frame
+    // point (x, y) relative to the axis's foot; false where it fills none.
+    bool span_at(double x, double y, double& z_low, double& z_high) const;
     // Whether the ground-frame point `p`, relative to the axis's foot, lies inside.
     bool contains(Vec3 p) const;
 };
@@ -67,7 +78,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
 // obstacle map stamps it (tileset_footprint) and the estimate's pixels.
 std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite& s, const Params& p);
 
-// The sprite pixels (of a w x h sprite) where the objects' discs are drawn:
+// The sprite pixels (of a w x h sprite) where the objects' cross-sections are drawn:
 // the estimated solids' silhouette, for a contact sheet or the inspector.
 Mask solid_silhouette(const std::vector<EstimatedObject>& objects, int w, int h);
 
