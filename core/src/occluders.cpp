@@ -216,50 +216,90 @@ void flag_spans(OccluderMap& m, Rect part) {
     }
 }
 
+// The lists of a map before a pan, and the ground pixels (in both the old
+// region and the new) whose lists the pan cannot change.
+struct KeptIndex {
+    Rect rect, unchanged;
+    std::vector<std::uint32_t> start;
+    std::vector<OccluderMap::Shown> shown;
+};
+
 // The sprite points by ground pixel, and the has_shown flags (the has_span
-// flags set).
-void index_shown(OccluderMap& m) {
+// flags set). A ground pixel's points are the sprite pixels of its own
+// column, at most reach_rows above it: with `kept`, the pixels it holds
+// unchanged keep their lists, and only the others are listed from the
+// surface (a pan: the strips that came in, and the rows below a top that
+// moved, which gain or lose the points of sprites above).
+void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
     const Surface& s = m.surface;
     const std::size_t n = s.instance.size();
     if (n >= std::numeric_limits<std::uint32_t>::max() - 1)
         throw Error("occluders: the region of " + std::to_string(n) + " pixels is too large to trace against solids");
-    const std::size_t w = std::size_t(std::max(0, s.rect.w)), h = std::size_t(std::max(0, s.rect.h));
+    const Rect region = s.rect;
+    const std::size_t w = std::size_t(std::max(0, region.w)), h = std::size_t(std::max(0, region.h));
+    const Rect unchanged = kept ? intersect(kept->unchanged, region) : Rect{};
     for (std::uint8_t& f : m.flags) f &= OccluderMap::has_span;
-    // Each sprite pixel of row y shows a point `rows` high over ground pixel
-    // i + rows * w: listed, in the map's order, where that ground pixel lies
-    // in the map. (Most pixels are ground: one pass over the surface, then
-    // the list.)
+    // 1. The points of the ground pixels listed anew: each sprite pixel of
+    // row y shows a point `rows` high over ground pixel i + rows * w, listed
+    // in scan order where that ground pixel lies in the part.
     struct Point {
         std::uint32_t ground;
         OccluderMap::Shown shown;
     };
     thread_local std::vector<Point> points;
     points.clear();
-    // A counting sort of the points by ground pixel: counts into
-    // shown_start[g + 2], their running sums (shown_start[g + 1] is then
-    // where g's points start), each point placed at its ground pixel's cursor
-    // shown_start[g + 1], which ends where g + 1's start: the starts, with
-    // one last entry to drop.
     std::vector<std::uint32_t>& start = m.shown_start;
     start.assign(n + 2, 0);
-    std::uint32_t tallest = 0;
-    for (std::size_t y = 0; y < h; ++y)
-        for (std::size_t i = y * w; i < (y + 1) * w; ++i) {
-            if (s.instance[i] < 0) continue;
-            const float height = std::max(s.height[i], 0.f);  // one below the ground counts as on it
-            const std::uint32_t rows = std::uint32_t(rows_above(height));
-            if (y + rows >= h) continue;
-            const std::size_t g = i + rows * w;
-            points.push_back({std::uint32_t(g), {height, rows}});
-            ++start[g + 2];
-            m.flags[g] |= OccluderMap::has_shown;
-            tallest = std::max(tallest, rows);
-        }
-    m.tallest = int(tallest);
-    for (std::size_t i = 1; i < n + 2; ++i) start[i] += start[i - 1];
-    m.shown.resize(points.size());
+    std::uint32_t tallest = 0, reach = 0;
+    const std::vector<Rect> anew = unchanged.empty() ? std::vector<Rect>{region} : outside(region, unchanged);
+    for (const Rect part : anew) {
+        const std::size_t x0 = std::size_t(part.x - region.x), x1 = x0 + std::size_t(part.w);
+        const std::size_t g0 = std::size_t(part.y - region.y), g1 = g0 + std::size_t(part.h);  // its ground rows
+        const std::size_t from = part == region ? 0 : g0 - std::min<std::size_t>(g0, std::size_t(m.reach_rows));
+        for (std::size_t y = from; y < g1; ++y)
+            for (std::size_t i = y * w + x0; i < y * w + x1; ++i) {
+                if (s.instance[i] < 0) continue;
+                const float height = std::max(s.height[i], 0.f);  // one below the ground counts as on it
+                const std::uint32_t rows = std::uint32_t(rows_above(height));
+                reach = std::max(reach, rows);
+                if (y + rows < g0 || y + rows >= g1) continue;
+                const std::size_t g = i + rows * w;
+                points.push_back({std::uint32_t(g), {height, rows}});
+                ++start[g + 2];
+                tallest = std::max(tallest, rows);
+            }
+    }
+    // 2. The unchanged pixels' counts from their old lists.
+    const auto old_index = [&](std::size_t y, std::size_t x) {  // region row and column -> the old map's pixel
+        return std::size_t(int(y) + region.y - kept->rect.y) * std::size_t(kept->rect.w) + std::size_t(int(x) + region.x - kept->rect.x);
+    };
+    const std::size_t ux0 = std::size_t(unchanged.x - region.x), uy0 = std::size_t(unchanged.y - region.y);
+    for (std::size_t y = uy0; y < uy0 + std::size_t(unchanged.h); ++y) {
+        const std::size_t o = old_index(y, ux0);
+        for (std::size_t x = 0; x < std::size_t(unchanged.w); ++x)
+            start[y * w + ux0 + x + 2] = kept->start[o + x + 1] - kept->start[o + x];
+    }
+    // 3. The starts (a running sum of the counts: shown_start[g + 1] is then
+    // where g's points start) and the has_shown flags.
+    for (std::size_t g = 0; g < n; ++g) {
+        if (start[g + 2]) m.flags[g] |= OccluderMap::has_shown;
+        start[g + 2] += start[g + 1];
+    }
+    m.shown.resize(start[n + 1]);
+    // 4. The unchanged pixels' lists, a row's at once, then the points
+    // placed at their ground pixels' cursors shown_start[g + 1], which end
+    // where g + 1's start: the starts, with one last entry to drop.
+    for (std::size_t y = uy0; y < uy0 + std::size_t(unchanged.h); ++y) {
+        const std::size_t g = y * w + ux0, o = old_index(y, ux0);
+        const std::uint32_t first = kept->start[o], last = kept->start[o + std::size_t(unchanged.w)];
+        std::copy(kept->shown.begin() + first, kept->shown.begin() + last, m.shown.begin() + start[g + 1]);
+        for (std::uint32_t k = first; k < last; ++k) tallest = std::max(tallest, kept->shown[k].rows);
+        for (std::size_t x = 0; x < std::size_t(unchanged.w); ++x) start[g + x + 1] = start[g + x + 2];
+    }
     for (const Point& p : points) m.shown[start[p.ground + 1]++] = p.shown;
     start.pop_back();
+    m.tallest = int(tallest);
+    m.reach_rows = unchanged.empty() ? int(reach) : std::max(m.reach_rows, int(reach));
 }
 
 }  // namespace
@@ -404,6 +444,7 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
     }
     // The kept pixels' spans, surface and has_span flags hold where they are
     // (in place when the size is the same: a pan).
+    KeptIndex kept{m.rect, keep, std::move(m.shown_start), std::move(m.shown)};
     move_grid(m.spans, m.rect, region);
     move_grid(m.surface.instance, m.rect, region, -1);
     move_grid(m.surface.height, m.rect, region);
@@ -411,13 +452,25 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
     m.rect = m.surface.rect = region;
     // What came into the region, and what the world changed: built.
     std::vector<Rect> parts = outside(region, keep);
-    if (const Rect c = intersect(changed, region); !c.empty()) parts.push_back(c);
+    const Rect edited = intersect(changed, region);
+    if (!edited.empty()) parts.push_back(edited);
     for (Rect r : parts) {
         OccluderMap part;
         fill_occluders(part, world, p, r, cache);
         copy_part(m, part, r);
+        for (std::size_t i = 0; i < part.surface.instance.size(); ++i)
+            if (part.surface.instance[i] >= 0)
+                m.reach_rows = std::max(m.reach_rows, int(rows_above(std::max(part.surface.height[i], 0.f))));
     }
-    index_shown(m);
+    // The lists that cannot change: not where the world changed (those are
+    // listed whole), nor in the rows below a top that moved, within reach of
+    // the sprites above it, which came or went.
+    if (!edited.empty()) return index_shown(m);
+    if (region.y != kept.rect.y) {
+        const int top = std::max(region.y, kept.rect.y) + m.reach_rows;
+        kept.unchanged = intersect(keep, Rect{keep.x, top, keep.w, std::max(0, keep.y + keep.h - top)});
+    }
+    index_shown(m, &kept);
 }
 
 namespace {

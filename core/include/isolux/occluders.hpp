@@ -76,6 +76,10 @@ struct OccluderMap {
     std::vector<std::uint32_t> shown_start;
     std::vector<Shown> shown;
     int tallest = 0;  // the most rows any such pixel lies above its ground pixel
+    // At least the most rows any sprite pixel of the surface lies above its
+    // ground pixel, listed or not (its ground below the map): how far up a
+    // pan looks for the points of the ground pixels it lists anew.
+    int reach_rows = 0;
     // Per pixel: has_span | has_shown, one byte a step reads before the rest
     // (most steps of a ray cross bare ground that no sprite stands over).
     enum : std::uint8_t { has_span = 1, has_shown = 2 };
