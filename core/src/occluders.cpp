@@ -236,7 +236,7 @@ void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
     if (n >= std::numeric_limits<std::uint32_t>::max() - 1)
         throw Error("occluders: the region of " + std::to_string(n) + " pixels is too large to trace against solids");
     const Rect region = s.rect;
-    const std::size_t w = std::size_t(std::max(0, region.w)), h = std::size_t(std::max(0, region.h));
+    const std::size_t w = std::size_t(std::max(0, region.w));
     const Rect unchanged = kept ? intersect(kept->unchanged, region) : Rect{};
     for (std::uint8_t& f : m.flags) f &= OccluderMap::has_span;
     // 1. The points of the ground pixels listed anew: each sprite pixel of
