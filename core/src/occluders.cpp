@@ -159,9 +159,7 @@ SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) 
     // The point a pixel shows: the topmost point of a solid on its view line
     // (the first the viewer meets), else its row's height above the
     // footprint. On the view line through sprite pixel (sx, sy) relative to
-    // an axis's foot, the point z high lies sx / sqrt(2) across the view and
-    // sqrt(2) (sy + z) in depth from the axis (screen x = X - Y, y = (X + Y)
-    // / 2 - z).
+    // an axis's foot, the point z high is ground_frame(sx, sy, z).
     // With several objects (a grove), the viewer meets the front one first
     // (the lowest foot on screen), and a pixel no solid shows takes its row's
     // height above the foot of the object whose axis is nearest.
@@ -189,9 +187,8 @@ SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) 
                 const double z_low = std::max(0.0, -sy - reach[k]);
                 int j = std::max(0, int(std::ceil((top - (-sy + reach[k])) * 2)));  // z = top - j / 2
                 for (double z = top - 0.5 * j; z >= z_low && best < 0; z = top - 0.5 * ++j) {
-                    const double across = o.across_at(std::size_t(z)), depth = o.radius[std::size_t(z)];
-                    const double u = sx / sqrt2, v = sqrt2 * (sy + z);
-                    if (depth > 0 && (u * u) / (across * across) + (v * v) / (depth * depth) <= 1) best = float(z);
+                    const Vec3 q = ground_frame(sx, sy, z);
+                    if (o.holds(std::size_t(z), q.x, q.y)) best = float(z);
                 }
             }
             if (best < 0 && !out.objects.empty()) {
