@@ -292,9 +292,13 @@ FrameReport render_endless_frame(EndlessState& st, const Tileset& tileset, const
         if (need.cols + 2 * chunk_tiles <= max_window_side && need.rows + 2 * chunk_tiles <= max_window_side)
             grown = ChunkRange{need.col0 - chunk_tiles, need.row0 - chunk_tiles, need.cols + 2 * chunk_tiles,
                                need.rows + 2 * chunk_tiles};
+        // The old window and its frame state go before the new one is made,
+        // so a jump never holds two windows at once (its chunks stay cached).
+        st.frame = FrameState{st.frame.options};
+        st.window = EndlessWindow{};
+        st.has_window = false;
         st.window = make_endless_window(tileset, scene, grown, source, &st.cache);
         st.has_window = true;
-        st.frame = FrameState{st.frame.options};
         ++st.windows_built;
     }
     const Rect v = rect_in_window(st.window, view);
