@@ -12,6 +12,7 @@
 #include "isolux/tiled.hpp"
 #include "isolux/opacity_map.hpp"
 #include "isolux/tileset_generator.hpp"
+#include "isolux/world.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -554,4 +555,64 @@ TEST(SpriteFields, oneLimitRefusesTheSameOffsetsInManifestsAndTiledMapsByName) {
     EXPECT_MENTIONS(m, "must be [x, y] integers");
     m = error_of([&] { load_tiled(tiled_map_with(d, "d.tmx", {{"isolux_opacity_threshold", "2"}})); });
     EXPECT_MENTIONS(m, "opacity_threshold must be in [0, 1]");
+}
+
+// The files isolux names itself inside a folder the user chose never follow
+// a symbolic link out of it: an export's TSX or images folder, an image in an
+// images folder that was already there, a generated tileset's image. Each is
+// refused by name, and what the link points to keeps its bytes.
+TEST(Files, filesIsoluxNamesItselfInAChosenFolderNeverFollowALinkOutOfIt) {
+    TempDir d;
+    const fs::path outside = d.path / "outside";
+    fs::create_directories(outside);
+    write_file_atomic(outside / "victim.tsx", "keep");
+    const Scene scene = [] {
+        Scene s;
+        s.width = s.height = 4;
+        return s;
+    }();
+    const World w = make_world(test::default_tileset(), scene);
+    auto outside_untouched = [&] {
+        EXPECT_EQ(read_text_file(outside / "victim.tsx"), "keep");
+        std::size_t n = 0;
+        for ([[maybe_unused]] const auto& f : fs::directory_iterator(outside)) ++n;
+        EXPECT_EQ(n, 1u) << "a file was written outside the chosen folder";
+    };
+    {  // the export's TSX is a link to a file outside
+        fs::create_directories(d.path / "a");
+        fs::create_symlink(outside / "victim.tsx", d.path / "a" / "m_floors.tsx");
+        EXPECT_MENTIONS(error_of([&] { export_tiled(w, scene, d.path / "a" / "m.tmx"); }), "m_floors.tsx");
+        EXPECT_FALSE(fs::exists(d.path / "a" / "m.tmx"));
+        outside_untouched();
+    }
+    {  // the export's images folder is a link to a folder outside
+        fs::create_directories(d.path / "b");
+        fs::create_symlink(outside, d.path / "b" / "m_images");
+        EXPECT_MENTIONS(error_of([&] { export_tiled(w, scene, d.path / "b" / "m.tmx"); }), "m_images");
+        outside_untouched();
+    }
+    {  // an images folder already there holds a link where an image goes
+        fs::create_directories(d.path / "c" / "m_images");
+        export_tiled(w, scene, d.path / "c" / "x.tmx");  // learn the names an export gives its images
+        std::string image;
+        for (const auto& f : fs::directory_iterator(d.path / "c" / "x_images")) image = f.path().filename().string();
+        ASSERT_FALSE(image.empty());
+        fs::create_symlink(outside / "victim.tsx", d.path / "c" / "m_images" / image);
+        EXPECT_MENTIONS(error_of([&] { export_tiled(w, scene, d.path / "c" / "m.tmx"); }), image);
+        EXPECT_FALSE(fs::exists(d.path / "c" / "m.tmx"));
+        outside_untouched();
+    }
+    {  // a generated tileset's image is a link
+        fs::create_directories(d.path / "t");
+        const GeneratedTileset g = generate_default_tileset(0.5);
+        fs::create_symlink(outside / "victim.tsx", d.path / "t" / g.image_files.back());
+        EXPECT_MENTIONS(error_of([&] { save_generated_tileset(d.path / "t", g); }), g.image_files.back());
+        EXPECT_FALSE(fs::exists(d.path / "t" / "tileset.json"));
+        outside_untouched();
+    }
+    // A file the user names is still written through its link.
+    fs::create_directories(d.path / "e");
+    fs::create_symlink(outside / "victim.tsx", d.path / "e" / "named.json");
+    write_file_atomic(d.path / "e" / "named.json", "new");
+    EXPECT_EQ(read_text_file(outside / "victim.tsx"), "new");
 }

@@ -276,6 +276,15 @@ void check_output_file(const fs::path& link) {
         throw Error(quoted(link) + ": cannot write: " + std::strerror(errno) + " (its folder " + quoted(dir) + ")");
 }
 
+void check_own_name(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(path, ec))) return;
+    const fs::path to = fs::read_symlink(path, ec);
+    throw Error(quoted(path) + ": is a symbolic link" + (ec ? std::string() : " (to " + quoted(to) + ")") +
+                ": isolux writes the files it names itself only inside the folder you chose (remove the link, or "
+                "choose another name or folder)");
+}
+
 std::vector<std::string> take_write_notes() {
     std::vector<std::string> n;
     n.swap(notes());

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "isolux/error.hpp"
+#include "isolux/file_io.hpp"
 #include "isolux/files.hpp"
 #include "isolux/light_texture.hpp"
 #include "isolux/obstacle_map.hpp"
@@ -186,6 +187,8 @@ struct NewFiles {
     bool ours, made = false, done = false;
     NewFiles(fs::path d, ExportFiles f, bool ours_) : dir(std::move(d)), files(std::move(f)), ours(ours_) {
         if (ours) files.remove_from(dir);
+        for (const std::string* f : {&files.floors_tsx, &files.overlays_tsx, &files.images, &files.light_png, &files.final_png})
+            check_own_name(dir / *f);
         std::error_code ec;
         made = !fs::exists(dir / files.images, ec);
         fs::create_directories(dir / files.images, ec);
@@ -535,6 +538,8 @@ std::pair<int, int> export_tiled(const World& world, const Scene& scene, const f
     const std::pair<int, int> origin = tiled_origin(world, g);
 
     const ExportTilesets e = collect_tilesets(world, g, floors_as_objects, tmx);
+    for (const std::vector<int>* list : {&e.floors, &e.overlays})  // an images folder that was there may hold links
+        for (int s : *list) check_own_name(images / e.image_files[std::size_t(s)]);
     for (const std::vector<int>* list : {&e.floors, &e.overlays})
         for (int s : *list) save_image(images / e.image_files[std::size_t(s)], ts.sprites[std::size_t(s)].image);
     if (!e.floors.empty())

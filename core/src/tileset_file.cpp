@@ -231,6 +231,11 @@ void save_generated_tileset(const fs::path& folder, const GeneratedTileset& g) {
     std::error_code ec;
     fs::create_directories(folder, ec);
     if (ec) throw Error(folder.string() + ": cannot create folder: " + ec.message());
+    check_own_name(folder / "tileset.json");  // every name refused before any file is written
+    for (const std::string& file : g.image_files) {
+        check_own_name(folder / file);
+        check_own_name(folder / (fs::path(file).stem().string() + ".height.png"));
+    }
     json sprites = json::array();
     for (std::size_t i = 0; i < g.tileset.sprites.size(); ++i) {
         const Sprite& s = g.tileset.sprites[i];

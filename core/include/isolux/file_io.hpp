@@ -34,6 +34,12 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
 // exist or cannot be written. Throws Error naming the path.
 void check_output_file(const std::filesystem::path& path);
 
+// For a file or folder isolux names itself inside a folder the user chose
+// (an export's TSX, images and image layers; a generated tileset's files):
+// refused when it is a symbolic link, which would carry the write out of
+// that folder. A file the user names is written through its link instead.
+void check_own_name(const std::filesystem::path& path);
+
 // What this thread's saves since the last call had to do that the user
 // should know (a hard link that could not be kept), then forgotten.
 std::vector<std::string> take_write_notes();
