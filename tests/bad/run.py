@@ -336,6 +336,13 @@ for i, sprite in enumerate(names_doc["sprites"]):
 write("names/tileset.json", json.dumps(names_doc))
 case("export_names_are_not_paths", ["export-tiled", "--scene", write("names.scene.json", json.dumps(
     {"width": 4, "height": 4, "tileset": T("names", "tileset.json")})), "--out", T("names", "out", "map.tmx")], 0)
+# A name isolux gives a file of its own in the chosen folder that is a link
+# out of it is refused by name (tests/files_test.cpp checks nothing lands outside).
+os.makedirs(T("link_out", "elsewhere"))
+os.makedirs(T("link_out", "export"))
+os.symlink(T("link_out", "elsewhere"), T("link_out", "export", "map_images"))
+case("export_images_folder_is_a_link_out", ["export-tiled", "--scene", SCENE, "--out", T("link_out", "export", "map.tmx")],
+     2, "map_images: is a symbolic link")
 # Budgets per input, not per item: a small file that asks for gigabytes is refused with its total.
 big_png = write("big/sheet.png", png(4096, 4096, rows=b"".join(b"\0" + b"\0" * (4096 * 4) for _ in range(4096))))
 case("budget_100_sprites_one_large_sheet", R + ["--tileset", write("big/tileset.json", json.dumps({"sprites": [
