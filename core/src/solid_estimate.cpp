@@ -375,18 +375,29 @@ std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite
 
 Mask solid_silhouette(const std::vector<EstimatedObject>& objects, int w, int h) {
     Mask m(Rect{0, 0, w, h});
-    for (const EstimatedObject& o : objects)
+    // An object's cross-sections share its axis, so on each row they show
+    // as intervals about one centre: the row's widest is their union (one
+    // pass over the rows a cross-section spans, not over its pixels).
+    std::vector<double> widest(std::size_t(std::max(h, 0)));
+    for (const EstimatedObject& o : objects) {
+        std::fill(widest.begin(), widest.end(), -1.0);
         for (std::size_t z = 0; z < o.radius.size(); ++z) {
             const double r = o.radius[z], a = o.across_at(z) * sqrt2, b = r / sqrt2, yc = o.center_y - (double(z) + 0.5);
             if (r <= 0) continue;
-            for (int y = int(std::floor(yc - b)); y <= int(std::ceil(yc + b)); ++y) {
+            const int y0 = std::max(int(std::floor(yc - b)), 0), y1 = std::min(int(std::ceil(yc + b)), h - 1);
+            for (int y = y0; y <= y1; ++y) {
                 const double v = (y + 0.5 - yc) / b;
                 if (v * v > 1) continue;
-                const double hw = a * std::sqrt(1 - v * v);
-                for (int x = int(std::ceil(o.center_x - hw - 0.5)); x <= int(std::floor(o.center_x + hw - 0.5)); ++x)
-                    m.set(x, y);
+                widest[std::size_t(y)] = std::max(widest[std::size_t(y)], a * std::sqrt(1 - v * v));
             }
         }
+        for (int y = 0; y < h; ++y) {
+            const double hw = widest[std::size_t(y)];
+            if (hw < 0) continue;
+            for (int x = std::max(int(std::ceil(o.center_x - hw - 0.5)), 0); x <= std::min(int(std::floor(o.center_x + hw - 0.5)), w - 1); ++x)
+                m.set(x, y);
+        }
+    }
     return m;
 }
 
@@ -409,10 +420,12 @@ double volume_overlap(const std::vector<EstimatedObject>& objects, int anchor_x,
         hi = glm::max(hi, b[1]);
     }
     if (!(lo.x <= hi.x)) return 0;
+    const Vec3 extent = hi - glm::floor(lo) + 1.0;
+    const double step = std::max(1.0, std::cbrt(extent.x * extent.y * extent.z / volume_overlap_samples));
     long both = 0, either = 0;
-    for (double z = std::floor(lo.z) + 0.5; z < hi.z; z += 1)
-        for (double y = std::floor(lo.y) + 0.5; y < hi.y; y += 1)
-            for (double x = std::floor(lo.x) + 0.5; x < hi.x; x += 1) {
+    for (double z = std::floor(lo.z) + 0.5 * step; z < hi.z; z += step)
+        for (double y = std::floor(lo.y) + 0.5 * step; y < hi.y; y += step)
+            for (double x = std::floor(lo.x) + 0.5 * step; x < hi.x; x += step) {
                 const Vec3 p{x, y, z};
                 bool in_estimate = false, in_shape = false;
                 for (std::size_t k = 0; k < objects.size() && !in_estimate; ++k)

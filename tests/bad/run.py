@@ -367,6 +367,16 @@ poly_ts = {"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", 
 case("footprint_polygon_1000_points", ["render", "--scene", write("ts/poly.scene.json", json.dumps(
     {"width": 3, "height": 3, "tileset": write("ts/poly.json", json.dumps(poly_ts)),
      "edits": [{"tile": [1, 1], "overlays": ["o"]}]})), "--layer", "obstacles", "--out", T("out.png")], 0)
+# A solid estimated from a 2048x2048 opaque sprite, its silhouette drawn
+# (check-tileset) and traced against (render): the work follows rows times
+# heights, not pixels times heights (minutes before).
+write("ts/opaque2048.png", png(2048, 2048, rows=b"".join(b"\0" + b"\x80\x80\x80\xff" * 2048 for _ in range(2048))))
+opaque_ts = write("ts/opaque2048.json", json.dumps({"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]},
+                                                                O(image="opaque2048.png")]}))
+case("solid_of_a_2048_opaque_sprite_sheet", ["check-tileset", opaque_ts, "--json", "--sheet", T("sheet.png")], 0)
+case("solid_of_a_2048_opaque_sprite_traced", ["render", "--scene", write("ts/opaque.scene.json", json.dumps(
+    {"width": 1, "height": 1, "tileset": opaque_ts, "edits": [{"tile": [0, 0], "overlays": ["o"]}],
+     "lights": [{"x": 100, "y": 1500}]})), "--occluders", "solids", "--out", T("out.png")], 0)
 # A million edits (36 MB) take time in proportion: each sprite name found in a
 # sorted index, not by a search per edit.
 case("edits_a_million", ["render", "--scene", write("million.scene.json", json.dumps(

@@ -85,6 +85,9 @@ Mask solid_silhouette(const std::vector<EstimatedObject>& objects, int w, int h)
 // The share of the volume two occupancies share, |A and B| / |A or B|, over
 // 1-pixel voxels: the estimated objects (relative to the sprite's anchor at
 // (anchor_x, anchor_y)) against the manifest's shape. 0 when both are empty.
+// Where their bounds hold more than volume_overlap_samples voxels (a huge
+// shape), the voxels grow to keep that many, so the time stays bounded.
+inline constexpr double volume_overlap_samples = 1 << 22;
 double volume_overlap(const std::vector<EstimatedObject>& objects, int anchor_x, int anchor_y,
                       const std::vector<Solid>& shape);
 
