@@ -71,6 +71,27 @@ timeout 60 "$app" --scene "$tmp/huge_scene.json" --frames 2 --screenshot "$tmp/h
 if [ "$code" -eq 2 ] && grep -q "would trace about .* ray steps" "$tmp/log" && [ ! -e "$tmp/huge.png" ]; then ok
 else bad "huge scene screenshot: exit $code"; cat "$tmp/log"; fi
 
+# 1c'. A frame core refuses (occluders shapes on a tileset without shapes)
+# undoes the change that asked for it, with the reason, and the app goes on;
+# a screenshot of such a scene stops with exit code 2 and the reason.
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['tileset']=sys.argv[2]; json.dump(d, open(sys.argv[3], 'w'))" \
+  "$src/assets/scenes/default.json" "$src/tests/data/foreign_tileset/tileset.json" "$tmp/no_shapes.json"
+cat >"$tmp/shapes.txt" <<EOF
+param occluders shapes
+wait 2
+save-preset $tmp/after_shapes.json
+quit
+EOF
+timeout 60 "$app" --scene "$tmp/no_shapes.json" --script "$tmp/shapes.txt" >"$tmp/log" 2>&1; code=$?
+if [ "$code" -eq 0 ] && grep -q 'has no shape: .*: the change was undone' "$tmp/log" \
+  && [ "$(json "$tmp/after_shapes.json" 'd["occluders"]')" = "footprints" ]; then ok
+else bad "refused frame undone: exit $code"; cat "$tmp/log"; fi
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['preset']['occluders']='shapes'; json.dump(d, open(sys.argv[2], 'w'))" \
+  "$tmp/no_shapes.json" "$tmp/no_shapes_shapes.json"
+timeout 60 "$app" --scene "$tmp/no_shapes_shapes.json" --frames 2 --screenshot "$tmp/refused.png" >"$tmp/log" 2>&1; code=$?
+if [ "$code" -eq 2 ] && grep -q 'has no shape' "$tmp/log" && [ ! -e "$tmp/refused.png" ]; then ok
+else bad "refused scene screenshot: exit $code"; cat "$tmp/log"; fi
+
 # 1d. Approved long work runs on a worker with progress and Cancel: the
 # script approves it (as "Trace it" would) and presses the prompt's Cancel
 # once rays are under way; the trace stops at once, the change is kept and

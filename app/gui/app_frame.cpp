@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <new>
+#include <string>
 #include <cmath>
 #include <thread>
 
@@ -253,6 +255,29 @@ void stop_long_trace(App& app) {
     app.editor.frame.options.control = {};
 }
 
+// A frame core refused (a tileset without the shapes `occluders` asks for,
+// memory): the change that asked for it is undone with the reason in the
+// status bar, and the frame state starts afresh, since the refused frame
+// may have left it half made. A screenshot run stops with exit code 2.
+static FrameReport refuse_frame(App& app, const std::string& why, bool screenshot_mode) {
+    Editor& e = app.editor;
+    fresh_frame(e);
+    app.split_texture_holds = 0;
+    if (screenshot_mode) {
+        std::cerr << "isolux: " << why << "\n";
+        app.exit_code = 2;
+        app.quit = true;
+        return FrameReport{};
+    }
+    if (!e.undo_stack.empty() && undo(e, app.now)) {
+        set_status(e, why + ": the change was undone", true);
+        std::cerr << "isolux: " << why << ": the change was undone\n";
+    } else {
+        set_status(e, why, true);
+    }
+    return FrameReport{};
+}
+
 // One frame of the pipeline: core traces (CPU), the renderer does the rest.
 FrameReport render_app_frame(App& app, bool screenshot_mode) {
     Editor& e = app.editor;
@@ -283,7 +308,14 @@ FrameReport render_app_frame(App& app, bool screenshot_mode) {
     if (app.long_trace.worker.joinable() || trace_work(scene, app.view) > huge_trace_steps) {
         if (!run_long_trace(app, scene, cam, rep)) return FrameReport{};
     } else {
-        rep = render_frame(e.frame, e.world, scene, cam, e.frame_number);
+        try {
+            rep = render_frame(e.frame, e.world, scene, cam, e.frame_number);
+        } catch (const Error& err) {
+            return refuse_frame(app, err.what(), screenshot_mode);
+        } catch (const std::bad_alloc&) {
+            return refuse_frame(app, "out of memory tracing this frame: use a smaller view, area or fewer lights",
+                                screenshot_mode);
+        }
     }
     if (rep.retraced) renderer_upload_light(app.renderer, e.frame.traced, rep.dirty);  // only what changed
     renderer_upload_surface_ids(app.renderer, e.frame.surface_ids, e.frame.surface_ids_revision);
@@ -309,7 +341,12 @@ FrameReport render_app_frame(App& app, bool screenshot_mode) {
         flat.params.mode = Mode::flat;
         app.flat_frame.options = e.frame.options;
         if (app.split_texture_holds != 1) app.flat_frame = FrameState{e.frame.options};  // retrace into it
-        FrameReport fr = render_frame(app.flat_frame, e.world, flat, cam, e.frame_number);
+        FrameReport fr;
+        try {
+            fr = render_frame(app.flat_frame, e.world, flat, cam, e.frame_number);
+        } catch (const Error& err) {
+            return refuse_frame(app, err.what(), screenshot_mode);
+        }
         if (fr.retraced || app.split_texture_holds != 1) renderer_upload_flat_light(app.renderer, app.flat_frame.traced);
         app.split_texture_holds = 1;
         opts.split = int(app.view.w * ov.split);
