@@ -754,3 +754,29 @@ TEST(Occluders, eachStampPixelHoldsItsObjectsSpanAndTheSilhouetteEachCrossSectio
     EXPECT_GT(spans, 10000);
     EXPECT_GT(drawn, 10000);
 }
+
+// An occluder map takes about 35 bytes a pixel: a region beyond
+// max_occluder_pixels is refused by Error with its size before any of it is
+// made, whatever asks (a new map, one made again, a pan).
+TEST(Occluders, aRegionBeyondTheLimitIsRefusedWithItsSize) {
+    const World w = make_world(test::default_tileset(), Scene{});
+    Params p;
+    p.occluders = Occluders::solids;
+    auto error_of = [](auto f) -> std::string {
+        try {
+            f();
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    const Rect huge{0, 0, 8193, 8193};  // 2^26 + 16385 pixels
+    ASSERT_GT((long long)huge.w * huge.h, max_occluder_pixels);
+    const std::string m = error_of([&] { build_occluders(w, p, huge); });
+    EXPECT_NE(m.find("8193x8193"), std::string::npos) << m;
+    EXPECT_NE(m.find("megapixel limit"), std::string::npos) << m;
+    OccluderMap kept = build_occluders(w, p, Rect{0, 0, 512, 512});
+    EXPECT_NE(error_of([&] { update_occluders(kept, w, p, huge, Rect{}); }).find("8193x8193"), std::string::npos);
+    EXPECT_NE(error_of([&] { rebuild_occluders(kept, w, p, huge); }).find("8193x8193"), std::string::npos);
+    EXPECT_EQ(error_of([&] { rebuild_occluders(kept, w, p, Rect{0, 0, 1024, 512}); }), "");
+}

@@ -511,6 +511,19 @@ void copy_part(OccluderMap& to, const OccluderMap& from, Rect r) {
 
 }  // namespace
 
+namespace {
+
+void check_occluder_region(Rect region, const Params& p) {
+    if ((long long)std::max(region.w, 0) * std::max(region.h, 0) <= max_occluder_pixels) return;
+    throw Error("occluders " + std::string(p.occluders == Occluders::shapes ? "shapes" : "solids") +
+                ": the view and its lights need a region of " + std::to_string(region.w) + "x" +
+                std::to_string(region.h) + " pixels, over the " + std::to_string(max_occluder_pixels >> 20) +
+                "-megapixel limit for tracing against solids (about 35 bytes a pixel): show a smaller part of the "
+                "map (isolux-cli: --view X,Y,W,H), use smaller light areas, or occluders footprints");
+}
+
+}  // namespace
+
 OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache) {
     OccluderMap m;
     rebuild_occluders(m, world, p, region, cache);
@@ -518,11 +531,13 @@ OccluderMap build_occluders(const World& world, const Params& p, Rect region, So
 }
 
 void rebuild_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, SolidsCache* cache) {
+    check_occluder_region(region, p);
     fill_occluders(m, world, p, region, cache);
     index_shown(m);
 }
 
 void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, Rect changed, SolidsCache* cache) {
+    check_occluder_region(region, p);
     const Rect keep = intersect(m.rect, region);
     // The manifest's shapes may stand anywhere around their sprites: no
     // bound says which sprites reach a part, so shapes are built whole.

@@ -117,10 +117,17 @@ struct SolidsCache {
     void clear() { sprites.clear(), made.clear(); }
 };
 
+// The most pixels an occluder map's region may hold: the map takes about 35
+// bytes a pixel (two spans, the surface, the sprite points' index), so this
+// bounds it near 2.3 GB. A larger region (a huge map rendered whole, a light
+// thousands of pixels wide) is refused by Error, with its size.
+inline constexpr long long max_occluder_pixels = 1LL << 26;
+
 // The occluders of every overlay meeting `region` (and those standing near
 // it), by `p.occluders`: solids estimated from the sprites (kept in `cache`
 // when given), or the manifest's shapes (Error naming the tileset and the
-// sprite when an overlay has none).
+// sprite when an overlay has none). Error when `region` holds more than
+// max_occluder_pixels.
 OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache = nullptr);
 
 // Makes `m` build_occluders(world, p, region, cache) in the storage it holds:
