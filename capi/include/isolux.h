@@ -117,7 +117,8 @@ ISOLUX_API isolux_status isolux_world_bounds(const isolux_world* world, isolux_r
  * the whole map when it has no size. */
 ISOLUX_API isolux_status isolux_world_default_view(const isolux_world* world, isolux_rect* out);
 /* Renders frame number `frame` (0, 1, ...: "every l frames" counts them) of
- * `view`. `rgba` receives the final picture and `light_rgba` the blurred
+ * `view` (x and y within 1e9 pixels; width and height in [1, 65536], at
+ * most 256 megapixels). `rgba` receives the final picture and `light_rgba` the blurred
  * light texture (isolux-cli's --layer light), each view.width x view.height
  * x 4 bytes, rows top to bottom; either may be NULL. `size` and `light_size`
  * are the buffers' byte sizes. A world renders only what changed since its

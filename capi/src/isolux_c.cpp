@@ -308,6 +308,9 @@ isolux_status isolux_world_set_tile(isolux_world* w, int col, int row, const cha
     if (!w) return argument_error("isolux_world_set_tile: world must not be NULL");
     if (overlay_count > 3) return argument_error("isolux_world_set_tile: at most 3 overlays");
     if (overlay_count > 0 && !overlays) return argument_error("isolux_world_set_tile: overlays must not be NULL");
+    for (int i = 0; i < overlay_count; ++i)
+        if (!overlays[i])
+            return argument_error("isolux_world_set_tile: overlays[" + std::to_string(i) + "] must not be NULL");
     const std::string where = "isolux_world_set_tile(" + std::to_string(col) + ", " + std::to_string(row) + ")";
     return guarded("isolux_world_set_tile", [&] {
         const Map& m = w->world.map;
@@ -369,6 +372,8 @@ isolux_status isolux_world_render(isolux_world* w, isolux_rect view, int frame, 
                               std::to_string(max_image_side) + "]");
     if (std::int64_t(view.width) * view.height > max_render_pixels)
         return argument_error("isolux_world_render: the view is over the 256-megapixel limit");
+    if (std::abs(std::int64_t(view.x)) > 1000000000 || std::abs(std::int64_t(view.y)) > 1000000000)
+        return argument_error("isolux_world_render: view x and y must be within 1e9 pixels");  // x + width fits an int
     if (frame < 0) return argument_error("isolux_world_render: frame must be 0 or more");
     const std::size_t bytes = std::size_t(view.width) * std::size_t(view.height) * 4;
     if (rgba && size != bytes)

@@ -93,6 +93,10 @@ int main(int argc, char** argv) {
     CHECK(strstr(isolux_last_error(), "rgba") != NULL, "names the buffer");
     isolux_rect empty = {0, 0, 0, 10};
     CHECK(isolux_world_render(w, empty, 0, NULL, 0, NULL, 0) == ISOLUX_ERROR_ARGUMENT, "empty view");
+    isolux_rect past_int = {2147483600, 0, 100, 10}; /* x + width beyond an int32 */
+    CHECK(isolux_world_render(w, past_int, 0, NULL, 0, NULL, 0) == ISOLUX_ERROR_ARGUMENT &&
+              strstr(isolux_last_error(), "within 1e9") != NULL,
+          "a view far beyond any map");
     CHECK(isolux_world_render(w, view, 0, first, bytes, light, bytes) == ISOLUX_OK, "render");
     CHECK(isolux_world_move_light(w, a, 520, 330) == ISOLUX_OK, "move");
     CHECK(isolux_world_render(w, view, 1, moved, bytes, NULL, 0) == ISOLUX_OK, "render moved");
@@ -107,6 +111,10 @@ int main(int argc, char** argv) {
     const char* bad[] = {"no-such-sprite"};
     CHECK(isolux_world_set_tile(w, 3, 3, NULL, bad, 1) == ISOLUX_ERROR_INPUT, "unknown overlay");
     CHECK(strstr(isolux_last_error(), "no-such-sprite") != NULL, "names it");
+    const char* null_name[] = {"bush", NULL};
+    CHECK(isolux_world_set_tile(w, 3, 3, NULL, null_name, 2) == ISOLUX_ERROR_ARGUMENT &&
+              strstr(isolux_last_error(), "overlays[1]") != NULL,
+          "a NULL overlay name is the caller's error, named");
     CHECK(isolux_world_set_tile(w, 8, 0, NULL, NULL, 0) == ISOLUX_ERROR_INPUT, "outside");
     CHECK(strstr(isolux_last_error(), "outside") != NULL, "says so");
     CHECK(isolux_world_render(w, view, 3, moved, bytes, NULL, 0) == ISOLUX_OK && differing(first, moved, bytes) == 0,
