@@ -28,6 +28,13 @@ fail=0
 ok() { pass=$((pass + 1)); }
 bad() { echo "FAIL $*"; fail=$((fail + 1)); }
 json() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$1" "$2"; }
+# refused_screenshot NAME SCENE PATTERN: a screenshot run of SCENE stops with
+# exit code 2, a message matching PATTERN (grep) and no picture.
+refused_screenshot() {
+  timeout 60 "$app" --scene "$2" --frames 2 --screenshot "$tmp/$1.png" >"$tmp/log" 2>&1; local code=$?
+  if [ "$code" -eq 2 ] && grep -q "$3" "$tmp/log" && [ ! -e "$tmp/$1.png" ]; then ok
+  else bad "$1 screenshot: exit $code"; cat "$tmp/log"; fi
+}
 
 # 1. Headless screenshot of the default scene, against the CPU renderer.
 if timeout 120 "$app" --scene "$src/assets/scenes/default.json" --frames 3 --screenshot "$tmp/shot.png" >"$tmp/log" 2>&1; then ok; else bad "screenshot run"; cat "$tmp/log"; fi
@@ -67,9 +74,7 @@ if grep -q "this sweep would trace about .* ray steps (minutes or more)" "$tmp/l
 else bad "huge sweep not started"; cat "$tmp/log"; cat "$tmp/huge_sweep.csv"; fi
 python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['preset'].update(rays='every_pixel', area_a=4096, area_b=4096); json.dump(d, open(sys.argv[2], 'w'))" \
   "$src/assets/scenes/default.json" "$tmp/huge_scene.json"
-timeout 60 "$app" --scene "$tmp/huge_scene.json" --frames 2 --screenshot "$tmp/huge.png" >"$tmp/log" 2>&1; code=$?
-if [ "$code" -eq 2 ] && grep -q "would trace about .* ray steps" "$tmp/log" && [ ! -e "$tmp/huge.png" ]; then ok
-else bad "huge scene screenshot: exit $code"; cat "$tmp/log"; fi
+refused_screenshot huge "$tmp/huge_scene.json" "would trace about .* ray steps"
 
 # 1c'. A frame core refuses (occluders shapes on a tileset without shapes)
 # undoes the change that asked for it, with the reason, and the app goes on;
@@ -88,9 +93,7 @@ if [ "$code" -eq 0 ] && grep -q 'has no shape: .*: the change was undone' "$tmp/
 else bad "refused frame undone: exit $code"; cat "$tmp/log"; fi
 python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['preset']['occluders']='shapes'; json.dump(d, open(sys.argv[2], 'w'))" \
   "$tmp/no_shapes.json" "$tmp/no_shapes_shapes.json"
-timeout 60 "$app" --scene "$tmp/no_shapes_shapes.json" --frames 2 --screenshot "$tmp/refused.png" >"$tmp/log" 2>&1; code=$?
-if [ "$code" -eq 2 ] && grep -q 'has no shape' "$tmp/log" && [ ! -e "$tmp/refused.png" ]; then ok
-else bad "refused scene screenshot: exit $code"; cat "$tmp/log"; fi
+refused_screenshot refused "$tmp/no_shapes_shapes.json" "has no shape"
 
 # 1d. Approved long work runs on a worker with progress and Cancel: the
 # script approves it (as "Trace it" would) and presses the prompt's Cancel
@@ -130,9 +133,7 @@ else bad "long work traced"; cat "$tmp/log"; fi
 # A scene camera too large to render (65536 x 65536): refused by name, at once.
 python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['camera'].update(width=65536, height=65536); json.dump(d, open(sys.argv[2], 'w'))" \
   "$src/assets/scenes/default.json" "$tmp/bigcam.json"
-timeout 60 "$app" --scene "$tmp/bigcam.json" --frames 2 --screenshot "$tmp/bigcam.png" >"$tmp/log" 2>&1; code=$?
-if [ "$code" -eq 2 ] && grep -q "bigcam.json: camera: shows 65536x65536 pixels" "$tmp/log" && [ ! -e "$tmp/bigcam.png" ]; then ok
-else bad "huge camera screenshot: exit $code"; cat "$tmp/log"; fi
+refused_screenshot bigcam "$tmp/bigcam.json" "bigcam.json: camera: shows 65536x65536 pixels"
 env -u DISPLAY timeout 60 "$app" --scene "$tmp/bigcam.json" --screenshot "$tmp/bigcam.png" >"$tmp/log" 2>&1; code=$?
 if [ "$code" -eq 2 ] && grep -q "bigcam.json: camera: the view is 65536x65536 pixels" "$tmp/log" && [ ! -e "$tmp/bigcam.png" ]; then ok
 else bad "huge camera without a display: exit $code"; cat "$tmp/log"; fi

@@ -231,16 +231,17 @@ void save_generated_tileset(const fs::path& folder, const GeneratedTileset& g) {
     std::error_code ec;
     fs::create_directories(folder, ec);
     if (ec) throw Error(folder.string() + ": cannot create folder: " + ec.message());
+    auto height_file_of = [](const std::string& file) { return fs::path(file).stem().string() + ".height.png"; };
     check_own_name(folder / "tileset.json");  // every name refused before any file is written
     for (const std::string& file : g.image_files) {
         check_own_name(folder / file);
-        check_own_name(folder / (fs::path(file).stem().string() + ".height.png"));
+        check_own_name(folder / height_file_of(file));
     }
     json sprites = json::array();
     for (std::size_t i = 0; i < g.tileset.sprites.size(); ++i) {
         const Sprite& s = g.tileset.sprites[i];
         const std::string file = g.image_files[i];
-        const std::string height_file = fs::path(file).stem().string() + ".height.png";
+        const std::string height_file = height_file_of(file);
         save_image(folder / file, s.image);
         save_gray16(folder / height_file, s.image.width, s.image.height, g.heights[i]);
         sprites.push_back({{"name", s.name},
