@@ -15,6 +15,7 @@
 #include "test_util.hpp"
 
 using namespace isolux;
+using isolux::test::error_of;
 namespace fs = std::filesystem;
 
 namespace {
@@ -29,15 +30,6 @@ int sprite(const char* name) {
         if (tiles().sprites[i].name == name) return int(i);
     ADD_FAILURE() << "no sprite " << name;
     return -1;
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 Scene small_scene() {

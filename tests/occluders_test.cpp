@@ -23,6 +23,7 @@
 #include "test_util.hpp"
 
 using namespace isolux;
+using isolux::test::error_of;
 
 namespace {
 
@@ -762,14 +763,6 @@ TEST(Occluders, aRegionBeyondTheLimitIsRefusedWithItsSize) {
     const World w = make_world(test::default_tileset(), Scene{});
     Params p;
     p.occluders = Occluders::solids;
-    auto error_of = [](auto f) -> std::string {
-        try {
-            f();
-        } catch (const Error& e) {
-            return e.what();
-        }
-        return "";
-    };
     const Rect huge{0, 0, 8193, 8193};  // 2^26 + 16385 pixels
     ASSERT_GT((long long)huge.w * huge.h, max_occluder_pixels);
     const std::string m = error_of([&] { build_occluders(w, p, huge); });

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "isolux/cpu.hpp"
+#include "isolux/error.hpp"
 #include "isolux/files.hpp"
 #include "isolux/hash.hpp"
 #include "isolux/light_texture.hpp"
@@ -16,6 +17,19 @@
 #include "isolux/light_trace.hpp"
 
 namespace isolux::test {
+
+// The message of the Error that `f` throws, or "" when it throws none.
+template <class F>
+std::string error_of(F f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+#define EXPECT_MENTIONS(msg, text) EXPECT_NE((msg).find(text), std::string::npos) << (msg)
 
 // A folder of this test's own under the temp directory, named after the test
 // and the process, removed when it ends. `made`: created empty now; else left

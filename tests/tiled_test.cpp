@@ -13,6 +13,7 @@
 #include "test_util.hpp"
 
 using namespace isolux;
+using isolux::test::error_of;
 using isolux::test::TempDir;
 namespace fs = std::filesystem;
 
@@ -95,6 +96,42 @@ TEST(TiledExport, spriteNamesNeverBecomePathsAndSameNamesGetImagesOfTheirOwn) {
     ASSERT_EQ(a.width, b.width);
     ASSERT_EQ(a.height, b.height);
     EXPECT_TRUE(a.rgba == b.rgba);
+}
+
+// A first export beside files of the user's that bear the export's names
+// (their own level_floors.tsx, a level_images folder) is refused by the
+// name, writes nothing, and leaves them as they were.
+TEST(TiledExport, aFirstExportNeverReplacesFilesItDidNotWrite) {
+    TempDir d;
+    const Scene scene = small_scene();
+    const World w = make_world(test::default_tileset(), scene);
+    const fs::path tmx = d.path / "level.tmx";
+    auto listing = [&] {
+        std::vector<std::string> names;
+        for (const auto& f : fs::recursive_directory_iterator(d.path)) names.push_back(f.path().string());
+        std::sort(names.begin(), names.end());
+        return names;
+    };
+    for (const char* own : {"level_floors.tsx", "level_overlays.tsx", "level_light.png", "level_final.png"}) {
+        write_file_atomic(d.path / own, "the user's own");
+        const auto before = listing();
+        const std::string m = error_of([&] { export_tiled(w, scene, tmx); });
+        EXPECT_MENTIONS(m, own);
+        EXPECT_MENTIONS(m, "already exists");
+        EXPECT_EQ(read_text_file(d.path / own), "the user's own");
+        EXPECT_EQ(listing(), before) << "the refused export wrote or removed a file";
+        fs::remove(d.path / own);
+    }
+    fs::create_directories(d.path / "level_images");
+    write_file_atomic(d.path / "level_images" / "mine.png", "the user's own");
+    EXPECT_MENTIONS(error_of([&] { export_tiled(w, scene, tmx); }), "level_images");
+    EXPECT_EQ(read_text_file(d.path / "level_images" / "mine.png"), "the user's own");
+    EXPECT_FALSE(fs::exists(tmx));
+    // Elsewhere, or once the name is free, the export is written whole.
+    fs::remove_all(d.path / "level_images");
+    export_tiled(w, scene, tmx);
+    EXPECT_TRUE(fs::exists(d.path / "level_images"));
+    EXPECT_EQ(load_tiled(tmx).world.map.width, w.map.width);
 }
 
 TEST(TiledExport, aReExportWritesNewFilesThenTheMapThenRemovesTheOldOnes) {

@@ -179,26 +179,29 @@ int generation_on_disk(const fs::path& tmx, const std::string& base) {
 // The new generation's files, taken back if the export fails before its map
 // names them (a full disk, say). `ours`: an isolux map stands there, so
 // files under the new generation's names are an interrupted export's
-// leftovers that no map names, cleared first; otherwise only a folder the
-// export made is taken back, as anything else there may be the user's.
+// leftovers that no map names, cleared first. Otherwise a file or folder
+// under those names is somebody else's (a user's own `level_floors.tsx`):
+// the export is refused by its name rather than replace it.
 struct NewFiles {
     fs::path dir;
     ExportFiles files;
-    bool ours, made = false, done = false;
-    NewFiles(fs::path d, ExportFiles f, bool ours_) : dir(std::move(d)), files(std::move(f)), ours(ours_) {
+    bool done = false;
+    NewFiles(fs::path d, ExportFiles f, bool ours, const fs::path& tmx) : dir(std::move(d)), files(std::move(f)) {
         if (ours) files.remove_from(dir);
-        for (const std::string* f : {&files.floors_tsx, &files.overlays_tsx, &files.images, &files.light_png, &files.final_png})
+        for (const std::string* f : {&files.floors_tsx, &files.overlays_tsx, &files.images, &files.light_png, &files.final_png}) {
             check_own_name(dir / *f);
+            std::error_code ec;
+            if (!ours && fs::exists(fs::symlink_status(dir / *f, ec)))
+                throw Error((dir / *f).string() + ": already exists, and no map isolux exported names it at " +
+                            tmx.string() + "; an export never replaces a file it did not write (move it away, or "
+                            "export under another name)");
+        }
         std::error_code ec;
-        made = !fs::exists(dir / files.images, ec);
         fs::create_directories(dir / files.images, ec);
         if (ec) throw Error((dir / files.images).string() + ": cannot create (" + ec.message() + ")");
     }
     ~NewFiles() {
-        std::error_code ec;
-        if (done) return;
-        if (ours) files.remove_from(dir);
-        else if (made) fs::remove_all(dir / files.images, ec);
+        if (!done) files.remove_from(dir);  // every name was free or a leftover: all of it is this export's
     }
 };
 
@@ -530,7 +533,7 @@ std::pair<int, int> export_tiled(const World& world, const Scene& scene, const f
     const std::string base = tmx.stem().string();
     const fs::path dir = tmx.parent_path().empty() ? fs::path(".") : tmx.parent_path();
     const int old_generation = generation_on_disk(write_target(tmx), base);
-    NewFiles written(dir, ExportFiles(base, old_generation == 0 ? 1 : 0), old_generation >= 0);
+    NewFiles written(dir, ExportFiles(base, old_generation == 0 ? 1 : 0), old_generation >= 0, tmx);
     const ExportFiles& files = written.files;
     const fs::path images = dir / files.images;
     const Grid g = grid_of(world.map);

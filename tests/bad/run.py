@@ -343,6 +343,11 @@ os.makedirs(T("link_out", "export"))
 os.symlink(T("link_out", "elsewhere"), T("link_out", "export", "map_images"))
 case("export_images_folder_is_a_link_out", ["export-tiled", "--scene", SCENE, "--out", T("link_out", "export", "map.tmx")],
      2, "map_images: is a symbolic link")
+# A first export beside a user's own file under an export's name is refused
+# by that name, and the file keeps its bytes (tests/tiled_test.cpp).
+write("own_tsx/export/map_floors.tsx", "the user's own")
+case("export_beside_a_users_own_tsx", ["export-tiled", "--scene", SCENE, "--out", T("own_tsx", "export", "map.tmx")],
+     2, "map_floors.tsx: already exists")
 # Budgets per input, not per item: a small file that asks for gigabytes is refused with its total.
 big_png = write("big/sheet.png", png(4096, 4096, rows=b"".join(b"\0" + b"\0" * (4096 * 4) for _ in range(4096))))
 case("budget_100_sprites_one_large_sheet", R + ["--tileset", write("big/tileset.json", json.dumps({"sprites": [
