@@ -132,3 +132,19 @@ TEST(Accuracy, aSweepHandsOverEachRowAsItIsMeasuredSoAStopKeepsThem) {
     EXPECT_TRUE(field(final_row, pareto) == "0" || field(final_row, pareto) == "1") << final_row;
     EXPECT_EQ(std::count(last_csv.begin(), last_csv.end(), '\n'), 4);
 }
+
+// Sweeping occluders=footprints,shapes over a tileset with no shapes is
+// refused, naming the sprite, before any combination runs.
+TEST(Accuracy, aSweepOfShapesOverSpritesWithoutThemIsRefusedBeforeItsFirstCombination) {
+    Scene s = lit();
+    const World w = make_world(test::foreign_tileset(), s);
+    s.camera = Camera{};  // the whole map in view
+    int rows = 0;
+    SweepOptions o = quick();
+    o.rows_so_far = [&](const std::vector<SweepPoint>&) { ++rows; };
+    const std::string m = test::error_of([&] { run_sweep(w, s, {{"occluders", {"footprints", "shapes"}}}, o); });
+    EXPECT_NE(m.find("has no shape"), std::string::npos) << m;
+    EXPECT_EQ(rows, 0) << "a combination ran before the refusal";
+    // Without shapes asked for, the same sweep runs.
+    EXPECT_EQ(run_sweep(w, s, {{"occluders", {"footprints", "solids"}}}, o).size(), 2u);
+}

@@ -13,6 +13,7 @@
 
 #include "isolux/composite.hpp"
 #include "isolux/error.hpp"
+#include "isolux/truth.hpp"
 
 namespace isolux {
 
@@ -301,6 +302,12 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
         opt.references.empty() ? std::vector<Reference>{Reference::every_pixel} : opt.references;
 
     const Rect start = camera_view(scene.camera, world);
+    // A combination tracing the manifest's shapes, where a sprite in view
+    // has none, is refused before the first combination runs, not after the
+    // ones before it (world_solids names the sprite).
+    if (std::any_of(params.begin(), params.end(),
+                    [](const Params& p) { return p.occluders == Occluders::shapes && p.mode != Mode::flat; }))
+        world_solids(world, start);
     auto camera_at = [&](int f) {
         return Camera{start.x + opt.step_x * f, start.y + opt.step_y * f, start.w, start.h};
     };
