@@ -422,8 +422,8 @@ void register_truth() {
 // the frame report) of a walking camera carrying a light, tracing every l
 // frames, against what stops the rays.
 void print_walk_ratios(int pairs) {
-    auto walk = [](int l, Occluders o) {
-        return [l, o, st = lighting_state(1), f = long(0), s = lights_scene(bench::world("default", 24), 8, 11)]() mutable {
+    auto walk = [](int l, Occluders o, int threads = 1) {
+        return [l, o, st = lighting_state(threads), f = long(0), s = lights_scene(bench::world("default", 24), 8, 11)]() mutable {
             const World& w = bench::world("default", 24);
             s.params.trace_every = l;
             s.params.occluders = o;
@@ -446,6 +446,10 @@ void print_walk_ratios(int pairs) {
     // opacity correction), every frame.
     auto walk_solids = walk(1, Occluders::solids), walk_footprints = walk(1, Occluders::footprints);
     bench::print_ratio("solids_trace_cost", bench::interleaved_costs(walk_solids, walk_footprints, pairs), "<= 1.5");
+    // The same on two threads (the app's on this machine): one light moves,
+    // so its rays against solids spread over both; the paper's light takes one.
+    auto walk_solids2 = walk(1, Occluders::solids, 2), walk_footprints2 = walk(1, Occluders::footprints, 2);
+    bench::print_ratio("solids_trace_cost_threads2", bench::interleaved_costs(walk_solids2, walk_footprints2, pairs), nullptr);
     // A pan past the obstacle region's margin with solids: update_occluders
     // (the strip that came in, the index whole) over building the region whole.
     const World& w = bench::world("default", 24);

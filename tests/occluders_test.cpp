@@ -375,8 +375,9 @@ TEST(Occluders, keptSolidsBuildTheSameMapAndFrameAsFreshOnes) {
 // ray otherwise: the same bytes. A clip of under a quarter of the area takes
 // the rays, one a pixel wider than the area the tree; each is compared with
 // the area's own, on drawn seeds, light positions and heights, every ray
-// skip and area shape, light and shadow modes, solids and shapes.
-TEST(Occluders, theTreePassesGiveTheRaysBytes) {
+// skip and area shape, light and shadow modes, solids and shapes; and so is
+// each walked on 2 to 4 threads.
+TEST(Occluders, theTreePassesGiveTheRaysBytesOnAnyNumberOfThreads) {
     int compared = 0, lit_sprites = 0, shaded_ground = 0;
     for (const char* seed : {"isolux", "tree-walk", "forest-7"}) {
         Scene s;
@@ -402,11 +403,14 @@ TEST(Occluders, theTreePassesGiveTheRaysBytes) {
                 const Rect part{area.x + 1, area.y, area.w / 2 - 1, area.h / 2 - 1};
                 const Rect lower_right{area.x + area.w / 2 + 2, area.y + area.h / 2 + 2, area.w / 2 - 2, area.h / 2 + 3};
                 LightMask tree = trace_light_solids(occ, cx, cy, a, bb, height, p, area);
-                LightMask tree_part = trace_light_solids(occ, cx, cy, a, bb, height, p, part);
-                LightMask tree_corner = trace_light_solids(occ, cx, cy, a, bb, height, p, lower_right);
+                // The clipped and the threaded walks (the tree's subtrees
+                // on 2, 3 and 4 threads) against the area's on one.
+                LightMask tree_part = trace_light_solids(occ, cx, cy, a, bb, height, p, part, 2);
+                LightMask tree_corner = trace_light_solids(occ, cx, cy, a, bb, height, p, lower_right, 3);
+                LightMask threaded = trace_light_solids(occ, cx, cy, a, bb, height, p, area, 2);
                 LightMask rays = trace_light_solids_by_rays(occ, cx, cy, a, bb, height, p, area);
                 LightMask rays_part = trace_light_solids_by_rays(occ, cx, cy, a, bb, height, p, part);
-                LightMask wide = trace_light_solids(occ, cx, cy, a, bb, height, p, wider);
+                LightMask wide = trace_light_solids(occ, cx, cy, a, bb, height, p, wider, 4);
                 // Each clipped mask against the area's: the same inside it, unlit past it.
                 auto same_as_tree = [&](const LightMask& m, const char* pass) {
                     for (int y = m.clip.y; y < m.clip.y + m.clip.h; ++y)
@@ -426,18 +430,21 @@ TEST(Occluders, theTreePassesGiveTheRaysBytes) {
                 same_as_tree(tree_part, "ground, tree clipped");
                 same_as_tree(tree_corner, "ground, tree clipped to a corner past the area");
                 same_as_tree(wide, "ground, wider clip");
+                same_as_tree(threaded, "ground, tree on two threads");
                 for (std::size_t i = 0; i < tree.value.size(); ++i) shaded_ground += tree.value[i] == 0;
                 light_sprite_points(tree, occ, height, p);
-                light_sprite_points(tree_part, occ, height, p);
-                light_sprite_points(tree_corner, occ, height, p);
+                light_sprite_points(tree_part, occ, height, p, 2);
+                light_sprite_points(tree_corner, occ, height, p, 3);
+                light_sprite_points(threaded, occ, height, p, 2);
                 light_sprite_points_by_rays(rays, occ, height, p);
                 light_sprite_points_by_rays(rays_part, occ, height, p);
-                light_sprite_points(wide, occ, height, p);
+                light_sprite_points(wide, occ, height, p, 4);
                 same_as_tree(rays, "sprites, rays");
                 same_as_tree(rays_part, "sprites, rays clipped");
                 same_as_tree(tree_part, "sprites, tree clipped");
                 same_as_tree(tree_corner, "sprites, tree clipped to a corner past the area");
                 same_as_tree(wide, "sprites, wider clip");
+                same_as_tree(threaded, "sprites, tree on two threads");
                 for (std::size_t i = 0; i < tree.value.size(); ++i) {
                     const int px = area.x + int(i % std::size_t(area.w)), py = area.y + int(i / std::size_t(area.w));
                     lit_sprites += tree.value[i] && occ.surface.instance[std::size_t(py - occ.rect.y) * occ.rect.w +
@@ -446,7 +453,7 @@ TEST(Occluders, theTreePassesGiveTheRaysBytes) {
             }
         }
     }
-    EXPECT_EQ(compared, 480);
+    EXPECT_EQ(compared, 576);
     // The scenes hold both shaded ground and lit sprites, so the comparison can fail.
     EXPECT_GT(shaded_ground, 10000);
     EXPECT_GT(lit_sprites, 10000);

@@ -440,38 +440,48 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
 
     const TraceControl& control = st.options.control;
     const TraceControl* ctl = control.cancel || control.done ? &control : nullptr;
+    // One light, its passes against solids walked on `light_threads` threads.
+    auto trace_one = [&](std::size_t k, int light_threads) {
+        TracedLight& tl = plan.traced[order[k]];
+        const auto t0 = Clock::now();
+        const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
+        if (!over && !solids && !traced_elsewhere) {
+            trace_light_into(tl.mask, st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
+                             area_is_clear(st.obstacles, area), ctl);
+        } else {
+            if (solids && !traced_elsewhere)  // beyond the paper: solids with height
+                tl.mask = trace_light_solids(st.occluders, tl.cx, tl.cy, tl.a, tl.b, tl.height, p, tl.mask.clip,
+                                             light_threads);
+            else if (over)  // beyond the paper: rays over low obstacles
+                tl.mask = trace_light_over(st.obstacles, st.obstacle_heights, tl.cx, tl.cy, tl.a, tl.b, tl.height,
+                                           p, tl.mask.clip);
+            control.add(std::int64_t(light_trace_work(tl.a, tl.b, p)));  // progress by whole lights here
+        }
+        const auto t1 = Clock::now();
+        // With solids the sprite pass (unless another tracer took it with
+        // its rays); else the ground lines when every sprite's ground fits
+        // them, the reference otherwise.
+        if (correct && solids) {
+            if (!traced_elsewhere) light_sprite_points(tl.mask, st.occluders, tl.height, p, light_threads);
+        } else if (correct && st.cache.ground.exact)
+            correct_with_ground_lines(tl.mask, st.cache.ground);
+        else if (correct)
+            correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
+        if (shaped(p)) shape_light(tl.mask, p);  // beyond the paper: round lights, a fade to the border
+        trace_ms[k] = ms_between(t0, t1);
+        correct_ms[k] = ms_between(t1, Clock::now());
+        tl.cost_ms = trace_ms[k] + correct_ms[k];
+    };
+    // Fewer lights against solids than threads: each light's rays spread
+    // over all of them, one light after another, rather than threads idle
+    // beside a light that takes long.
+    const bool split_lights = solids && !traced_elsewhere && n > 0 && int(n) < threads;
     std::atomic<std::size_t> next_light{0};
     auto trace_lights = [&] {
+        if (split_lights) return;
         for (std::size_t k; (k = next_light++) < n;) {
             if (control.cancelled()) break;
-            TracedLight& tl = plan.traced[order[k]];
-            const auto t0 = Clock::now();
-            const Rect area{int(tl.cx) - tl.a, int(tl.cy) - tl.b, 2 * tl.a + 1, 2 * tl.b + 1};
-            if (!over && !solids && !traced_elsewhere) {
-                trace_light_into(tl.mask, st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
-                                 area_is_clear(st.obstacles, area), ctl);
-            } else {
-                if (solids && !traced_elsewhere)  // beyond the paper: solids with height
-                    tl.mask = trace_light_solids(st.occluders, tl.cx, tl.cy, tl.a, tl.b, tl.height, p, tl.mask.clip);
-                else if (over)  // beyond the paper: rays over low obstacles
-                    tl.mask = trace_light_over(st.obstacles, st.obstacle_heights, tl.cx, tl.cy, tl.a, tl.b, tl.height,
-                                               p, tl.mask.clip);
-                control.add(std::int64_t(light_trace_work(tl.a, tl.b, p)));  // progress by whole lights here
-            }
-            const auto t1 = Clock::now();
-            // With solids the sprite pass (unless another tracer took it with
-            // its rays); else the ground lines when every sprite's ground fits
-            // them, the reference otherwise.
-            if (correct && solids) {
-                if (!traced_elsewhere) light_sprite_points(tl.mask, st.occluders, tl.height, p);
-            } else if (correct && st.cache.ground.exact)
-                correct_with_ground_lines(tl.mask, st.cache.ground);
-            else if (correct)
-                correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
-            if (shaped(p)) shape_light(tl.mask, p);  // beyond the paper: round lights, a fade to the border
-            trace_ms[k] = ms_between(t0, t1);
-            correct_ms[k] = ms_between(t1, Clock::now());
-            tl.cost_ms = trace_ms[k] + correct_ms[k];
+            trace_one(k, 1);
         }
     };
     const int bands = std::max(1, std::min(threads * 8, tex_rect.h / 32));
@@ -503,6 +513,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     }
     const int pool_size = work < 200000 ? 1 : std::max(1, std::min(threads, std::max(int(n), bands)));
     const auto t0 = Clock::now();
+    for (std::size_t k = 0; split_lights && k < n && !control.cancelled(); ++k) trace_one(k, threads);
     Clock::time_point t_traced;
     const std::function<void()> traced_all = [&] { t_traced = Clock::now(); };
     PhaseBarrier sync(pool_size, traced_all);

@@ -636,7 +636,7 @@ LightMask solids_mask(std::int64_t cx, std::int64_t cy, int a, int b, const Para
 }  // namespace
 
 LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64_t cy, int a, int b, double height,
-                             const Params& p, Rect clip) {
+                             const Params& p, Rect clip, int threads) {
     LightMask m = solids_mask(cx, cy, a, b, p, clip);
     if (m.clip.empty()) return m;
     assert(occ.flags.size() == occ.spans.size());  // index_occluders
@@ -648,7 +648,7 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
         return m;
     }
     if (m.clip == area) {
-        trace_ground_tree(m, occ, H, table, p, area);
+        trace_ground_tree(m, occ, H, table, p, area, threads);
         return m;
     }
     // Clipped: the whole area over the tree, then the part of it the clip
@@ -658,7 +658,7 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
     const Rect inside = intersect(m.clip, area);
     thread_local LightMask whole;
     start_mask(whole, cx, cy, a, b, p, area);
-    trace_ground_tree(whole, occ, H, table, p, inside);
+    trace_ground_tree(whole, occ, H, table, p, inside, threads);
     for (int y = inside.y; y < inside.y + inside.h; ++y)
         std::memcpy(&m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(inside.x - m.clip.x)],
                     &whole.value[std::size_t(y - area.y) * area.w + std::size_t(inside.x - area.x)], std::size_t(inside.w));
@@ -744,7 +744,7 @@ void start_sprite_points(LightMask& m, const OccluderMap& occ, double height, co
     }
 }
 
-void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
+void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p, int threads) {
     if (m.clip.empty()) return;
     assert(occ.flags.size() == occ.surface.instance.size());  // index_occluders
     const Rect whole_area{int(m.cx) - m.a, int(m.cy) - m.b, 2 * m.a + 1, 2 * m.b + 1};
@@ -767,7 +767,7 @@ void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, co
             if (instance[i] >= 0) value[i] = 0;
     }
     const std::vector<std::uint8_t> table = falloff_table(m.a, m.b, p.falloff_scale);
-    light_sprite_points_tree(into, occ, std::max(height, 0.0), table, p, own_steps, wanted);
+    light_sprite_points_tree(into, occ, std::max(height, 0.0), table, p, own_steps, wanted, threads);
     if (whole) return;
     for (int y = wanted.y; y < wanted.y + wanted.h; ++y)
         for (int x = wanted.x; x < wanted.x + wanted.w; ++x)

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -19,6 +20,7 @@
 #include <tuple>
 
 #include "ray_tree.hpp"
+#include "worker_pool.hpp"
 
 namespace isolux {
 
@@ -33,6 +35,12 @@ struct Node {
     std::int32_t end;
 };
 constexpr std::uint32_t depth_bits = 10;
+
+// A mask's byte as the walks of several threads read and write it: a pixel
+// several rays reach may be lit from two subtrees at once, always with the
+// same value (its falloff), so relaxed order suffices.
+inline void store(std::uint8_t& v, std::uint8_t x) { std::atomic_ref<std::uint8_t>(v).store(x, std::memory_order_relaxed); }
+inline std::uint8_t load(std::uint8_t& v) { return std::atomic_ref<std::uint8_t>(v).load(std::memory_order_relaxed); }
 
 std::shared_ptr<const std::vector<Node>> tree_nodes(int a, int b, int k) {
     static std::mutex mutex;
@@ -160,10 +168,10 @@ std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const
                                     w3 = node[i + 3].at_depth;
                 const std::uint32_t o0 = w0 >> depth_bits, o1 = w1 >> depth_bits, o2 = w2 >> depth_bits, o3 = w3 >> depth_bits;
                 if ((flags[o0] | flags[o1] | flags[o2] | flags[o3]) & (OccluderMap::has_span | moving_away)) break;
-                value[o0] = table[w0 & d];
-                value[o1] = table[w1 & d];
-                value[o2] = table[w2 & d];
-                value[o3] = table[w3 & d];
+                store(value[o0], table[w0 & d]);
+                store(value[o1], table[w1 & d]);
+                store(value[o2], table[w2 & d]);
+                store(value[o3], table[w3 & d]);
                 i += 4;
             }
         if (i >= n) return n;
@@ -174,9 +182,50 @@ std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const
             i = node[i].end;
             continue;
         }
-        value[w >> depth_bits] = table[w & d];
+        store(value[w >> depth_bits], table[w & d]);
         ++i;
     }
+}
+
+// The walk's pieces for `threads` threads: the subtrees below the nodes
+// within split_depth steps of the light that hold no span, each walked on
+// its own (`walk(i)` walks node i's subtree, its rays carrying nothing in:
+// no span before it), those nodes themselves by `head(i)`, and none below a
+// node moving away. Each pixel's answer is the same whichever walk lights
+// it first, so the bytes do not depend on the thread count; one thread
+// walks the whole tree as one piece.
+constexpr int split_depth = 3;
+template <class Head, class Walk>
+void walk_pieces(const Node* node, const std::uint8_t* flags, int threads, Head&& head, Walk&& walk) {
+    if (threads <= 1) return walk(0);
+    std::vector<std::int32_t> pieces;
+    auto split = [&](auto&& self, std::int32_t i) -> void {
+        const std::uint32_t w = node[i].at_depth;
+        const std::uint8_t f = flags[w >> depth_bits];
+        if (f & moving_away) return;
+        if ((w & ((1u << depth_bits) - 1)) >= split_depth || (f & OccluderMap::has_span)) return pieces.push_back(i);
+        head(i);
+        for (std::int32_t c = i + 1; c < node[i].end; c = node[c].end) self(self, c);
+    };
+    split(split, 0);
+    // Threads take runs of neighbouring pieces (the tree is in angular
+    // order), four a thread of about equal nodes: pieces taken one by one
+    // would put neighbouring rays on different threads, writing the same
+    // cache lines of the mask.
+    std::vector<std::size_t> runs{0};
+    const std::int32_t per_run = node[0].end / (4 * threads) + 1;
+    std::int32_t in_run = 0;
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+        in_run += node[pieces[k]].end - pieces[k];
+        if (in_run >= per_run) runs.push_back(k + 1), in_run = 0;
+    }
+    if (runs.back() != pieces.size()) runs.push_back(pieces.size());
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+        for (std::size_t r; (r = next++) + 1 < runs.size();)
+            for (std::size_t k = runs[r]; k < runs[r + 1]; ++k) walk(pieces[k]);
+    };
+    run_on_threads(std::min(threads, int(runs.size()) - 1), work);
 }
 
 }  // namespace
@@ -191,10 +240,9 @@ bool occluder_tree_serves(const OccluderMap& occ, Rect area, const Params& p) {
 }
 
 void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
-                       const Params& p, Rect wanted) {
+                       const Params& p, Rect wanted, int threads) {
     const auto tree = tree_nodes(m.a, m.b, p.ray_skip);
     const Node* node = tree->data();
-    const std::int32_t n = std::int32_t(tree->size());
     const AreaInMap in(occ, m.clip);
     const std::uint8_t* flags = area_flags(occ, m.clip, in, wanted);
     std::uint8_t* value = m.value.data();
@@ -212,94 +260,102 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
         int endless;  // none, or the depth from which all is shaded
         int reach;    // the bits end before it
     };
-    thread_local std::vector<Frame> frames;
-    thread_local std::vector<std::uint64_t> bit_arena;
-    frames.resize(std::size_t(last) + 2);
-    bit_arena.assign(frames.size() * std::size_t(words), 0);
-    Frame* frame = frames.data();
-    std::uint64_t* bits = bit_arena.data();
-    int t = 0;
-    frame[0] = Frame{n, none, 0};
-    for (std::int32_t i = 0; i < n;) {
-        while (frame[t].end <= i) --t;
-        const Frame top = frame[t];
-        ask_for_spans(occ, in, flags, node, i + spans_ahead, n);
-        const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
-        const int k = int(w & ((1u << depth_bits) - 1));
-        const std::uint8_t f = flags[o];
-        if (f & moving_away) {
-            i = node[i].end;
-            continue;
-        }
-        if (top.reach <= k && !(f & OccluderMap::has_span)) {
-            // No bit shades this node or any below it: lit unless past the
-            // endless shade, up to the next span (in its subtree, or after
-            // it when the frame is empty).
-            i = light_clear(node, i, top.reach == 0 && top.endless == none ? top.end : node[i].end, flags, table.data(),
-                            value, std::uint32_t(top.endless));
-            continue;
-        }
-        // This node's shades (one per span below the light): the depths [from, to).
-        int endless = top.endless;
-        std::array<int, 2> from{0, 0}, to{0, 0};
-        if (f & OccluderMap::has_span) {
-            const Spans& sps = occ.spans[in.map(o)];
-            const double kd = double(k);
-            for (int j = 0; j < 2; ++j) {
-                const Span sp = j == 0 ? sps.lower : sps.upper;
-                if (!sp.any() || sp.low >= H) continue;
-                const double f = sp.low <= 0 ? kd : kd * H / (H - sp.low);
-                if (f > last_depth) continue;
-                if (sp.high >= H) {
-                    endless = std::min(endless, int(std::ceil(f)));
-                } else {
-                    const double e = kd * H / (H - sp.high);
-                    from[std::size_t(j)] = int(std::ceil(f));
-                    to[std::size_t(j)] = e > last_depth ? last + 1 : int(std::ceil(e));
+    auto walk = [&](std::int32_t piece) {
+        const std::int32_t n = node[piece].end;
+        thread_local std::vector<Frame> frames;
+        thread_local std::vector<std::uint64_t> bit_arena;
+        frames.resize(std::size_t(last) + 2);
+        bit_arena.resize(frames.size() * std::size_t(words));
+        std::fill_n(bit_arena.begin(), words, 0);  // each deeper frame copies its parent's first
+        Frame* frame = frames.data();
+        std::uint64_t* bits = bit_arena.data();
+        int t = 0;
+        frame[0] = Frame{n, none, 0};
+        for (std::int32_t i = piece; i < n;) {
+            while (frame[t].end <= i) --t;
+            const Frame top = frame[t];
+            ask_for_spans(occ, in, flags, node, i + spans_ahead, n);
+            const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
+            const int k = int(w & ((1u << depth_bits) - 1));
+            const std::uint8_t f = flags[o];
+            if (f & moving_away) {
+                i = node[i].end;
+                continue;
+            }
+            if (top.reach <= k && !(f & OccluderMap::has_span)) {
+                // No bit shades this node or any below it: lit unless past the
+                // endless shade, up to the next span (in its subtree, or after
+                // it when the frame is empty).
+                i = light_clear(node, i, top.reach == 0 && top.endless == none ? top.end : node[i].end, flags, table.data(),
+                                value, std::uint32_t(top.endless));
+                continue;
+            }
+            // This node's shades (one per span below the light): the depths [from, to).
+            int endless = top.endless;
+            std::array<int, 2> from{0, 0}, to{0, 0};
+            if (f & OccluderMap::has_span) {
+                const Spans& sps = occ.spans[in.map(o)];
+                const double kd = double(k);
+                for (int j = 0; j < 2; ++j) {
+                    const Span sp = j == 0 ? sps.lower : sps.upper;
+                    if (!sp.any() || sp.low >= H) continue;
+                    const double f = sp.low <= 0 ? kd : kd * H / (H - sp.low);
+                    if (f > last_depth) continue;
+                    if (sp.high >= H) {
+                        endless = std::min(endless, int(std::ceil(f)));
+                    } else {
+                        const double e = kd * H / (H - sp.high);
+                        from[std::size_t(j)] = int(std::ceil(f));
+                        to[std::size_t(j)] = e > last_depth ? last + 1 : int(std::ceil(e));
+                    }
                 }
             }
+            if (endless <= k) {  // this node and its whole subtree are shaded
+                i = node[i].end;
+                continue;
+            }
+            const std::uint64_t* at = bits + std::size_t(t) * words;
+            bool shaded = k < top.reach && (at[k >> 6] >> (k & 63) & 1);
+            int reach = top.reach;
+            bool any_shade = false;
+            for (std::size_t j = 0; j < 2; ++j) {
+                shaded = shaded || (from[j] <= k && k < to[j]);
+                from[j] = std::max(from[j], k + 1);
+                to[j] = std::min(to[j], endless);
+                if (from[j] < to[j]) any_shade = true, reach = std::max(reach, to[j]);
+            }
+            if (!shaded) store(value[o], table[std::size_t(k)]);
+            if ((any_shade || endless < top.endless) && node[i].end > i + 1) {
+                std::uint64_t* mine = bits + std::size_t(t + 1) * words;
+                std::memcpy(mine, at, std::size_t(words) * sizeof(std::uint64_t));
+                for (std::size_t j = 0; j < 2; ++j)
+                    for (int d = from[j]; d < to[j];) {  // the depths [from, to), a word at a time
+                        const int word_end = std::min(to[j], (d & ~63) + 64);
+                        const int count = word_end - d;
+                        mine[d >> 6] |= (count == 64 ? ~std::uint64_t(0) : ((std::uint64_t(1) << count) - 1)) << (d & 63);
+                        d = word_end;
+                    }
+                frame[t + 1] = Frame{node[i].end, endless, reach};
+                ++t;
+            }
+            ++i;
         }
-        if (endless <= k) {  // this node and its whole subtree are shaded
-            i = node[i].end;
-            continue;
-        }
-        const std::uint64_t* at = bits + std::size_t(t) * words;
-        bool shaded = k < top.reach && (at[k >> 6] >> (k & 63) & 1);
-        int reach = top.reach;
-        bool any_shade = false;
-        for (std::size_t j = 0; j < 2; ++j) {
-            shaded = shaded || (from[j] <= k && k < to[j]);
-            from[j] = std::max(from[j], k + 1);
-            to[j] = std::min(to[j], endless);
-            if (from[j] < to[j]) any_shade = true, reach = std::max(reach, to[j]);
-        }
-        if (!shaded) value[o] = table[std::size_t(k)];
-        if ((any_shade || endless < top.endless) && node[i].end > i + 1) {
-            std::uint64_t* mine = bits + std::size_t(t + 1) * words;
-            std::memcpy(mine, at, std::size_t(words) * sizeof(std::uint64_t));
-            for (std::size_t j = 0; j < 2; ++j)
-                for (int d = from[j]; d < to[j];) {  // the depths [from, to), a word at a time
-                    const int word_end = std::min(to[j], (d & ~63) + 64);
-                    const int count = word_end - d;
-                    mine[d >> 6] |= (count == 64 ? ~std::uint64_t(0) : ((std::uint64_t(1) << count) - 1)) << (d & 63);
-                    d = word_end;
-                }
-            frame[t + 1] = Frame{node[i].end, endless, reach};
-            ++t;
-        }
-        ++i;
-    }
+    };
+    // The nodes above the pieces hold no span: lit.
+    auto head = [&](std::int32_t i) {
+        store(value[node[i].at_depth >> depth_bits], table[std::size_t(node[i].at_depth & ((1u << depth_bits) - 1))]);
+    };
+    walk_pieces(node, flags, threads, head, walk);
 }
 
 void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
-                              const Params& p, int own_steps, Rect wanted) {
+                              const Params& p, int own_steps, Rect wanted, int threads) {
     // The rays' area: the light's, grown by the tallest point's rows above
     // and below (light_sprite_points).
     const int b = m.b + occ.tallest;
     const Rect rays{int(m.cx) - m.a, int(m.cy) - b, 2 * m.a + 1, 2 * b + 1};
     const auto tree = tree_nodes(m.a, b, p.ray_skip);
     const Node* node = tree->data();
-    const std::int32_t n = std::int32_t(tree->size());
     const AreaInMap in(occ, rays);
     // The ground pixels whose points can show in `wanted`: its columns, its
     // rows and the tallest point's rows below them.
@@ -321,9 +377,9 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
             const std::uint32_t rows = occ.shown[e].rows;
             if (rows > row || row - rows < first_row || row - rows > last_row) continue;  // outside the light's area
             std::uint8_t& v = value[(row - rows - first_row) * W + c];
-            if (v) continue;
+            if (load(v)) continue;
             if (int(k) <= own_steps || !r->blocks((H - occ.shown[e].height) / double(k)))
-                v = table[std::size_t(std::max(std::abs(int(c) - m.a), std::abs(int(row) - int(rows) - b)))];
+                store(v, table[std::size_t(std::max(std::abs(int(c) - m.a), std::abs(int(row) - int(rows) - b)))]);
         }
     };
     // Below a span: per depth on the current path, the node's spans and
@@ -331,59 +387,68 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     // one depth up, so the path's shadows need no stack): shadow[k + 1]
     // after the node at depth k, the parent's own unless a span passed there.
     const int depths = std::max(m.a, b) + 1;
-    thread_local std::vector<const Spans*> span;  // none: nullptr
-    thread_local std::vector<RayShadow> changed;  // changed[k + 1]: the shadow after a span passed at depth k
-    thread_local std::vector<const RayShadow*> shadow;
-    span.assign(std::size_t(depths), nullptr);
-    changed.resize(std::size_t(depths) + 1);
-    shadow.resize(std::size_t(depths) + 1);
-    thread_local std::vector<std::int32_t> next_shown;  // per node: the first node from it with points
-    next_shown.resize(std::size_t(n) + 1);
     const RayShadow clear;
-    for (std::int32_t i = 0; i < n;) {
-        // Before any span on its rays a node lights every point over it.
-        i = walk_clear(node, i, n, flags, OccluderMap::has_shown,
-                       [&](std::uint32_t o, std::uint32_t k) { light_shown(o, k, &clear); });
-        if (i >= n) break;
-        // Node i holds a span and no node before it on its rays does.
-        const std::int32_t last = node[i].end;
-        const int first = int(node[i].at_depth & depth_mask);
-        // A subtree with no points has nothing to light: what its spans
-        // block matters only within it, so the walk skips it whole.
-        next_shown[std::size_t(last)] = last;
-        for (std::int32_t j = last - 1; j >= i; --j)
-            next_shown[std::size_t(j)] = flags[node[j].at_depth >> depth_bits] & OccluderMap::has_shown ? j : next_shown[std::size_t(j) + 1];
-        if (next_shown[std::size_t(i)] >= last) {
-            i = last;
-            continue;
-        }
-        for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = nullptr;
-        shadow[std::size_t(first)] = &clear;
-        for (; i < last; ++i) {
-            ask_for_spans(occ, in, flags, node, i + spans_ahead, last);
-            const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
-            const int k = int(w & depth_mask);
-            const std::uint8_t f = flags[o];
-            if ((f & moving_away) || next_shown[std::size_t(i)] >= node[i].end) {
-                i = node[i].end - 1;
+    auto walk = [&](std::int32_t piece) {
+        const std::int32_t n = node[piece].end;
+        thread_local std::vector<const Spans*> span;  // none: nullptr
+        thread_local std::vector<RayShadow> changed;  // changed[k + 1]: the shadow after a span passed at depth k
+        thread_local std::vector<const RayShadow*> shadow;
+        span.assign(std::size_t(depths), nullptr);
+        changed.resize(std::size_t(depths) + 1);
+        shadow.resize(std::size_t(depths) + 1);
+        thread_local std::vector<std::int32_t> next_shown;  // per node: the first node from it with points
+        next_shown.resize(std::size_t(n) + 1);
+        for (std::int32_t i = piece; i < n;) {
+            // Before any span on its rays a node lights every point over it.
+            i = walk_clear(node, i, n, flags, OccluderMap::has_shown,
+                           [&](std::uint32_t o, std::uint32_t k) { light_shown(o, k, &clear); });
+            if (i >= n) break;
+            // Node i holds a span and no node before it on its rays does.
+            const std::int32_t last = node[i].end;
+            const int first = int(node[i].at_depth & depth_mask);
+            // A subtree with no points has nothing to light: what its spans
+            // block matters only within it, so the walk skips it whole.
+            next_shown[std::size_t(last)] = last;
+            for (std::int32_t j = last - 1; j >= i; --j)
+                next_shown[std::size_t(j)] = flags[node[j].at_depth >> depth_bits] & OccluderMap::has_shown ? j : next_shown[std::size_t(j) + 1];
+            if (next_shown[std::size_t(i)] >= last) {
+                i = last;
                 continue;
             }
-            span[std::size_t(k)] = (f & OccluderMap::has_span) ? &occ.spans[in.map(o)] : nullptr;
-            const RayShadow* r = shadow[std::size_t(k)];
-            const int s = k - own_steps;
-            if (s >= 0 && span[std::size_t(s)]) {
-                changed[std::size_t(k) + 1].set(*r);
-                changed[std::size_t(k) + 1].pass(*span[std::size_t(s)], s, H);
-                r = &changed[std::size_t(k) + 1];
+            for (int d = std::max(0, first - own_steps); d < first; ++d) span[std::size_t(d)] = nullptr;
+            shadow[std::size_t(first)] = &clear;
+            for (; i < last; ++i) {
+                ask_for_spans(occ, in, flags, node, i + spans_ahead, last);
+                const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
+                const int k = int(w & depth_mask);
+                const std::uint8_t f = flags[o];
+                if ((f & moving_away) || next_shown[std::size_t(i)] >= node[i].end) {
+                    i = node[i].end - 1;
+                    continue;
+                }
+                span[std::size_t(k)] = (f & OccluderMap::has_span) ? &occ.spans[in.map(o)] : nullptr;
+                const RayShadow* r = shadow[std::size_t(k)];
+                const int s = k - own_steps;
+                if (s >= 0 && span[std::size_t(s)]) {
+                    changed[std::size_t(k) + 1].set(*r);
+                    changed[std::size_t(k) + 1].pass(*span[std::size_t(s)], s, H);
+                    r = &changed[std::size_t(k) + 1];
+                }
+                shadow[std::size_t(k) + 1] = r;
+                if (f & OccluderMap::has_shown) light_shown(o, std::uint32_t(k), r);
+                // Hidden from here on, or the horizon past every point's top and
+                // only rising (a span as tall as the light): nothing below lit.
+                if (k >= own_steps && (r->hidden() || (r->standing <= 0 && H - double(k) * r->standing > top)))
+                    i = node[i].end - 1;
             }
-            shadow[std::size_t(k) + 1] = r;
-            if (f & OccluderMap::has_shown) light_shown(o, std::uint32_t(k), r);
-            // Hidden from here on, or the horizon past every point's top and
-            // only rising (a span as tall as the light): nothing below lit.
-            if (k >= own_steps && (r->hidden() || (r->standing <= 0 && H - double(k) * r->standing > top)))
-                i = node[i].end - 1;
         }
-    }
+    };
+    // The nodes above the pieces hold no span: each lights the points over it.
+    auto head = [&](std::int32_t i) {
+        const std::uint32_t w = node[i].at_depth;
+        if (flags[w >> depth_bits] & OccluderMap::has_shown) light_shown(w >> depth_bits, w & depth_mask, &clear);
+    };
+    walk_pieces(node, flags, threads, head, walk);
 }
 
 }  // namespace isolux

@@ -24,8 +24,10 @@ bool occluder_tree_serves(const OccluderMap& occ, Rect area, const Params& p);
 // The ground pass (trace_light_solids) over the tree, into `m` as started
 // with its clip the whole area; only the pixels in `wanted` (within the
 // area) are sure to be lit: the walk skips the rays once they leave it.
+// On `threads` threads the tree's subtrees are walked apart, to the same
+// bytes.
 void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
-                       const Params& p, Rect wanted);
+                       const Params& p, Rect wanted, int threads = 1);
 
 // What the spans a ray of the sprite pass has passed (all but its last
 // own_steps steps, which hold a point's own solid at about its height)
@@ -110,7 +112,8 @@ private:
 // the area) are sure to be lit: the walk leaves the rays once they move
 // away from it, and a ray from where no point below can be lit (hidden, or
 // its horizon past every point's top behind a span as tall as the light).
+// On `threads` threads, as trace_ground_tree.
 void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, const std::vector<std::uint8_t>& table,
-                              const Params& p, int own_steps, Rect wanted);
+                              const Params& p, int own_steps, Rect wanted, int threads = 1);
 
 }  // namespace isolux

@@ -160,16 +160,17 @@ void index_occluders(OccluderMap& m);
 // traced against `occ` as ground everywhere: value = falloff(max(|dx|, |dy|))
 // where lit, as trace_light's (shape_light applies the falloff's shape
 // after). Border rays with ray skip, or every pixel; light and shadow modes
-// (`reached` filled in shadow mode: every pixel of the area).
+// (`reached` filled in shadow mode: every pixel of the area). `threads`:
+// how many threads walk the rays (the same bytes on any number).
 LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64_t cy, int a, int b, double height,
-                             const Params& p, Rect clip);
+                             const Params& p, Rect clip, int threads = 1);
 
 // Then every pixel of the mask that shows a sprite, lit (or not) by the 3D
 // point it shows, tested along the same rays as the ground (ray skip, or
 // every pixel): in place of the opacity correction, and timed as it. A pixel
 // whose ground point lies outside the area (or the map) is tested along its
-// own line from the light's centre.
-void light_sprite_points(LightMask& mask, const OccluderMap& occ, double height, const Params& p);
+// own line from the light's centre. `threads` as trace_light_solids.
+void light_sprite_points(LightMask& mask, const OccluderMap& occ, double height, const Params& p, int threads = 1);
 
 // The sprite pass's first step (light_sprite_points takes it; a tracer that
 // walks the sprite pass's rays elsewhere, the app's GPU, takes it before
