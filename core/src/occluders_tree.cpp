@@ -18,6 +18,7 @@
 #include <memory>
 #include <mutex>
 #include <tuple>
+#include <type_traits>
 
 #include "ray_tree.hpp"
 #include "worker_pool.hpp"
@@ -36,11 +37,22 @@ struct Node {
 };
 constexpr std::uint32_t depth_bits = 10;
 
-// A mask's byte as the walks of several threads read and write it: a pixel
-// several rays reach may be lit from two subtrees at once, always with the
-// same value (its falloff), so relaxed order suffices.
-inline void store(std::uint8_t& v, std::uint8_t x) { std::atomic_ref<std::uint8_t>(v).store(x, std::memory_order_relaxed); }
-inline std::uint8_t load(std::uint8_t& v) { return std::atomic_ref<std::uint8_t>(v).load(std::memory_order_relaxed); }
+// A mask's byte as a walk reads and writes it. `Shared`: walks on several
+// threads may light a pixel several rays reach from two subtrees at once,
+// always with the same value (its falloff), so relaxed order suffices; one
+// thread's walk keeps plain bytes (atomics cost it a few percent).
+using Shared = std::true_type;
+using Alone = std::false_type;
+template <class S>
+inline void store(std::uint8_t& v, std::uint8_t x) {
+    if constexpr (S::value) std::atomic_ref<std::uint8_t>(v).store(x, std::memory_order_relaxed);
+    else v = x;
+}
+template <class S>
+inline std::uint8_t load(std::uint8_t& v) {
+    if constexpr (S::value) return std::atomic_ref<std::uint8_t>(v).load(std::memory_order_relaxed);
+    else return v;
+}
 
 std::shared_ptr<const std::vector<Node>> tree_nodes(int a, int b, int k) {
     static std::mutex mutex;
@@ -158,6 +170,7 @@ std::int32_t walk_clear(const Node* node, std::int32_t i, std::int32_t n, const 
 // The same, writing each node's falloff (ground pass: a node before any span
 // on its rays is lit), and skipping the subtree of each node moving away or
 // at depth `endless` or more (shaded to the border by a span before them).
+template <class S>
 std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const std::uint8_t* flags,
                          const std::uint8_t* table, std::uint8_t* value, std::uint32_t endless) {
     constexpr std::uint32_t d = (1u << depth_bits) - 1;
@@ -168,10 +181,10 @@ std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const
                                     w3 = node[i + 3].at_depth;
                 const std::uint32_t o0 = w0 >> depth_bits, o1 = w1 >> depth_bits, o2 = w2 >> depth_bits, o3 = w3 >> depth_bits;
                 if ((flags[o0] | flags[o1] | flags[o2] | flags[o3]) & (OccluderMap::has_span | moving_away)) break;
-                store(value[o0], table[w0 & d]);
-                store(value[o1], table[w1 & d]);
-                store(value[o2], table[w2 & d]);
-                store(value[o3], table[w3 & d]);
+                store<S>(value[o0], table[w0 & d]);
+                store<S>(value[o1], table[w1 & d]);
+                store<S>(value[o2], table[w2 & d]);
+                store<S>(value[o3], table[w3 & d]);
                 i += 4;
             }
         if (i >= n) return n;
@@ -182,7 +195,7 @@ std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const
             i = node[i].end;
             continue;
         }
-        store(value[w >> depth_bits], table[w & d]);
+        store<S>(value[w >> depth_bits], table[w & d]);
         ++i;
     }
 }
@@ -197,7 +210,7 @@ std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const
 constexpr int split_depth = 3;
 template <class Head, class Walk>
 void walk_pieces(const Node* node, const std::uint8_t* flags, int threads, Head&& head, Walk&& walk) {
-    if (threads <= 1) return walk(0);
+    if (threads <= 1) return walk(Alone{}, 0);
     std::vector<std::int32_t> pieces;
     auto split = [&](auto&& self, std::int32_t i) -> void {
         const std::uint32_t w = node[i].at_depth;
@@ -223,7 +236,7 @@ void walk_pieces(const Node* node, const std::uint8_t* flags, int threads, Head&
     std::atomic<std::size_t> next{0};
     auto work = [&] {
         for (std::size_t r; (r = next++) + 1 < runs.size();)
-            for (std::size_t k = runs[r]; k < runs[r + 1]; ++k) walk(pieces[k]);
+            for (std::size_t k = runs[r]; k < runs[r + 1]; ++k) walk(Shared{}, pieces[k]);
     };
     run_on_threads(std::min(threads, int(runs.size()) - 1), work);
 }
@@ -260,7 +273,10 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
         int endless;  // none, or the depth from which all is shaded
         int reach;    // the bits end before it
     };
-    auto walk = [&](std::int32_t piece) {
+    // (The scalars by value: the mask's byte stores may alias anything the
+    // walk holds by reference, which would be read again after each.)
+    auto walk = [&, node, flags, value, H, last, last_depth, words](auto shared, std::int32_t piece) {
+        using S = decltype(shared);
         const std::int32_t n = node[piece].end;
         thread_local std::vector<Frame> frames;
         thread_local std::vector<std::uint64_t> bit_arena;
@@ -286,8 +302,8 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
                 // No bit shades this node or any below it: lit unless past the
                 // endless shade, up to the next span (in its subtree, or after
                 // it when the frame is empty).
-                i = light_clear(node, i, top.reach == 0 && top.endless == none ? top.end : node[i].end, flags, table.data(),
-                                value, std::uint32_t(top.endless));
+                i = light_clear<S>(node, i, top.reach == 0 && top.endless == none ? top.end : node[i].end, flags,
+                                   table.data(), value, std::uint32_t(top.endless));
                 continue;
             }
             // This node's shades (one per span below the light): the depths [from, to).
@@ -324,7 +340,7 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
                 to[j] = std::min(to[j], endless);
                 if (from[j] < to[j]) any_shade = true, reach = std::max(reach, to[j]);
             }
-            if (!shaded) store(value[o], table[std::size_t(k)]);
+            if (!shaded) store<S>(value[o], table[std::size_t(k)]);
             if ((any_shade || endless < top.endless) && node[i].end > i + 1) {
                 std::uint64_t* mine = bits + std::size_t(t + 1) * words;
                 std::memcpy(mine, at, std::size_t(words) * sizeof(std::uint64_t));
@@ -343,7 +359,7 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
     };
     // The nodes above the pieces hold no span: lit.
     auto head = [&](std::int32_t i) {
-        store(value[node[i].at_depth >> depth_bits], table[std::size_t(node[i].at_depth & ((1u << depth_bits) - 1))]);
+        store<Shared>(value[node[i].at_depth >> depth_bits], table[std::size_t(node[i].at_depth & ((1u << depth_bits) - 1))]);
     };
     walk_pieces(node, flags, threads, head, walk);
 }
@@ -370,16 +386,17 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     // map index g), lit unless the ray's shadow blocks the descent down to
     // them; those in the light's area only. Several rays reach a pixel: any
     // one lights it.
-    auto light_shown = [&](std::uint32_t o, std::uint32_t k, const RayShadow* r) {
+    auto light_shown = [&](auto shared, std::uint32_t o, std::uint32_t k, const RayShadow* r) {
+        using S = decltype(shared);
         const std::size_t g = in.map(o);
         const std::uint32_t row = in.row(o), c = o - row * W;
         for (std::uint32_t e = occ.shown_start[g]; e < occ.shown_start[g + 1]; ++e) {
             const std::uint32_t rows = occ.shown[e].rows;
             if (rows > row || row - rows < first_row || row - rows > last_row) continue;  // outside the light's area
             std::uint8_t& v = value[(row - rows - first_row) * W + c];
-            if (load(v)) continue;
+            if (load<S>(v)) continue;
             if (int(k) <= own_steps || !r->blocks((H - occ.shown[e].height) / double(k)))
-                store(v, table[std::size_t(std::max(std::abs(int(c) - m.a), std::abs(int(row) - int(rows) - b)))]);
+                store<S>(v, table[std::size_t(std::max(std::abs(int(c) - m.a), std::abs(int(row) - int(rows) - b)))]);
         }
     };
     // Below a span: per depth on the current path, the node's spans and
@@ -388,7 +405,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     // after the node at depth k, the parent's own unless a span passed there.
     const int depths = std::max(m.a, b) + 1;
     const RayShadow clear;
-    auto walk = [&](std::int32_t piece) {
+    auto walk = [&, node, flags, H, own_steps, top, depths](auto shared, std::int32_t piece) {
         const std::int32_t n = node[piece].end;
         thread_local std::vector<const Spans*> span;  // none: nullptr
         thread_local std::vector<RayShadow> changed;  // changed[k + 1]: the shadow after a span passed at depth k
@@ -401,7 +418,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
         for (std::int32_t i = piece; i < n;) {
             // Before any span on its rays a node lights every point over it.
             i = walk_clear(node, i, n, flags, OccluderMap::has_shown,
-                           [&](std::uint32_t o, std::uint32_t k) { light_shown(o, k, &clear); });
+                           [&](std::uint32_t o, std::uint32_t k) { light_shown(shared, o, k, &clear); });
             if (i >= n) break;
             // Node i holds a span and no node before it on its rays does.
             const std::int32_t last = node[i].end;
@@ -435,7 +452,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
                     r = &changed[std::size_t(k) + 1];
                 }
                 shadow[std::size_t(k) + 1] = r;
-                if (f & OccluderMap::has_shown) light_shown(o, std::uint32_t(k), r);
+                if (f & OccluderMap::has_shown) light_shown(shared, o, std::uint32_t(k), r);
                 // Hidden from here on, or the horizon past every point's top and
                 // only rising (a span as tall as the light): nothing below lit.
                 if (k >= own_steps && (r->hidden() || (r->standing <= 0 && H - double(k) * r->standing > top)))
@@ -446,7 +463,7 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     // The nodes above the pieces hold no span: each lights the points over it.
     auto head = [&](std::int32_t i) {
         const std::uint32_t w = node[i].at_depth;
-        if (flags[w >> depth_bits] & OccluderMap::has_shown) light_shown(w >> depth_bits, w & depth_mask, &clear);
+        if (flags[w >> depth_bits] & OccluderMap::has_shown) light_shown(Shared{}, w >> depth_bits, w & depth_mask, &clear);
     };
     walk_pieces(node, flags, threads, head, walk);
 }
