@@ -143,28 +143,34 @@ void register_tracers() {
 // Beyond the paper: one light traced against solids estimated from the
 // sprites on the default map, at 32 px: its ground pass and its sprite pass.
 void register_solids() {
-    for (int a : {64, 128}) {
-        const std::string suffix = "/default/" + std::to_string(2 * a + 1);
-        for (bool sprites : {false, true})
-            benchmark::RegisterBenchmark((std::string(sprites ? "trace/solids_sprites" : "trace/solids_ground") + suffix).c_str(),
-                                         [a, sprites](benchmark::State& st) {
-                                             const World& w = bench::world("default", 24);
-                                             Params p;
-                                             p.occluders = Occluders::solids;
-                                             static const OccluderMap occ = build_occluders(w, p, w.placed.bounds);
-                                             const std::int64_t cx = w.placed.bounds.x + w.placed.bounds.w / 2,
-                                                                cy = w.placed.bounds.y + w.placed.bounds.h / 2;
-                                             const Rect area{int(cx) - a, int(cy) - a, 2 * a + 1, 2 * a + 1};
-                                             LightMask m = trace_light_solids(occ, cx, cy, a, a, 32, p, area);
-                                             for (auto _ : st) {
-                                                 if (sprites)
-                                                     light_sprite_points(m, occ, 32, p);
-                                                 else
-                                                     m = trace_light_solids(occ, cx, cy, a, a, 32, p, area);
-                                                 benchmark::DoNotOptimize(m.value.data());
-                                             }
-                                         });
-    }
+    // On one thread, and on two (a light's passes walking the tree's
+    // subtrees on both, as a frame tracing one light does): wall time.
+    for (int a : {64, 128})
+        for (int threads : {1, 2}) {
+            const std::string suffix = "/default/" + std::to_string(2 * a + 1) +
+                                       (threads > 1 ? "/threads:" + std::to_string(threads) : "");
+            for (bool sprites : {false, true})
+                benchmark::RegisterBenchmark(
+                    (std::string(sprites ? "trace/solids_sprites" : "trace/solids_ground") + suffix).c_str(),
+                    [a, sprites, threads](benchmark::State& st) {
+                        const World& w = bench::world("default", 24);
+                        Params p;
+                        p.occluders = Occluders::solids;
+                        static const OccluderMap occ = build_occluders(w, p, w.placed.bounds);
+                        const std::int64_t cx = w.placed.bounds.x + w.placed.bounds.w / 2,
+                                           cy = w.placed.bounds.y + w.placed.bounds.h / 2;
+                        const Rect area{int(cx) - a, int(cy) - a, 2 * a + 1, 2 * a + 1};
+                        LightMask m = trace_light_solids(occ, cx, cy, a, a, 32, p, area);
+                        for (auto _ : st) {
+                            if (sprites)
+                                light_sprite_points(m, occ, 32, p, threads);
+                            else
+                                m = trace_light_solids(occ, cx, cy, a, a, 32, p, area, threads);
+                            benchmark::DoNotOptimize(m.value.data());
+                        }
+                    })
+                    ->UseRealTime();
+        }
 }
 
 // A view's obstacle region (a 1280x720 view, its lights' areas and the
