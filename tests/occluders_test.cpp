@@ -378,7 +378,7 @@ TEST(Occluders, keptSolidsBuildTheSameMapAndFrameAsFreshOnes) {
 // skip and area shape, light and shadow modes, solids and shapes; and so is
 // each walked on 2 to 4 threads.
 TEST(Occluders, theTreePassesGiveTheRaysBytesOnAnyNumberOfThreads) {
-    int compared = 0, lit_sprites = 0, shaded_ground = 0;
+    int compared = 0, lit_sprites = 0, shaded_ground = 0, large = 0;
     for (const char* seed : {"isolux", "tree-walk", "forest-7"}) {
         Scene s;
         s.seed = seed;
@@ -392,7 +392,8 @@ TEST(Occluders, theTreePassesGiveTheRaysBytesOnAnyNumberOfThreads) {
             const OccluderMap occ = build_occluders(w, p, b);
             for (int draw = 0; draw < 8; ++draw) {
                 const std::uint64_t h = hash_point(hash_seed(seed), draw, int(o));
-                const int a = 20 + int(h % 90), bb = 20 + int((h >> 8) % 90);
+                const int a = 20 + int(h % 130), bb = 20 + int((h >> 8) % 100);
+                large += (2 * a + 1) * (2 * bb + 1) >= 32768;  // trees walked on several threads
                 const std::int64_t cx = b.x + a + std::int64_t((h >> 16) % std::uint64_t(b.w - 2 * a));
                 const std::int64_t cy = b.y + bb + std::int64_t((h >> 32) % std::uint64_t(b.h - 2 * bb));
                 const double height = std::array{0.0, 4.0, 16.0, 32.0, 64.0, 200.0}[(h >> 40) % 6];
@@ -457,6 +458,7 @@ TEST(Occluders, theTreePassesGiveTheRaysBytesOnAnyNumberOfThreads) {
     // The scenes hold both shaded ground and lit sprites, so the comparison can fail.
     EXPECT_GT(shaded_ground, 10000);
     EXPECT_GT(lit_sprites, 10000);
+    EXPECT_GE(large, 4);  // ground trees large enough to be split (min_split_nodes)
 }
 
 namespace {

@@ -207,10 +207,14 @@ std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const
 // node moving away. Each pixel's answer is the same whichever walk lights
 // it first, so the bytes do not depend on the thread count; one thread
 // walks the whole tree as one piece.
+// A tree of fewer nodes is walked on one thread: waking the others would
+// cost about what they save (a 129x129 light's ground pass, 17,000 nodes,
+// takes longer on two).
 constexpr int split_depth = 3;
+constexpr std::int32_t min_split_nodes = 32768;
 template <class Head, class Walk>
 void walk_pieces(const Node* node, const std::uint8_t* flags, int threads, Head&& head, Walk&& walk) {
-    if (threads <= 1) return walk(Alone{}, 0);
+    if (threads <= 1 || node[0].end < min_split_nodes) return walk(Alone{}, 0);
     std::vector<std::int32_t> pieces;
     auto split = [&](auto&& self, std::int32_t i) -> void {
         const std::uint32_t w = node[i].at_depth;
