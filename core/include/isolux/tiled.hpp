@@ -31,7 +31,9 @@ struct TiledExport {
 // color, a, b, intensity and height properties), an object layer
 // `obstacles` (the obstacle map as polygons), the preset's parameters as map
 // properties, and the tilesets as external TSX files (NAME_floors.tsx,
-// NAME_overlays.tsx) with their images in NAME_images/. Returns the world
+// NAME_overlays.tsx) with their images in NAME_images/. Where no map isolux
+// exported stands at `tmx`, a file or folder already under one of those
+// names is refused by name (Error), never replaced. Returns the world
 // pixel that Tiled's map pixel (0, 0) is (also written as the map
 // properties isolux_origin_x and isolux_origin_y).
 std::pair<int, int> export_tiled(const World& world, const Scene& scene, const std::filesystem::path& tmx,
