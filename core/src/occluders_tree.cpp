@@ -36,6 +36,7 @@ struct Node {
     std::int32_t end;
 };
 constexpr std::uint32_t depth_bits = 10;
+constexpr std::uint32_t depth_mask = (1u << depth_bits) - 1;
 
 // A mask's byte as a walk reads and writes it. `Shared`: walks on several
 // threads may light a pixel several rays reach from two subtrees at once,
@@ -162,7 +163,7 @@ std::int32_t walk_clear(const Node* node, std::int32_t i, std::int32_t n, const 
             continue;
         }
         if (f & OccluderMap::has_span) return i;
-        if (f & wanted) at(w >> depth_bits, w & ((1u << depth_bits) - 1));
+        if (f & wanted) at(w >> depth_bits, w & depth_mask);
         ++i;
     }
 }
@@ -173,29 +174,28 @@ std::int32_t walk_clear(const Node* node, std::int32_t i, std::int32_t n, const 
 template <class S>
 std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const std::uint8_t* flags,
                          const std::uint8_t* table, std::uint8_t* value, std::uint32_t endless) {
-    constexpr std::uint32_t d = (1u << depth_bits) - 1;
     for (;;) {
-        if (endless > d)  // nothing shaded: four nodes a step
+        if (endless > depth_mask)  // nothing shaded: four nodes a step
             while (i + 4 <= n) {
                 const std::uint32_t w0 = node[i].at_depth, w1 = node[i + 1].at_depth, w2 = node[i + 2].at_depth,
                                     w3 = node[i + 3].at_depth;
                 const std::uint32_t o0 = w0 >> depth_bits, o1 = w1 >> depth_bits, o2 = w2 >> depth_bits, o3 = w3 >> depth_bits;
                 if ((flags[o0] | flags[o1] | flags[o2] | flags[o3]) & (OccluderMap::has_span | moving_away)) break;
-                store<S>(value[o0], table[w0 & d]);
-                store<S>(value[o1], table[w1 & d]);
-                store<S>(value[o2], table[w2 & d]);
-                store<S>(value[o3], table[w3 & d]);
+                store<S>(value[o0], table[w0 & depth_mask]);
+                store<S>(value[o1], table[w1 & depth_mask]);
+                store<S>(value[o2], table[w2 & depth_mask]);
+                store<S>(value[o3], table[w3 & depth_mask]);
                 i += 4;
             }
         if (i >= n) return n;
         const std::uint32_t w = node[i].at_depth;
         const std::uint8_t f = flags[w >> depth_bits];
         if (f & OccluderMap::has_span) return i;
-        if ((w & d) >= endless || (f & moving_away)) {
+        if ((w & depth_mask) >= endless || (f & moving_away)) {
             i = node[i].end;
             continue;
         }
-        store<S>(value[w >> depth_bits], table[w & d]);
+        store<S>(value[w >> depth_bits], table[w & depth_mask]);
         ++i;
     }
 }
@@ -205,11 +205,10 @@ std::int32_t light_clear(const Node* node, std::int32_t i, std::int32_t n, const
 // its own (`walk(i)` walks node i's subtree, its rays carrying nothing in:
 // no span before it), those nodes themselves by `head(i)`, and none below a
 // node moving away. Each pixel's answer is the same whichever walk lights
-// it first, so the bytes do not depend on the thread count; one thread
-// walks the whole tree as one piece.
-// A tree of fewer nodes is walked on one thread: waking the others would
-// cost about what they save (a 129x129 light's ground pass, 17,000 nodes,
-// takes longer on two).
+// it first, so the bytes do not depend on the thread count. One thread, or
+// a tree of under min_split_nodes, walks the whole tree as one piece:
+// waking other threads would cost about what they save (a 129x129 light's
+// ground pass, 17,000 nodes, takes longer on two).
 constexpr int split_depth = 3;
 constexpr std::int32_t min_split_nodes = 32768;
 template <class Head, class Walk>
@@ -220,7 +219,7 @@ void walk_pieces(const Node* node, const std::uint8_t* flags, int threads, Head&
         const std::uint32_t w = node[i].at_depth;
         const std::uint8_t f = flags[w >> depth_bits];
         if (f & moving_away) return;
-        if ((w & ((1u << depth_bits) - 1)) >= split_depth || (f & OccluderMap::has_span)) return pieces.push_back(i);
+        if ((w & depth_mask) >= split_depth || (f & OccluderMap::has_span)) return pieces.push_back(i);
         head(i);
         for (std::int32_t c = i + 1; c < node[i].end; c = node[c].end) self(self, c);
     };
@@ -296,7 +295,7 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
             const Frame top = frame[t];
             ask_for_spans(occ, in, flags, node, i + spans_ahead, n);
             const std::uint32_t w = node[i].at_depth, o = w >> depth_bits;
-            const int k = int(w & ((1u << depth_bits) - 1));
+            const int k = int(w & depth_mask);
             const std::uint8_t f = flags[o];
             if (f & moving_away) {
                 i = node[i].end;
@@ -363,7 +362,7 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
     };
     // The nodes above the pieces hold no span: lit.
     auto head = [&](std::int32_t i) {
-        store<Shared>(value[node[i].at_depth >> depth_bits], table[std::size_t(node[i].at_depth & ((1u << depth_bits) - 1))]);
+        store<Shared>(value[node[i].at_depth >> depth_bits], table[std::size_t(node[i].at_depth & depth_mask)]);
     };
     walk_pieces(node, flags, threads, head, walk);
 }
@@ -385,7 +384,6 @@ void light_sprite_points_tree(LightMask& m, const OccluderMap& occ, double H, co
     const std::uint32_t W = std::uint32_t(rays.w);
     const std::uint32_t first_row = std::uint32_t(occ.tallest), last_row = first_row + std::uint32_t(2 * m.b);
     const double top = occ.tallest + 0.5;  // no point stands higher
-    constexpr std::uint32_t depth_mask = (1u << depth_bits) - 1;
     // The sprite pixels standing over ground pixel o of the rays' area (its
     // map index g), lit unless the ray's shadow blocks the descent down to
     // them; those in the light's area only. Several rays reach a pixel: any
