@@ -1,5 +1,6 @@
-// Tracing against solids with height (core/src/occluders.cpp): shadows of
-// spans worked out by hand, and the model measured against the 3D reference.
+// Tracing against solids with height (core/src/occluder_map.cpp,
+// sprite_solids.cpp, occluders.cpp, occluders_tree.cpp): shadows of spans
+// worked out by hand, and the model measured against the 3D reference.
 #include <gtest/gtest.h>
 
 #include <cstdio>

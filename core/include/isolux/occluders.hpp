@@ -14,6 +14,11 @@
 // each point is tested where the ray meets its ground pixel, one pass per ray
 // again. That replaces the opacity correction (light_sprite_points, timed as
 // that stage), which only guesses which sprite pixels stand above a light.
+//
+// The files: occluder_map.cpp builds the map (spans and sprite points per
+// ground pixel) for a region, sprite_solids.cpp stamps a sprite's estimated
+// solids, occluders.cpp traces ray by ray and occluders_tree.cpp over the
+// border rays' prefix tree.
 #pragma once
 #include <cstdint>
 #include <vector>
