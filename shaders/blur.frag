@@ -1,9 +1,9 @@
 // blur.frag: one pass of the separable box blur of the light texture.
 // Mirrors core/src/blur.cpp: box_blur (the mean of the (2r+1)^2 texels
 // around each texel, coordinates clamped to the texture's edge), or, with
-// u_within_surfaces, box_blur_within (the texels reached by up to r steps
-// along the column, then along the rows, without leaving the surface each
-// texel shows nor the texture).
+// u_within_surfaces, core/src/blur_within.cpp: box_blur_within (the texels
+// reached by up to r steps along the column, then along the rows, without
+// leaving the surface each texel shows nor the texture).
 // Uniforms:
 //   sampler2D u_source   texture unit 0: the light texture (pass 1) or the
 //                        horizontal sums (pass 2)

@@ -33,6 +33,13 @@ struct LightTexture {
 // Whether a light's texels are grey: every channel the same.
 inline bool grey_light(const Light& l) { return l.r == l.g && l.g == l.b; }
 
+// Whether a texture's layout holds: 1 or 3 channels, and its texels sized to its rectangle.
+inline bool well_formed(const LightTexture& tex) {
+    return (tex.channels == 1 || tex.channels == 3) &&
+           tex.texels.size() == std::size_t(tex.rect.w > 0 ? tex.rect.w : 0) * std::size_t(tex.rect.h > 0 ? tex.rect.h : 0) *
+                                    std::size_t(tex.channels);
+}
+
 // The texture with three channels (a grey one's value copied into each).
 LightTexture rgb_texture(const LightTexture& tex);
 
