@@ -1,10 +1,13 @@
 // Accuracy against time: the metrics and the sweep.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "isolux/accuracy.hpp"
 #include "isolux/error.hpp"
+#include "isolux/frame.hpp"
+#include "isolux/truth.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -147,4 +150,44 @@ TEST(Accuracy, aSweepOfShapesOverSpritesWithoutThemIsRefusedBeforeItsFirstCombin
     EXPECT_EQ(rows, 0) << "a combination ran before the refusal";
     // Without shapes asked for, the same sweep runs.
     EXPECT_EQ(run_sweep(w, s, {{"occluders", {"footprints", "solids"}}}, o).size(), 2u);
+}
+
+// A sprite without a shape that only a later frame needs, beyond the first
+// frame's whole region: the sweep is refused before its first combination
+// all the same, naming the sprite.
+TEST(Accuracy, aSweepOfShapesIsRefusedForASpriteOnlyALaterFrameNeeds) {
+    Scene s;
+    s.width = s.height = 16;
+    s.params.area_a = s.params.area_b = 40;
+    s.camera = {200, 400, 160, 120};
+    World w = make_world(test::default_tileset(), s);
+    SweepOptions o = quick();
+    o.frames = 12;
+    o.step_x = 120, o.step_y = 0;
+    auto needed_at = [&](int f) {
+        const Camera c{s.camera.x + o.step_x * f, s.camera.y, s.camera.width, s.camera.height};
+        return frame_region_needed(w, s, c, FrameOptions{}.margin);
+    };
+    const Rect first = obstacle_region_around(needed_at(0), w);
+    std::vector<std::uint32_t> last, near_first;
+    instances_in(w.placed, needed_at(o.frames - 1), true, last);
+    instances_in(w.placed, first, true, near_first);
+    std::uint32_t k = no_instance;
+    for (std::uint32_t i : last)
+        if (std::find(near_first.begin(), near_first.end(), i) == near_first.end()) k = i;
+    ASSERT_NE(k, no_instance) << "no overlay the last frame needs lies beyond the first frame's region";
+    // That instance alone shows a copy of its sprite with no shape.
+    Sprite shapeless = w.tileset.sprites[std::size_t(w.placed.instances[k].sprite)];
+    shapeless.name = "shapeless_copy";
+    shapeless.shape.clear();
+    w.tileset.sprites.push_back(shapeless);
+    w.placed.instances[k].sprite = int(w.tileset.sprites.size()) - 1;
+    ++w.revision;
+    EXPECT_NO_THROW(require_shapes(w, first)) << "the first frame alone would not find it";
+    int rows = 0;
+    o.rows_so_far = [&](const std::vector<SweepPoint>&) { ++rows; };
+    const std::string m = test::error_of([&] { run_sweep(w, s, {{"occluders", {"footprints", "shapes"}}}, o); });
+    EXPECT_MENTIONS(m, "shapeless_copy");
+    EXPECT_MENTIONS(m, "has no shape");
+    EXPECT_EQ(rows, 0) << "a combination ran before the refusal";
 }

@@ -302,12 +302,6 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
         opt.references.empty() ? std::vector<Reference>{Reference::every_pixel} : opt.references;
 
     const Rect start = camera_view(scene.camera, world);
-    // A combination tracing the manifest's shapes, where a sprite in view
-    // has none, is refused before the first combination runs, not after the
-    // ones before it (world_solids names the sprite).
-    if (std::any_of(params.begin(), params.end(),
-                    [](const Params& p) { return p.occluders == Occluders::shapes && p.mode != Mode::flat; }))
-        world_solids(world, start);
     auto camera_at = [&](int f) {
         return Camera{start.x + opt.step_x * f, start.y + opt.step_y * f, start.w, start.h};
     };
@@ -323,6 +317,17 @@ std::vector<SweepPoint> run_sweep(const World& world, const Scene& scene, const 
         }
         return s;
     };
+    // A combination tracing the manifest's shapes, where a sprite its frames
+    // need has none, is refused before the first combination runs, not after
+    // the ones before it (require_shapes names the sprite): the first frame's
+    // whole region, then what each later frame needs (a later frame builds
+    // the room around it only if the camera left the region before).
+    for (const Params& p : params)
+        if (p.occluders == Occluders::shapes && p.mode != Mode::flat)
+            for (int f = 0; f < std::max(1, opt.frames); ++f) {
+                const Rect needed = frame_region_needed(world, scene_at(p, f), camera_at(f), FrameOptions{}.margin);
+                require_shapes(world, f > 0 ? needed : obstacle_region_around(needed, world));
+            }
 
     // References, one per frame, shared by the combinations whose parameters
     // the reference does not read (ray skip, rays, blur and l), in a cache of

@@ -218,10 +218,8 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
         touch(rep, Stage::obstacle_map, {ch.part});
         return ch;
     }
-    // Some room around what is needed, so a panning camera does not rebuild
-    // every frame; never more than the map.
     const Rect old_region = c.obstacle_region;
-    c.obstacle_region = needed.empty() ? needed : intersect(grow(needed, 256), world.placed.bounds);
+    c.obstacle_region = obstacle_region_around(needed, world);
     // Per sprite: its Algorithm 1 mask and its opacity map, which depend on
     // the tileset and the parameters only (not on a larger region, nor on edits).
     bool sprites_made = false;
@@ -753,6 +751,15 @@ const Scene& shown_scene(const Scene& scene, Scene& storage) {
 }
 
 }  // namespace
+
+Rect obstacle_region_around(Rect needed, const World& world) {
+    return needed.empty() ? needed : intersect(grow(needed, 256), world.placed.bounds);
+}
+
+Rect frame_region_needed(const World& world, const Scene& scene, const Camera& camera, int margin) {
+    Scene storage;
+    return region_lights_need(world, shown_scene(scene, storage), grow(camera_view(camera, world), margin));
+}
 
 FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_in, const Camera& camera, long frame) {
     Scene storage;

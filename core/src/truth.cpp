@@ -107,6 +107,24 @@ void build_surface_into(Surface& s, const World& world, Rect rect, double opacit
     }
 }
 
+namespace {
+
+Error no_shape(const World& world, const Sprite& sp) {
+    return Error(world.tileset.source + ": sprite \"" + sp.name +
+                 "\" has no shape: the 3D reference and occluders shapes need every overlay's solids (see docs/guide.md)");
+}
+
+}  // namespace
+
+void require_shapes(const World& world, Rect region) {
+    std::vector<std::uint32_t> near;
+    instances_in(world.placed, region, true, near);
+    for (std::uint32_t k : near) {
+        const Sprite& sp = world.tileset.sprites[std::size_t(world.placed.instances[k].sprite)];
+        if (sp.shape.empty()) throw no_shape(world, sp);
+    }
+}
+
 WorldSolids world_solids(const World& world, Rect region) {
     WorldSolids w;
     std::vector<std::uint32_t> near;
@@ -114,9 +132,7 @@ WorldSolids world_solids(const World& world, Rect region) {
     for (std::uint32_t k : near) {
         const SpriteInstance& in = world.placed.instances[k];
         const Sprite& sp = world.tileset.sprites[std::size_t(in.sprite)];
-        if (sp.shape.empty())
-            throw Error(world.tileset.source + ": sprite \"" + sp.name +
-                        "\" has no shape: the 3D reference and occluders shapes need every overlay's solids (see docs/guide.md)");
+        if (sp.shape.empty()) throw no_shape(world, sp);
         const Vec3 origin = ground_frame(in.ground_x, in.ground_y, 0);
         for (const Solid& s : sp.shape) {
             if (!has_volume(s)) continue;

@@ -213,6 +213,15 @@ constexpr long long max_render_pixels = 1LL << 28;
 // is 0.
 Rect camera_view(const Camera& camera, const World& world);
 
+// The world pixels a frame's obstacle map (and occluder map) must hold: the
+// light texture's rectangle (the view grown by `margin`) and every light area
+// that meets it, within the map.
+Rect frame_region_needed(const World& world, const Scene& scene, const Camera& camera, int margin);
+// The region a frame that builds the maps builds them over: what it needs
+// and 256 pixels of room around it, within the map, so that a panning camera
+// does not rebuild them every frame.
+Rect obstacle_region_around(Rect needed, const World& world);
+
 // Runs frame number `frame` (0, 1, 2, ...) for the scene's lights and
 // parameters seen through `camera`. Throws Error naming the field when the
 // scene's parameters are out of range (validate()). Retraces on the first frame, whenever a

@@ -51,6 +51,10 @@ struct WorldSolids {
 };
 WorldSolids world_solids(const World& world, Rect region);
 
+// The same check alone, with no solids built: throws world_solids' Error
+// when an overlay meeting `region` has no shape.
+void require_shapes(const World& world, Rect region);
+
 // A light's height above the ground, pixels: its own, else the preset's.
 double light_height(const Light& light, const Params& p);
 
