@@ -22,16 +22,8 @@ for arg in sys.argv[5:]:
         py_env["LD_PRELOAD"] = arg.split("=", 1)[1]
         py_env["ASAN_OPTIONS"] = os.environ.get("ASAN_OPTIONS", "") + ":detect_leaks=0"
         print("Python runs with", py_env["LD_PRELOAD"], "preloaded")
-failures, passes = [], 0
-
-
-def check(ok, what):
-    global passes
-    if ok:
-        passes += 1
-    else:
-        failures.append(what)
-        print("FAIL", what)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from checks import check, failures, finish  # noqa: E402 (tests/checks.py)
 
 
 def run(*args):
@@ -107,5 +99,4 @@ for lang, cmd in (("C", [c_render]), ("Python", [sys.executable, os.path.join(sr
                        env=py_env if cmd[0] == sys.executable else env, timeout=60)
     check(p.returncode != 0 and "no such scene.json" in p.stderr, f"{lang}: a missing scene is named: {p.stderr!r}")
 
-print(f"capi: {passes} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish("capi")

@@ -32,16 +32,8 @@ from png_rgba import png_rgba  # noqa: E402 (tests/capi/png_rgba.py)
 
 cli, build, src = (os.path.abspath(a) for a in sys.argv[1:4])
 tmp = tempfile.mkdtemp(prefix="isolux_godot_")
-failures, passes = [], 0
-
-
-def check(ok, what):
-    global passes
-    if ok:
-        passes += 1
-    else:
-        failures.append(what)
-        print("FAIL", what)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from checks import check, failures, finish  # noqa: E402 (tests/checks.py)
 
 
 def run(args, env=None, timeout=120):
@@ -194,5 +186,4 @@ else:
           f"{'the same bytes as' if same else 'NOT the bytes of'} isolux-cli")
     check(same, "the demo's frame differs from isolux-cli's")
 
-print(f"godot: {passes} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish("godot")

@@ -21,16 +21,8 @@ import base64, gzip, os, re, shutil, struct, subprocess, sys, tempfile, zlib
 cli, src = sys.argv[1], sys.argv[2]
 tmp = tempfile.mkdtemp(prefix="isolux_tiled_")
 env = dict(os.environ, QT_QPA_PLATFORM="offscreen")
-failures, passes = [], 0
-
-
-def check(ok, what):
-    global passes
-    if ok:
-        passes += 1
-    else:
-        failures.append(what)
-        print("FAIL", what)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from checks import check, failures, finish  # noqa: E402 (tests/checks.py)
 
 
 def run(*args, expect=0):
@@ -325,5 +317,4 @@ for name, (text, needle) in bad.items():
 
 if not failures: shutil.rmtree(tmp, ignore_errors=True)
 else: print("kept", tmp)
-print(f"tiled: {passes} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish("tiled")
