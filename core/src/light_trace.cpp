@@ -8,12 +8,11 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <tuple>
 #include <utility>
 
+#include "bounded_cache.hpp"
 #include "ray_tree.hpp"
 #include "rows_ahead.hpp"
 
@@ -160,7 +159,7 @@ std::int64_t trace_fast(const std::uint8_t* ob, std::ptrdiff_t ob_stride, const 
 namespace {
 
 // A tree's values for one falloff scale, kept per (a, b, k, scale) like the
-// trees. `node`: each node's `word`, its index in an area-sized buffer (from
+// trees (within 128 MiB). `node`: each node's `word`, its index in an area-sized buffer (from
 // the top-left, never negative) times 256 plus its falloff (table[depth]), so
 // a walk step is one load and one shift (indices fit: 1025 * 1025 < 2^24),
 // and beside it the node's subtree end, so that an obstacle's end is on the
@@ -177,11 +176,8 @@ struct TreeValues {
 };
 std::shared_ptr<const TreeValues> tree_values(const RayTree& tree, int a, int b, int k,
                                               const std::vector<std::uint8_t>& table, double scale) {
-    static std::mutex mutex;
-    static std::map<std::tuple<int, int, int, double>, std::shared_ptr<const TreeValues>> cache;
-    std::lock_guard<std::mutex> lock(mutex);
-    auto& slot = cache[{a, b, k, scale}];
-    if (!slot) {
+    static BoundedCache<std::tuple<int, int, int, double>, TreeValues> cache(std::size_t(128) << 20);
+    auto build = [&] {
         auto v = std::make_shared<TreeValues>();
         v->node.resize(tree.depth.size());
         v->clear.assign(tree.pixel_start.size() - 1, 0);
@@ -191,9 +187,10 @@ std::shared_ptr<const TreeValues> tree_values(const RayTree& tree, int a, int b,
             v->node[i] = {at << 8 | table[tree.depth[i]], tree.end[i]};
             v->clear[at] = table[tree.depth[i]];
         }
-        slot = v;
-    }
-    return slot;
+        return v;
+    };
+    return cache.get({a, b, k, scale}, build,
+                     [](const TreeValues& v) { return vector_bytes(v.node) + vector_bytes(v.clear); });
 }
 
 constexpr int max_tree_extent = 512;  // larger areas trace ray by ray (the tree would be too big to keep)

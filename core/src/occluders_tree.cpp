@@ -14,12 +14,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <tuple>
 #include <type_traits>
 
+#include "bounded_cache.hpp"
 #include "ray_tree.hpp"
 #include "worker_pool.hpp"
 
@@ -55,20 +54,19 @@ inline std::uint8_t load(std::uint8_t& v) {
     else return v;
 }
 
+// The tree's nodes as the walks read them, kept per (a, b, k) like the
+// trees (within 128 MiB).
 std::shared_ptr<const std::vector<Node>> tree_nodes(int a, int b, int k) {
-    static std::mutex mutex;
-    static std::map<std::tuple<int, int, int>, std::shared_ptr<const std::vector<Node>>> cache;
-    std::lock_guard<std::mutex> lock(mutex);
-    auto& slot = cache[{a, b, k}];
-    if (!slot) {
+    static BoundedCache<std::tuple<int, int, int>, std::vector<Node>> cache(std::size_t(128) << 20);
+    auto build = [&] {
         const auto tree = ray_tree(a, b, k);
         auto nodes = std::make_shared<std::vector<Node>>(tree->end.size());
         const std::int32_t centre = b * (2 * a + 1) + a;
         for (std::size_t i = 0; i < nodes->size(); ++i)
             (*nodes)[i] = {std::uint32_t(centre + tree->offset[i]) << depth_bits | tree->depth[i], tree->end[i]};
-        slot = nodes;
-    }
-    return slot;
+        return nodes;
+    };
+    return cache.get({a, b, k}, build, [](const std::vector<Node>& v) { return vector_bytes(v); });
 }
 
 // The light's area (the mask's clip) in the occluder map: an area index's

@@ -3,11 +3,10 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <map>
-#include <mutex>
 #include <tuple>
 #include <utility>
 
+#include "bounded_cache.hpp"
 #include "isolux/light_trace.hpp"
 
 namespace isolux {
@@ -85,12 +84,11 @@ std::shared_ptr<const RayTree> build_ray_tree(int a, int b, int k) {
 }  // namespace
 
 std::shared_ptr<const RayTree> ray_tree(int a, int b, int k) {
-    static std::mutex mutex;
-    static std::map<std::tuple<int, int, int>, std::shared_ptr<const RayTree>> cache;
-    std::lock_guard<std::mutex> lock(mutex);
-    auto& slot = cache[{a, b, k}];
-    if (!slot) slot = build_ray_tree(a, b, k);
-    return slot;
+    static BoundedCache<std::tuple<int, int, int>, RayTree> cache(ray_tree_cache_budget);
+    return cache.get({a, b, k}, [&] { return build_ray_tree(a, b, k); }, [](const RayTree& t) {
+        return vector_bytes(t.dx) + vector_bytes(t.dy) + vector_bytes(t.end) + vector_bytes(t.offset) +
+               vector_bytes(t.depth) + vector_bytes(t.pixel_start) + vector_bytes(t.pixel_nodes) + vector_bytes(t.nodes_at);
+    });
 }
 
 }  // namespace isolux

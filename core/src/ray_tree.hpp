@@ -1,6 +1,7 @@
 // The border rays of one light's area, merged into a prefix tree (shared by
 // the paper's tracer, light_trace.cpp, and the solids tracer, occluders.cpp).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -27,8 +28,10 @@ struct RayTree {
 };
 
 // The tree of the border rays to every k-th border pixel of the
-// (2a+1) x (2b+1) area, kept per (a, b, k): a scene's lights mostly share a
-// few shapes. Thread-safe.
+// (2a+1) x (2b+1) area, kept per (a, b, k) while the trees kept hold at most
+// ray_tree_cache_budget bytes, the least recently used dropped first
+// (bounded_cache.hpp): a scene's lights mostly share a few shapes. Thread-safe.
+constexpr std::size_t ray_tree_cache_budget = std::size_t(256) << 20;
 std::shared_ptr<const RayTree> ray_tree(int a, int b, int k);
 
 }  // namespace isolux

@@ -400,6 +400,11 @@ case("sweep_50_frames", ["sweep", "--scene", small_view_path, "--frames", "50", 
                          "--param", "ray_skip=1,2", "--out", T("s50.csv")], 0)
 case("sweep_40_values", ["sweep", "--scene", small_view_path, "--frames", "1", "--repeats", "1", "--reference", "every_pixel",
                          "--param", "light_height=" + ",".join(str(v) for v in range(1, 41)), "--out", T("s40.csv")], 0)
+# Lights of many distinct large areas (each its own ray tree, about 50 MB at
+# a = b = 500): the trees kept stay within their caches' budgets, not one a light.
+case("lights_of_many_distinct_areas", ["render", "--scene", write("many_areas.scene.json", json.dumps(
+    {"width": 16, "height": 16, "lights": [{"x": 1030 + i % 5, "y": 578 + i % 3, "a": 488 + i, "b": 488 + i}
+                                           for i in range(25)]})), "--out", T("out.png")], 0)
 # Tracing against the manifest's shapes, where a sprite has none: refused naming it.
 case("occluders_shapes_without_shapes", ["render", "--size", "4x4", "--tileset",
      os.path.join(src, "tests/data/foreign_tileset/tileset.json"), "--occluders", "shapes", "--out", T("out.png")], 2,
