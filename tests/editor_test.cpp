@@ -56,6 +56,32 @@ TEST(Editor, aSliderDragIsOneUndoStep) {
     EXPECT_EQ(e.scene.params.ambient_clarity, 0.4);
 }
 
+// Each undo step holds a whole document: a large painted level's history is
+// bounded by its bytes as well as its steps, the oldest dropped first.
+TEST(Editor, theUndoHistoryOfALargeLevelStaysWithinItsBytes) {
+    TempDir c{false};
+    Editor e = make_editor(small_scene(), c.path);
+    Scene big = e.scene;
+    for (int i = 0; i < 100000; ++i)
+        big.edits.push_back(TileEdit{i, i, std::string("grass"), std::vector<std::string>{"tree", "rock"}});
+    ASSERT_GT(scene_bytes(big), max_undo_bytes / 32) << "each step should hold megabytes";
+    for (int k = 0; k < 64; ++k) {
+        big.lights = {Light{double(k), 0}};  // each step a document of its own
+        commit_edit(e, big, k);
+        std::size_t held = 0;
+        for (const HistoryStep& h : e.undo_stack) held += h.bytes;
+        EXPECT_LE(held, max_undo_bytes) << "after step " << k;
+    }
+    EXPECT_GE(e.undo_stack.size(), 2u);
+    EXPECT_LT(e.undo_stack.size(), 64u);
+    // The newest steps are the ones kept: an undo gives the last document committed.
+    ASSERT_TRUE(undo(e, 100));
+    ASSERT_EQ(e.scene.lights.size(), 1u);
+    EXPECT_EQ(e.scene.lights[0].x, 63);
+    EXPECT_EQ(e.redo_stack.size(), 1u);
+    EXPECT_EQ(e.redo_stack[0].bytes, scene_bytes(e.redo_stack[0].scene));
+}
+
 TEST(Editor, outOfRangeParametersAreRefusedWithAMessage) {
     TempDir c{false};
     Editor e = make_editor(small_scene(), c.path);

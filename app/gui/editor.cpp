@@ -110,10 +110,26 @@ Editor make_editor(const Scene& scene, const fs::path& config) {
     return e;
 }
 
+std::size_t scene_bytes(const Scene& s) {
+    std::size_t n = sizeof(Scene) + s.seed.capacity() + s.tileset.capacity() + s.lights.capacity() * sizeof(Light) +
+                    s.edits.capacity() * sizeof(TileEdit);
+    for (const Light& l : s.lights) n += l.name.capacity();
+    for (const TileEdit& t : s.edits) {
+        if (t.floor) n += t.floor->capacity();
+        if (t.overlays)
+            for (const std::string& o : *t.overlays) n += sizeof(std::string) + o.capacity();
+    }
+    return n;
+}
+
 void commit_edit(Editor& e, const Scene& before, double now) {
     if (before == e.scene) return;
-    e.undo_stack.push_back(before);
-    if (e.undo_stack.size() > max_undo) e.undo_stack.erase(e.undo_stack.begin());
+    e.undo_stack.push_back(HistoryStep{before, scene_bytes(before)});
+    // The oldest steps go past max_undo steps, or past max_undo_bytes (the newest always stays).
+    std::size_t bytes = 0, keep = 0;
+    for (auto it = e.undo_stack.rbegin(); it != e.undo_stack.rend() && keep < max_undo; ++it, ++keep)
+        if ((bytes += it->bytes) > max_undo_bytes && keep > 0) break;
+    e.undo_stack.erase(e.undo_stack.begin(), e.undo_stack.end() - std::ptrdiff_t(keep));
     e.redo_stack.clear();
     e.dirty = true;
     e.autosave_due = now + autosave_delay;
@@ -199,10 +215,11 @@ void regenerate(Editor& e, const std::string& seed, int width, int height, Layou
 
 namespace {
 // Undo and redo are one move between the two stacks, in opposite directions.
-bool step_history(Editor& e, std::vector<Scene>& from, std::vector<Scene>& to, double now, const char* what) {
+bool step_history(Editor& e, std::vector<HistoryStep>& from, std::vector<HistoryStep>& to, double now, const char* what) {
     if (from.empty()) return false;
-    to.push_back(e.scene);
-    e.scene = from.back();
+    to.push_back(HistoryStep{std::move(e.scene), 0});
+    to.back().bytes = scene_bytes(to.back().scene);
+    e.scene = std::move(from.back().scene);
     from.pop_back();
     sync_world(e);
     if (e.selected >= int(e.scene.lights.size())) e.selected = -1;

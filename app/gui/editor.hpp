@@ -100,6 +100,13 @@ struct EndlessPlace {
 // window is made whole when the view leaves it, in time that grows with it.
 inline constexpr long max_endless_window_tiles = 288L * 288;
 
+// One step of the undo or redo history: the document as it was, and about
+// how many bytes it holds (scene_bytes).
+struct HistoryStep {
+    Scene scene;
+    std::size_t bytes = 0;
+};
+
 struct Editor {
     // The document: what is saved, undone and autosaved. The one source of
     // truth: panels read and edit it (through commit_edit), never a copy.
@@ -114,7 +121,7 @@ struct Editor {
     int selected = -1;                      // the light the Lights panel edits, or -1
     std::vector<int> selection;             // every selected light, ascending (holds `selected`)
     std::vector<Light> clipboard;           // copied lights
-    std::vector<Scene> undo_stack, redo_stack;
+    std::vector<HistoryStep> undo_stack, redo_stack;
     bool dirty = false;                     // changes since the last save or load
     std::filesystem::path scene_path;       // where the document was last saved or loaded
 
@@ -141,7 +148,14 @@ struct Editor {
 };
 
 inline constexpr double autosave_delay = 2.0;  // seconds after a change
+// The undo history keeps at most max_undo steps and, past its newest, at
+// most max_undo_bytes of documents: each step holds a whole document, and a
+// large painted level's edits are megabytes each (the oldest go first).
 inline constexpr std::size_t max_undo = 256;
+inline constexpr std::size_t max_undo_bytes = std::size_t(256) << 20;
+
+// About the bytes a document holds: its fields, lights and edits.
+std::size_t scene_bytes(const Scene& s);
 
 // A new editor on `scene`; builds its world. Throws Error when even the
 // default tileset cannot be loaded.

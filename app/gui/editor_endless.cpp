@@ -62,8 +62,8 @@ void adopt_window(Editor& e, EndlessWindow w, WorldRect view, const Scene* docum
     const Frame from = frame_of(e.endless), to = frame_of(w);
     if (document) e.scene = *document;
     move_scene(e.scene, document ? Frame{} : from, to);
-    for (std::vector<Scene>* stack : {&e.undo_stack, &e.redo_stack})
-        for (Scene& s : *stack) move_scene(s, from, to);
+    for (std::vector<HistoryStep>* stack : {&e.undo_stack, &e.redo_stack})
+        for (HistoryStep& step : *stack) move_scene(step.scene, from, to);
     if (e.stroke.active) move_scene(e.stroke.before, from, to);
     const double dx = double(from.origin_x - to.origin_x), dy = double(from.origin_y - to.origin_y);
     if (!document) {
