@@ -288,6 +288,9 @@ TEST(Tileset, badShapesNameTheManifestTheEntryAndTheSolid) {
         {R"([{"kind": "ellipsoid", "center": [0, 0, 0], "radii": [1, -1, 1]}])", "radii"},
         {R"([{"kind": "ellipsoid", "center": [0, "x", 0], "radii": [1, 1, 1]}])", "center"},
         {R"({"kind": "box"})", "array"},
+        // Beyond where its sprite is drawn: a 64x48 sprite's shape may cover
+        // 65,536 ground pixels (its ground box: 363x183 here).
+        {R"([{"kind": "box", "min": [0, 0, 0], "max": [180, 180, 1]}])", "covers"},
     };
     for (const Case& c : cases) {
         const std::string sprite =
@@ -307,6 +310,10 @@ TEST(Tileset, badShapesNameTheManifestTheEntryAndTheSolid) {
     const Tileset t = load_tileset(m);
     ASSERT_EQ(t.sprites[1].shape.size(), 1u);
     EXPECT_EQ(t.sprites[1].shape[0], (Solid{SolidKind::cylinder, {1, 2, 0}, {3, 3, 40}}));
+    // Just within the ground a shape may cover (355x179 of 65,536): loaded.
+    m = d.write("tileset.json", manifest_with(
+        R"({"name": "wide", "image": "floor.png", "kind": "overlay", "shape": [{"kind": "box", "min": [0, 0, 0], "max": [176, 176, 1]}]})"));
+    EXPECT_EQ(load_tileset(m).sprites[1].shape.size(), 1u);
 }
 
 TEST(Tileset, theDefaultTilesetCarriesItsShapesAndHeightMaps) {

@@ -107,12 +107,8 @@ void fill_estimated(OccluderMap& m, const World& world, const Params& p, const s
 void fill_shapes(OccluderMap& m, const World& world, Rect region) {
     const WorldSolids solids = world_solids(world, region);  // Error naming a sprite without a shape
     for (std::size_t k = 0; k < solids.solids.size(); ++k) {
-        const auto& b = solids.bounds[k];
-        // The ground rectangle under the solid, on screen: x = X - Y, y = (X + Y) / 2.
-        const Rect box = intersect(Rect{int(std::floor(b[0].x - b[1].y)) - 1, int(std::floor((b[0].x + b[0].y) / 2)) - 1,
-                                        int(std::ceil((b[1].x - b[0].y) - (b[0].x - b[1].y))) + 3,
-                                        int(std::ceil((b[1].x + b[1].y - b[0].x - b[0].y) / 2)) + 3},
-                                   m.rect);
+        const auto g = ground_box(solids.solids[k]);
+        const Rect box = intersect(Rect{int(g[0]), int(g[1]), int(g[2]), int(g[3])}, m.rect);
         for (int y = box.y; y < box.y + box.h; ++y)
             for (int x = box.x; x < box.x + box.w; ++x) {
                 const Vec3 q = ground_frame(x + 0.5, y + 0.5, 0);

@@ -222,4 +222,11 @@ std::array<Vec3, 2> solid_bounds(const Solid& s) {
     return {s.a, s.b};
 }
 
+std::array<long long, 4> ground_box(const Solid& s) {
+    const auto b = solid_bounds(s);
+    return {(long long)std::floor(b[0].x - b[1].y) - 1, (long long)std::floor((b[0].x + b[0].y) / 2) - 1,
+            (long long)std::ceil((b[1].x - b[0].y) - (b[0].x - b[1].y)) + 3,
+            (long long)std::ceil((b[1].x + b[1].y - b[0].x - b[0].y) / 2) + 3};
+}
+
 }  // namespace isolux

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 
 #include "isolux/error.hpp"
@@ -23,6 +24,26 @@ namespace {
 // A sprite's solids: [{"kind": "box", "min": [x,y,z], "max": [x,y,z]},
 // {"kind": "cylinder"|"cone", "base": [x,y,z], "radius": r, "height": h},
 // {"kind": "ellipsoid", "center": [x,y,z], "radii": [x,y,z]}].
+// A shape stands where its sprite is drawn: the ground its solids stand
+// over (their ground boxes, summed) may reach 16 times the sprite's image,
+// and no further. Tracing against shapes fills each box at each instance, so
+// a shape of huge solids would make every frame take minutes.
+void check_shape_ground(const std::vector<Solid>& shape, Rect image, const Fields& sf) {
+    const double most = std::max(16.0 * image.w * image.h, 65536.0);
+    double ground = 0;
+    for (const Solid& s : shape) {
+        const auto g = ground_box(s);
+        ground += double(g[2]) * double(g[3]);
+    }
+    if (ground > most) {
+        char text[160];
+        std::snprintf(text, sizeof text, "covers %.3g pixels of ground, over the %.3g its %dx%d image allows (16 times "
+                                         "its pixels): a shape stands where its sprite is drawn",
+                      ground, most, image.w, image.h);
+        sf.fail("shape", text);
+    }
+}
+
 std::vector<Solid> shape_from(const json& arr, const std::string& where) {
     if (!arr.is_array()) throw Error(where + ": must be an array of solids");
     if (arr.size() > 1000) throw Error(where + ": holds more than 1000 solids");
@@ -194,7 +215,10 @@ Tileset load_tileset(const fs::path& manifest) {
                 throw Error(where + ": height_map: " + e.what());
             }
         }
-        if (sf.has("shape")) s.shape = shape_from(arr[i]["shape"], where + ": shape");
+        if (sf.has("shape")) {
+            s.shape = shape_from(arr[i]["shape"], where + ": shape");
+            check_shape_ground(s.shape, rect, sf);
+        }
         ts.sprites.push_back(std::move(s));
     }
     validate(ts);

@@ -405,6 +405,10 @@ case("sweep_40_values", ["sweep", "--scene", small_view_path, "--frames", "1", "
 case("lights_of_many_distinct_areas", ["render", "--scene", write("many_areas.scene.json", json.dumps(
     {"width": 16, "height": 16, "lights": [{"x": 1030 + i % 5, "y": 578 + i % 3, "a": 488 + i, "b": 488 + i}
                                            for i in range(25)]})), "--out", T("out.png")], 0)
+# A shape of huge solids (tracing against shapes fills each one's ground at
+# every instance): refused as the manifest loads, not a frame of minutes.
+tileset("shape_beyond_its_sprite", O(shape=[{"kind": "box", "min": [-1e5, -1e5, 0], "max": [1e5, 1e5, 10 + i]}
+                                            for i in range(1000)]), 2, "covers")
 # Tracing against the manifest's shapes, where a sprite has none: refused naming it.
 case("occluders_shapes_without_shapes", ["render", "--size", "4x4", "--tileset",
      os.path.join(src, "tests/data/foreign_tileset/tileset.json"), "--occluders", "shapes", "--out", T("out.png")], 2,

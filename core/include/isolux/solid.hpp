@@ -60,4 +60,9 @@ double surface_height(const std::vector<Solid>& solids, double sx, double sy);
 // The axis-aligned box around the solid: min and max corners.
 std::array<Vec3, 2> solid_bounds(const Solid& s);
 
+// The screen rectangle (x = X - Y, y = (X + Y) / 2, whole pixels) of the
+// ground under the solid, with a pixel of margin: its x, y, width, height.
+// What tracing against shapes fills, and what a manifest's shape may cover.
+std::array<long long, 4> ground_box(const Solid& s);
+
 }  // namespace isolux
