@@ -159,13 +159,13 @@ std::int64_t trace_fast(const std::uint8_t* ob, std::ptrdiff_t ob_stride, const 
 namespace {
 
 // A tree's values for one falloff scale, kept per (a, b, k, scale) like the
-// trees (within 128 MiB). `node`: each node's `word`, its index in an area-sized buffer (from
-// the top-left, never negative) times 256 plus its falloff (table[depth]), so
-// a walk step is one load and one shift (indices fit: 1025 * 1025 < 2^24),
-// and beside it the node's subtree end, so that an obstacle's end is on the
-// cache line the walk just read (from the tree's own array it was a miss:
-// 30% of the walk by perf). `clear`: the mask with nothing in the way, each
-// pixel some ray reaches at its falloff.
+// trees (within 128 MiB). `node`: each node's `word`, its index in an
+// area-sized buffer (from the top-left, never negative) times 256 plus its
+// falloff (table[depth]), so a walk step is one load and one shift (indices
+// fit: 1025 * 1025 < 2^24), and beside it the node's subtree end, so that an
+// obstacle's end is on the cache line the walk just read (from the tree's own
+// array it was a miss: 30% of the walk by perf). `clear`: the mask with
+// nothing in the way, each pixel some ray reaches at its falloff.
 struct WalkNode {
     std::uint32_t word;
     std::int32_t end;

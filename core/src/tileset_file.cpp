@@ -21,9 +21,6 @@ namespace isolux {
 
 namespace {
 
-// A sprite's solids: [{"kind": "box", "min": [x,y,z], "max": [x,y,z]},
-// {"kind": "cylinder"|"cone", "base": [x,y,z], "radius": r, "height": h},
-// {"kind": "ellipsoid", "center": [x,y,z], "radii": [x,y,z]}].
 // A shape stands where its sprite is drawn: the ground its solids stand
 // over (their ground boxes, summed) may reach 16 times the sprite's image,
 // and no further. Tracing against shapes fills each box at each instance, so
@@ -44,6 +41,9 @@ void check_shape_ground(const std::vector<Solid>& shape, Rect image, const Field
     }
 }
 
+// A sprite's solids: [{"kind": "box", "min": [x,y,z], "max": [x,y,z]},
+// {"kind": "cylinder"|"cone", "base": [x,y,z], "radius": r, "height": h},
+// {"kind": "ellipsoid", "center": [x,y,z], "radii": [x,y,z]}].
 std::vector<Solid> shape_from(const json& arr, const std::string& where) {
     if (!arr.is_array()) throw Error(where + ": must be an array of solids");
     if (arr.size() > 1000) throw Error(where + ": holds more than 1000 solids");
