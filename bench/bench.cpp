@@ -6,9 +6,13 @@
 #include <libtcod/fov.h>
 
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <thread>
 
@@ -19,6 +23,7 @@
 #include "isolux/light_trace.hpp"
 #include "isolux/occluders.hpp"
 #include "isolux/truth.hpp"
+#include "ray_tree.hpp"
 #include "edits.hpp"
 #include "endless.hpp"
 #include "gpu_trace.hpp"
@@ -421,6 +426,90 @@ void register_truth() {
     })->Unit(benchmark::kMillisecond)->Iterations(1);
 }
 
+// Touches each node of the two trees a light of half-extents a (a square
+// area) has against solids once, `frames` times: a node's area index and
+// depth, its flag read (bit 4: the subtree climbs above the light's area,
+// skipped) and its falloff written. Returns the milliseconds.
+std::function<double()> tree_touch_floor(int a, int frames) {
+    Params solids;
+    solids.occluders = Occluders::solids;
+    const World& w = bench::world("default", 24);
+    const int tallest = build_occluders(w, solids, w.placed.bounds).tallest;
+    struct Walk {
+        std::vector<std::uint32_t> at;  // area index << 10 | depth
+        std::vector<std::int32_t> end;
+        std::vector<std::uint8_t> flags, value;
+    };
+    auto walk_of = [](int ta, int tb, int away_rows) {
+        const auto tree = ray_tree(ta, tb, 1);
+        Walk k;
+        const std::int32_t centre = tb * (2 * ta + 1) + ta;
+        for (std::size_t i = 0; i < tree->end.size(); ++i)
+            k.at.push_back(std::uint32_t(centre + tree->offset[i]) << 10 | tree->depth[i]);
+        k.end = tree->end;
+        k.flags.assign(std::size_t(2 * ta + 1) * (2 * tb + 1), 0);
+        std::fill_n(k.flags.begin(), std::size_t(2 * ta + 1) * away_rows, std::uint8_t(4));
+        k.value.resize(k.flags.size());
+        return k;
+    };
+    auto walks = std::make_shared<std::array<Walk, 2>>(
+        std::array<Walk, 2>{walk_of(a, a, 0), walk_of(a, a + tallest, tallest)});
+    std::vector<std::uint8_t> table(1024);
+    for (std::size_t d = 0; d < table.size(); ++d) table[d] = falloff(std::int64_t(d), 1.0);
+    return [walks, table, frames] {
+        const auto t0 = std::chrono::steady_clock::now();
+        for (int f = 0; f < frames; ++f)
+            for (Walk& k : *walks) {
+                const std::uint32_t* at = k.at.data();
+                const std::int32_t* end = k.end.data();
+                const std::uint8_t* flags = k.flags.data();
+                std::uint8_t* value = k.value.data();
+                for (std::int32_t i = 0, n = std::int32_t(k.at.size()); i < n;) {
+                    const std::uint32_t w = at[i];
+                    if (flags[w >> 10] & 4) {
+                        i = end[i];
+                        continue;
+                    }
+                    value[w >> 10] = table[w & 1023];
+                    ++i;
+                }
+                benchmark::DoNotOptimize(k.value.data());
+            }
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    };
+}
+
+// Of the nodes tree_touch_floor touches for the walk's carried light (its
+// 64 positions), the share at or behind a span: those an exact pass must
+// step with the shades their rays carry. Ground tree, then sprite tree.
+std::array<double, 2> nodes_behind_spans(int a) {
+    Params solids;
+    solids.occluders = Occluders::solids;
+    const World& w = bench::world("default", 24);
+    const OccluderMap occ = build_occluders(w, solids, w.placed.bounds);
+    std::array<double, 2> all{}, behind{};
+    for (int f = 0; f < 64; ++f) {
+        const int cx = int(300.0 + 6.0 * f + 480.5), cy = int(200.0 + 3.0 * f + 270.5);  // print_walk_ratios' light
+        for (int t = 0; t < 2; ++t) {
+            const auto tree = ray_tree(a, t == 0 ? a : a + occ.tallest, 1);
+            std::int32_t shaded_until = -1;  // the end of the subtree of the span node the walk is below
+            for (std::int32_t i = 0; i < std::int32_t(tree->end.size());) {
+                if (tree->dy[std::size_t(i)] < -a) {  // climbs above the light's area
+                    i = tree->end[std::size_t(i)];
+                    continue;
+                }
+                const int x = cx + tree->dx[std::size_t(i)], y = cy + tree->dy[std::size_t(i)];
+                const std::uint8_t flags = occ.flags[std::size_t(y - occ.rect.y) * occ.rect.w + std::size_t(x - occ.rect.x)];
+                ++all[std::size_t(t)];
+                if (i < shaded_until) ++behind[std::size_t(t)];
+                else if (flags & OccluderMap::has_span) ++behind[std::size_t(t)], shaded_until = tree->end[std::size_t(i)];
+                ++i;
+            }
+        }
+    }
+    return {behind[0] / all[0], behind[1] / all[1]};
+}
+
 // Every figure of docs/performance.md, each the median of ratios of its two
 // sides measured interleaved (A, B, A, B, ...) in this one run, with the
 // spread over the pairs: a load that comes and goes hits both sides.
@@ -456,6 +545,18 @@ void print_walk_ratios(int pairs) {
     // so its rays against solids spread over both; the paper's light takes one.
     auto walk_solids2 = walk(1, Occluders::solids, 2), walk_footprints2 = walk(1, Occluders::footprints, 2);
     bench::print_ratio("solids_trace_cost_threads2", bench::interleaved_costs(walk_solids2, walk_footprints2, pairs), nullptr);
+    // The floor of any pass over the border rays' trees: the same 16 frames
+    // of the carried light with every node its two passes can walk touched
+    // once (its flag byte read, its falloff written: no span, no shade),
+    // over the paper's whole light. The ground tree is the light's area's;
+    // the sprite tree runs to the border of the area grown by the tallest
+    // point's rows, less the subtrees that climb above the light's area
+    // (the sprite pass leaves those at their first node).
+    bench::print_ratio("solids_tree_floor", bench::interleaved_costs(tree_touch_floor(128, 16), walk_footprints, pairs),
+                       nullptr);
+    const auto behind = nodes_behind_spans(128);
+    std::printf("solids_nodes_behind_spans ground %.3f sprites %.3f (of the nodes solids_tree_floor touches)\n", behind[0],
+                behind[1]);
     // A pan past the obstacle region's margin with solids: update_occluders
     // (the strip that came in, the index whole) over building the region whole.
     const World& w = bench::world("default", 24);
