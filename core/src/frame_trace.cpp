@@ -31,7 +31,7 @@ struct LightPlan {
 
 // A reused light's mask is moved out of the cache (copying 32 masks of 66 KB
 // was most of a frame where one light moved): the cache keeps each light's
-// place and clip for dirty_parts, and render_frame drops the cache if the
+// place and clip for dirty_parts, and trace_step drops the cache if the
 // frame does not finish.
 LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edited, FrameReport& rep) {
     const Params& p = scene.params;
