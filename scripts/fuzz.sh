@@ -16,6 +16,8 @@ mkdir -p build/fuzz/crashes
 # the suppressions in tests/lsan.supp can match.
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 export ASAN_OPTIONS="fast_unwind_on_malloc=0"
+# Undefined behaviour is a crash: libFuzzer keeps its input like any other.
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # Absolute paths: fuzz_cli works in a folder of its own (it chdirs there).
 root=$PWD
 for t in preset scene tileset sprite tiled cli; do

@@ -391,7 +391,11 @@ template <int R, int C, bool Avx2>
         }
         for (std::size_t j = b; j < m; ++j) put(j, clamped(j));
     };
-    for (int i = y0 - R; i < y0 + R; ++i) row_in.template operator()<false>(i, slot(i), nullptr);
+    // The window's first rows come in unwritten. Their `dst` is the first
+    // output row all the same, never written: the row code offsets it as it
+    // does a written one, and an offset from a null pointer is undefined.
+    std::uint8_t* const first_row = &out.texels[(std::size_t(y0) * w + x0) * C];
+    for (int i = y0 - R; i < y0 + R; ++i) row_in.template operator()<false>(i, slot(i), first_row);
     // Row y + R comes in (into the slot of row y - R - 1, which leaves), and row y is written.
     for (int y = y0; y < y0 + z.h; ++y)
         row_in.template operator()<true>(y + R, slot(y + R), &out.texels[(std::size_t(y) * w + x0) * C]);
