@@ -300,6 +300,11 @@ void frame_lights(benchmark::State& st, int n, int threads) {
     }
 }
 
+// The walks' camera at frame f: 6 px right and 3 down a frame, back to its
+// start every 64 frames; and the light it carries, at its centre.
+Camera walk_camera(long f) { return {300.0 + 6.0 * double(f % 64), 200.0 + 3.0 * double(f % 64), 960, 540}; }
+Light walk_light(const Camera& cam) { return Light{cam.x + 480.5, cam.y + 270.5}; }
+
 // A walk: the camera moves 6 px a frame with a light carried at its centre,
 // 16 frames an iteration; tracing every l frames, against what `o` says stops rays.
 void frame_walk(benchmark::State& st, int l, Occluders o) {
@@ -312,9 +317,9 @@ void frame_walk(benchmark::State& st, int l, Occluders o) {
     double tracing_ms = 0, correction_ms = 0, frames = 0;
     for (auto _ : st) {
         for (int i = 0; i < 16; ++i, ++f) {
-            const Camera cam{300.0 + 6.0 * (f % 64), 200.0 + 3.0 * (f % 64), 960, 540};
+            const Camera cam = walk_camera(f);
             Scene sf = s;
-            sf.lights.push_back(Light{cam.x + 480.5, cam.y + 270.5});
+            sf.lights.push_back(walk_light(cam));
             const FrameReport r = render_frame(fs, w, sf, cam, f);
             tracing_ms += r.ms[int(Stage::trace)] + r.ms[int(Stage::opacity_correction)];
             correction_ms += r.ms[int(Stage::opacity_correction)];
@@ -432,12 +437,9 @@ void register_truth() {
 // Touches each node of the two trees a light of half-extents a (a square
 // area) has against solids once, `frames` times: a node's area index and
 // depth, its flag read (bit 4: the subtree climbs above the light's area,
-// skipped) and its falloff written. Returns the milliseconds.
-std::function<double()> tree_touch_floor(int a, int frames) {
-    Params solids;
-    solids.occluders = Occluders::solids;
-    const World& w = bench::world("default", 24);
-    const int tallest = build_occluders(w, solids, w.placed.bounds).tallest;
+// skipped) and its falloff written. `tallest`: the occluder map's tallest
+// point, in rows. Returns the milliseconds.
+std::function<double()> tree_touch_floor(int a, int tallest, int frames) {
     struct Walk {
         std::vector<std::uint32_t> at;  // area index << 10 | depth
         std::vector<std::int32_t> end;
@@ -483,16 +485,13 @@ std::function<double()> tree_touch_floor(int a, int frames) {
 }
 
 // Of the nodes tree_touch_floor touches for the walk's carried light (its
-// 64 positions), the share at or behind a span: those an exact pass must
-// step with the shades their rays carry. Ground tree, then sprite tree.
-std::array<double, 2> nodes_behind_spans(int a) {
-    Params solids;
-    solids.occluders = Occluders::solids;
-    const World& w = bench::world("default", 24);
-    const OccluderMap occ = build_occluders(w, solids, w.placed.bounds);
+// 64 positions) over `occ`, the share at or behind a span: those an exact
+// pass must step with the shades their rays carry. Ground tree, then sprite tree.
+std::array<double, 2> nodes_behind_spans(const OccluderMap& occ, int a) {
     std::array<double, 2> all{}, behind{};
     for (int f = 0; f < 64; ++f) {
-        const int cx = int(300.0 + 6.0 * f + 480.5), cy = int(200.0 + 3.0 * f + 270.5);  // print_walk_ratios' light
+        const Light l = walk_light(walk_camera(f));
+        const int cx = int(l.x), cy = int(l.y);
         for (int t = 0; t < 2; ++t) {
             const auto tree = ray_tree(a, t == 0 ? a : a + occ.tallest, 1);
             std::int32_t shaded_until = -1;  // the end of the subtree of the span node the walk is below
@@ -527,9 +526,9 @@ void print_walk_ratios(int pairs) {
             s.params.occluders = o;
             double ms = 0;
             for (int i = 0; i < 16; ++i, ++f) {
-                const Camera cam{300.0 + 6.0 * (f % 64), 200.0 + 3.0 * (f % 64), 960, 540};
+                const Camera cam = walk_camera(f);
                 Scene sf = s;
-                sf.lights.push_back(Light{cam.x + 480.5, cam.y + 270.5});
+                sf.lights.push_back(walk_light(cam));
                 const FrameReport r = render_frame(st, w, sf, cam, f);
                 ms += r.ms[int(Stage::trace)] + r.ms[int(Stage::opacity_correction)];
             }
@@ -555,17 +554,19 @@ void print_walk_ratios(int pairs) {
     // the sprite tree runs to the border of the area grown by the tallest
     // point's rows, less the subtrees that climb above the light's area
     // (the sprite pass leaves those at their first node).
-    bench::print_ratio("solids_tree_floor", bench::interleaved_costs(tree_touch_floor(128, 16), walk_footprints, pairs),
-                       nullptr);
-    const auto behind = nodes_behind_spans(128);
+    Params solids;
+    solids.occluders = Occluders::solids;
+    const World& w = bench::world("default", 24);
+    const OccluderMap occ = build_occluders(w, solids, w.placed.bounds);
+    bench::print_ratio("solids_tree_floor",
+                       bench::interleaved_costs(tree_touch_floor(128, occ.tallest, 16), walk_footprints, pairs), nullptr);
+    const auto behind = nodes_behind_spans(occ, 128);
     std::printf("solids_nodes_behind_spans ground %.3f sprites %.3f (of the nodes solids_tree_floor touches)\n", behind[0],
                 behind[1]);
     // A pan past the obstacle region's margin with solids: update_occluders
     // (the strip that came in, the index whole) over building the region whole.
-    const World& w = bench::world("default", 24);
     const auto [from, to] = pan_regions(w);
-    Params p;
-    p.occluders = Occluders::solids;
+    const Params& p = solids;
     SolidsCache cache;
     OccluderMap panned = build_occluders(w, p, from, &cache), built;
     bool there = false;  // back and forth: each update pans the map it keeps by 256 px
