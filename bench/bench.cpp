@@ -18,18 +18,20 @@
 
 #include "isolux/accuracy.hpp"
 #include "isolux/blur.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/hash.hpp"
 #include "isolux/light_trace.hpp"
-#include "isolux/occluders.hpp"
+#include "isolux/occluder_map.hpp"
 #include "isolux/truth.hpp"
-#include "ray_tree.hpp"
+#include "frame/ray_tree.hpp"
 #include "edits.hpp"
 #include "endless.hpp"
 #include "gpu_trace.hpp"
 #include "ratio.hpp"
 #include "whole_frame.hpp"
 #include "scenes.hpp"
+#include "frame/trace_hooks.hpp"
+#include "frame/frame_cache.hpp"
 
 using namespace isolux;
 using isolux::bench::trace_scene;
@@ -366,7 +368,7 @@ void frame_static(benchmark::State& st, bool still) {
     long f = 0;
     render_frame(fs, w, s, Camera{}, f++);
     for (auto _ : st) {
-        if (!still) fs.cache.lights.clear(), fs.cache.trace_lights.clear();  // forget the traces: all again
+        if (!still) fs.cache->lights.clear(), fs.cache->trace_lights.clear();  // forget the traces: all again
         benchmark::DoNotOptimize(render_frame(fs, w, s, Camera{}, f++));
     }
 }
@@ -590,7 +592,7 @@ void print_walk_ratios(int pairs) {
                 for (int i = 0; i < 8; ++i, ++f) {
                     const Camera cam{600.0 + 320.0 * (f % 2), 300.0, 1280, 720};
                     s.lights = {Light{cam.x + 640.5, cam.y + 360.5}};
-                    if (whole) st.obstacles = Mask{}, st.occluders = OccluderMap{}, st.cache.ground = GroundLines{};
+                    if (whole) st.obstacles = Mask{}, st.occluders = OccluderMap{}, st.cache->ground = GroundLines{};
                     ms += render_frame(st, w, s, cam, f).ms[int(Stage::obstacle_map)];
                 }
                 return ms;
@@ -695,7 +697,7 @@ int ratios() {
     render_frame(still_state, w24, still_scene, Camera{}, f_still++);
     render_frame(full_state, w24, still_scene, Camera{}, f_full++);
     bench::print_ratio("static_frame_cost", bench::interleaved([&] { render_frame(still_state, w24, still_scene, Camera{}, f_still++); }, 1000, [&] {
-        full_state.cache.lights.clear(), full_state.cache.trace_lights.clear();  // forget the traces: all again
+        full_state.cache->lights.clear(), full_state.cache->trace_lights.clear();  // forget the traces: all again
         render_frame(full_state, w24, still_scene, Camera{}, f_full++);
     }, 1, pairs), "<= 0.05", 5);
 

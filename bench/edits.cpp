@@ -11,7 +11,7 @@
 #include <memory>
 #include <vector>
 
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/frame.hpp"
 #include "ratio.hpp"
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "gui/gpu_tracer.hpp"
+#include "gpu/gpu_tracer.hpp"
 #include "gui/window.hpp"
 #include "ratio.hpp"
 #include "scenes.hpp"

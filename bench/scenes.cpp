@@ -2,7 +2,7 @@
 
 #include <map>
 
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/obstacle_map.hpp"
 
 namespace isolux::bench {

@@ -13,7 +13,7 @@
 #endif
 
 #include "isolux/blur.hpp"
-#include "isolux/cpu.hpp"
+#include "base/cpu.hpp"
 #include "isolux/composite.hpp"
 #include "isolux/hash.hpp"
 #include "isolux/light_trace.hpp"
@@ -21,6 +21,8 @@
 #include "isolux/truth.hpp"
 #include "ratio.hpp"
 #include "scenes.hpp"
+#include "frame/trace_hooks.hpp"
+#include "frame/frame_cache.hpp"
 
 namespace isolux::bench {
 
@@ -79,7 +81,7 @@ std::size_t area_bytes(const ScreenScene& s) {
 // Copies of the frame's traced masks, for a stage to work on in place.
 std::vector<LightMask> traced_masks(const ScreenScene& s) {
     std::vector<LightMask> masks;
-    for (const auto& t : s.frame.cache.lights) masks.push_back(t.mask);
+    for (const auto& t : s.frame.cache->lights) masks.push_back(t.mask);
     return masks;
 }
 
@@ -105,7 +107,7 @@ struct Set {
 // The correction's bytes without its rule: over each light's rows, its
 // ground lines read and its mask read and written (value ^= below8), in the
 // correction's vector width, with its prefetch of the lines eight rows ahead
-// (core/src/rows_ahead.hpp).
+// (core/src/base/rows_ahead.hpp).
 // Its ratio to the memset of the areas says how much of
 // correction_times_floor is the traffic itself.
 template <class XorRow>
@@ -217,7 +219,7 @@ void register_whole_frames() {
         ScreenScene& s = screen("default", 1);
         Image out(s.frame.view.w, s.frame.view.h);
         for (auto _ : st)
-            composite_into(s.frame.sprites, s.frame.view, s.frame.cache.blurred, s.scene.params, s.frame.view, out);
+            composite_into(s.frame.sprites, s.frame.view, s.frame.cache->blurred, s.scene.params, s.frame.view, out);
     })->Unit(benchmark::kMillisecond);
     // The same composite over the whole view in vertical strips: the same
     // pixels in shorter pieces of rows (what the frame's join_gap is for).
@@ -228,14 +230,14 @@ void register_whole_frames() {
             const Rect v = s.frame.view;
             for (auto _ : st)
                 for (int x = 0; x < v.w; x += strip)
-                    composite_into(s.frame.sprites, v, s.frame.cache.blurred, s.scene.params,
+                    composite_into(s.frame.sprites, v, s.frame.cache->blurred, s.scene.params,
                                    Rect{v.x + x, v.y, std::min(strip, v.w - x), v.h}, out);
         })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("stage/correction/forest", [](benchmark::State& st) {
         ScreenScene& s = screen("forest", 1);
         std::vector<LightMask> masks = traced_masks(s);
         for (auto _ : st)
-            for (LightMask& m : masks) correct_with_ground_lines(m, s.frame.cache.ground);
+            for (LightMask& m : masks) correct_with_ground_lines(m, s.frame.cache->ground);
     })->Unit(benchmark::kMillisecond);
     // The same, each mask corrected 8 times in a row (its lines and mask then
     // come from L2, not L3): per pass, time / 8. As fast as the cold one
@@ -245,7 +247,7 @@ void register_whole_frames() {
         std::vector<LightMask> masks = traced_masks(s);
         for (auto _ : st)
             for (LightMask& m : masks)
-                for (int i = 0; i < 8; ++i) correct_with_ground_lines(m, s.frame.cache.ground);
+                for (int i = 0; i < 8; ++i) correct_with_ground_lines(m, s.frame.cache->ground);
     })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("stage/correction_reference/forest", [](benchmark::State& st) {
         ScreenScene& s = screen("forest", 1);
@@ -264,7 +266,7 @@ void register_whole_frames() {
     benchmark::RegisterBenchmark("stage/floor/correction_streams/forest", [](benchmark::State& st) {
         ScreenScene& s = screen("forest", 1);
         std::vector<LightMask> masks = traced_masks(s);
-        const CorrectionStreams streams{s.frame.cache.ground, masks};
+        const CorrectionStreams streams{s.frame.cache->ground, masks};
         for (auto _ : st) streams();
     })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("whole_frame/floor/memcpy_final_memset_areas", [](benchmark::State& st) {
@@ -294,7 +296,7 @@ void print_floor_ratios() {
                 interleaved([&] { box_blur_into(traced, 2, traced.rect, blurred); }, 5, traced_copy, 30, pairs), "<= 4",
                 2);
 
-    // The baseline build of the blur over its AVX2 build (isolux/cpu.hpp), when the CPU has AVX2.
+    // The baseline build of the blur over its AVX2 build (base/cpu.hpp), when the CPU has AVX2.
     if (wide_kernels()) {
         auto baseline = [&] {
             set_wide_kernels(false);
@@ -332,11 +334,11 @@ void print_floor_ratios() {
     Set forest_areas(area_bytes(forest));
     print_ratio("correction_times_floor", interleaved([&] {
                     for (LightMask& m : masks)
-                        correct_with_ground_lines(m, forest.frame.cache.ground);
+                        correct_with_ground_lines(m, forest.frame.cache->ground);
                 }, 3, forest_areas, 30, pairs), "<= 4", 2);
     // The same areas' bytes read and written as the correction moves them, with no rule.
     std::vector<LightMask> stream_masks = traced_masks(forest);
-    const CorrectionStreams streams{forest.frame.cache.ground, stream_masks};
+    const CorrectionStreams streams{forest.frame.cache->ground, stream_masks};
     print_ratio("correction_streams_times_floor", interleaved(streams, 3, forest_areas, 30, pairs), nullptr, 2);
 
     print_ratio("threads2_frame_speedup", interleaved([&] { step(one, 32); }, 3, [&] { step(two, 32); }, 3, pairs),

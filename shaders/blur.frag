@@ -1,7 +1,7 @@
 // blur.frag: one pass of the separable box blur of the light texture.
-// Mirrors core/src/blur.cpp: box_blur (the mean of the (2r+1)^2 texels
+// Mirrors core/src/frame/blur.cpp: box_blur (the mean of the (2r+1)^2 texels
 // around each texel, coordinates clamped to the texture's edge), or, with
-// u_within_surfaces, core/src/blur_within.cpp: box_blur_within (the texels
+// u_within_surfaces, core/src/frame/blur_within.cpp: box_blur_within (the texels
 // reached by up to r steps along the column, then along the rows, without
 // leaving the surface each texel shows nor the texture).
 // Uniforms:

@@ -1,6 +1,6 @@
 // composite.frag: the paper's Algorithm 3, mixing sprite colour with the
 // light texture under the ambient clarity.
-// Mirrors core/src/composite.cpp (composite, composite_pixel).
+// Mirrors core/src/frame/composite.cpp (composite, composite_pixel).
 // Uniforms:
 //   sampler2D u_color        unit 0: the view's sprites, premultiplied alpha (float)
 //   sampler2D u_light        unit 1: the blurred light texture (RGBA8, world-anchored)

@@ -4,7 +4,7 @@
 // point's rows. The CPU reference is core's light_sprite_points_by_rays
 // (occluders.cpp), after start_sprite_points: the same Bresenham steps, the
 // same double-precision descents and the same bounded state per ray
-// (RayShadow, core/src/occluders_tree.hpp), so the same pixels.
+// (RayShadow, core/src/solids/solids_pass_tree.hpp), so the same pixels.
 // A segment from the light (height H) down to a point h high, d steps out,
 // descends u = (H - h) / d per step. The spans standing on the ground block
 // every descent above the least of their (H - high) / s (the ray's horizon);

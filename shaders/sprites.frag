@@ -1,6 +1,6 @@
 // sprites.frag: samples the atlas texel by texel (nearest) and premultiplies
 // in float, blended with ONE, ONE_MINUS_SRC_ALPHA into a float target:
-// "over", as core/src/map.cpp (render_sprites) composes sprites.
+// "over", as core/src/map/placement.cpp (render_sprites) composes sprites.
 // Uniforms:
 //   sampler2D u_atlas   unit 0: every sprite of the tileset, straight alpha
 #version 330 core

@@ -1,6 +1,6 @@
 // sprites.vert: the map's sprites as instanced quads from one atlas, drawn
 // back to front into the view's colour target. Mirrors
-// core/src/map.cpp (render_sprites).
+// core/src/map/placement.cpp (render_sprites).
 // Attributes (per instance):
 //   vec4 a_world   x, y, w, h of the sprite in world pixels
 //   vec4 a_atlas   x, y, w, h of the sprite in the atlas, texels

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "isolux/cpu.hpp"
+#include "base/cpu.hpp"
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/hash.hpp"
 #include "isolux/light_texture.hpp"
 #include "isolux/image.hpp"
@@ -112,7 +112,7 @@ inline LightTexture random_texture(Rect r, std::uint64_t seed) {
     return t;
 }
 
-// The kernels' builds to hold to the same bytes (isolux/cpu.hpp): the
+// The kernels' builds to hold to the same bytes (base/cpu.hpp): the
 // baseline, and AVX2 when this CPU has it (said once, so a run without it
 // is seen).
 inline std::vector<bool> both_widths() {

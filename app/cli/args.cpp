@@ -6,7 +6,7 @@
 #include <iostream>
 
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/frame.hpp"
 #include "isolux/scene_file.hpp"
 

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/contact_sheet.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/footprint.hpp"
 #include "isolux/solid_estimate.hpp"
 #include "isolux/tileset_file.hpp"

@@ -5,7 +5,7 @@
 #include "common/world.hpp"
 #include "isolux/endless.hpp"
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/scene_file.hpp"
 #include "isolux/tiled.hpp"
 

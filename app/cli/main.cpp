@@ -13,7 +13,7 @@
 #include "cli/render.hpp"
 #include "cli/sweep.hpp"
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/frame.hpp"
 #include "isolux/params.hpp"
 #include "isolux/scene_file.hpp"

@@ -11,7 +11,7 @@
 #include "isolux/composite.hpp"
 #include "isolux/endless.hpp"
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/frame.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_map.hpp"

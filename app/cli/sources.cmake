@@ -5,5 +5,6 @@ set(ISOLUX_CLI_SOURCES
   ${PROJECT_SOURCE_DIR}/app/cli/render.cpp
   ${PROJECT_SOURCE_DIR}/app/cli/check_tileset.cpp
   ${PROJECT_SOURCE_DIR}/app/cli/sweep.cpp
+  ${PROJECT_SOURCE_DIR}/app/cli/sweep_chart.cpp
   ${PROJECT_SOURCE_DIR}/app/cli/contact_sheet.cpp
   ${PROJECT_SOURCE_DIR}/app/cli/export_tiled.cpp)

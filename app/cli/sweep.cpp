@@ -1,4 +1,5 @@
 #include "cli/sweep.hpp"
+#include "cli/sweep_chart.hpp"
 
 #include <filesystem>
 #include <iostream>
@@ -8,7 +9,7 @@
 #include "isolux/accuracy.hpp"
 #include "isolux/error.hpp"
 #include "isolux/file_io.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/frame.hpp"
 #include "isolux/scene_file.hpp"
 #include "isolux/truth.hpp"

@@ -5,7 +5,7 @@
 
 #include "common/assets.hpp"
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/image_file.hpp"
 #include "isolux/tiled.hpp"
 

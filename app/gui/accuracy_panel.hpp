@@ -9,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-#include "gui/overlays.hpp"
+#include "editor/overlays.hpp"
 #include "isolux/accuracy.hpp"
 
 namespace isolux::app {

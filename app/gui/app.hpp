@@ -13,11 +13,11 @@
 #include "gui/accuracy_panel.hpp"
 #include "gui/app_frame.hpp"
 #include "gui/dialogs.hpp"
-#include "gui/editor.hpp"
-#include "gui/gpu_tracer.hpp"
+#include "editor/editor.hpp"
+#include "gpu/gpu_tracer.hpp"
 #include "gui/inspector.hpp"
-#include "gui/layout.hpp"
-#include "gui/renderer.hpp"
+#include "editor/layout.hpp"
+#include "gpu/renderer.hpp"
 #include "gui/script.hpp"
 #include "gui/viewport.hpp"
 
@@ -47,7 +47,7 @@ struct Ui {
     DialogState dialogs;      // dialogs.cpp
     ViewportState viewport;   // viewport.cpp
     InspectorState inspector; // inspector.cpp
-    PanelLayout layout;                // where the panels go (gui/layout.hpp)
+    PanelLayout layout;                // where the panels go (editor/layout.hpp)
     int layout_w = 0, layout_h = 0;    // the window size it was made for
     bool reset_layout = true;          // apply it this frame
     bool help_open = false;            // the Help window (menu_bar.cpp)

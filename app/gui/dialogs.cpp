@@ -8,14 +8,14 @@
 
 #include "gui/app.hpp"
 #include "gui/dialogs.hpp"
-#include "gui/file_browser.hpp"
+#include "editor/file_browser.hpp"
 #include "gui/menu_bar.hpp"
 #include "gui/status.hpp"
 #include "gui/viewport.hpp"
 #include "gui/widgets.hpp"
 #include "isolux/blur.hpp"
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/tiled.hpp"
 
 namespace fs = std::filesystem;

@@ -5,7 +5,7 @@
 #include <functional>
 #include <string>
 
-#include "gui/editor.hpp"
+#include "editor/editor.hpp"
 
 namespace isolux::app {
 

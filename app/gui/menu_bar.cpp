@@ -8,14 +8,14 @@
 
 #include "gui/app.hpp"
 #include "gui/dialogs.hpp"
-#include "gui/file_browser.hpp"
+#include "editor/file_browser.hpp"
 #include "gui/menu_bar.hpp"
 #include "gui/status.hpp"
 #include "gui/viewport.hpp"
 #include "gui/widgets.hpp"
 #include "isolux/blur.hpp"
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/tiled.hpp"
 
 namespace fs = std::filesystem;
@@ -88,7 +88,7 @@ void menu_bar(App& app) {
         ImGui::Separator();
         ImGui::MenuItem("Stats", nullptr, &e.settings.show_stats);
         if (ImGui::BeginMenu("Tracer")) {
-            // The same pixels either way (tests/gl_test.cpp); only the time differs.
+            // The same pixels either way (tests/app/gpu/gl_test.cpp); only the time differs.
             static const char* const choices[3][2] = {
                 {"auto", "Automatic (GPU unless its driver is a software renderer)"}, {"cpu", "CPU"}, {"gpu", "GPU (compute shader)"}};
             for (const auto& c : choices)

@@ -1,6 +1,6 @@
 // The docked panels: Map, Parameters, Overlays, Lights and the terrain
 // Tools, and draw_panels, which lays out and draws every window of a frame.
-// Thin: each reads the state and calls the editor's actions (gui/editor.hpp).
+// Thin: each reads the state and calls the editor's actions (editor/editor.hpp).
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -11,14 +11,14 @@
 #include "gui/app.hpp"
 #include "gui/overview.hpp"
 #include "gui/dialogs.hpp"
-#include "gui/file_browser.hpp"
+#include "editor/file_browser.hpp"
 #include "gui/menu_bar.hpp"
 #include "gui/status.hpp"
 #include "gui/viewport.hpp"
 #include "gui/widgets.hpp"
 #include "isolux/blur.hpp"
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/tiled.hpp"
 
 namespace fs = std::filesystem;

@@ -18,7 +18,7 @@
 #include "gui/viewport.hpp"
 #include "isolux/edits.hpp"
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/tiled.hpp"
 
 namespace isolux::app {

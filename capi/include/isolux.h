@@ -5,7 +5,7 @@
  * call returns an isolux_status; when it is not ISOLUX_OK, isolux_last_error()
  * says what failed (the file and field, as isolux-cli does). No C++ exception
  * crosses this API. A world is used by one thread at a time; different worlds
- * may be used on different threads. docs/c-api.md walks through it. */
+ * may be used on different threads. docs/games.md walks through it. */
 #ifndef ISOLUX_H
 #define ISOLUX_H
 

@@ -18,7 +18,7 @@
 
 #include "isolux/edits.hpp"
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/frame.hpp"
 #include "isolux/light_texture.hpp"
 #include "isolux/tiled.hpp"

@@ -92,7 +92,7 @@ out("# Accuracy against time",
     "",
     "## What is measured",
     "",
-    "**References** (`core/src/truth.cpp`, `isolux-cli sweep --reference`):",
+    "**References** (`core/src/truth/truth.cpp`, `isolux-cli sweep --reference`):",
     "",
     "- **3d**: the true shapes. The default tileset is ray-cast from boxes, cylinders, cones and ellipsoids; the",
     "  manifest carries them (`shape`) and each pixel's visible height (`height_map`). A pixel's surface point is",
@@ -155,7 +155,7 @@ for scene, what in SCENES.items():
 out("## Beyond the paper: solids with height (occluders)", "",
     "`occluders` (`footprints` by default): `solids` traces against a solid estimated from each",
     "sprite's alpha, `shapes` against the manifest's own shapes, the light at its height, sprite pixels lit by the",
-    "3D point they show in place of the opacity correction (`core/src/occluders.cpp`; docs/method.md). With",
+    "3D point they show in place of the opacity correction (`core/src/solids/solids_pass.cpp`; docs/beyond.md). With",
     "`shapes` what remains is the tracer's own error; the gap between `shapes` and `solids` is the estimate's (it",
     "may be below zero where the estimate's errors offset the tracer's).",
     "Lit mismatch against 3D inside the lights' areas, and the app's CPU time (obstacle map, trace and opacity",
@@ -183,7 +183,7 @@ for scene in SCENES:
 out("## Beyond the paper: rays over low obstacles", "",
     "`rays_over_obstacles` (off by default): each obstacle pixel carries the estimated height of its sprite (its",
     "opaque rows less its footprint's depth), and a ray from a light at its height passes over obstacles lower",
-    "than the ray there (`core/src/height_rays.cpp`). Lit mismatch against 3D inside the lights' areas:", "")
+    "than the ray there (`core/src/solids/height_rays.cpp`). Lit mismatch against 3D inside the lights' areas:", "")
 for scene in SCENES:
     rs = rows(f"{scene}_height_rays")
     out(f"**{scene}**:", "", "| light height | paper: ground | option: ground | paper: sprites | option: sprites | paper: light RMSE | option: light RMSE |",

@@ -323,7 +323,7 @@ case("warnings_capped_edits_outside", ["render", "--scene", write("many_edits.sc
      0, "more edits outside", max_lines=12)
 tmx("warnings_capped_image_layers", TS + L('<data encoding="csv">1,1,1,1</data>') + '<imagelayer name="i"/>' * 200000,
     frag="more image layers", want=0, max_lines=12)
-# A map read back exports again (its floors kept: tests/tiled_test.cpp checks the pixels).
+# A map read back exports again (its floors kept: tests/core/formats/tiled_test.cpp checks the pixels).
 case("reexport_tiled_map", ["export-tiled", "--scene", write("reexport.scene.json", json.dumps({"map": T("tmx", "ok.tmx")})),
                             "--out", T("reexport", "map.tmx")], 0)
 # Sprite names that are paths write nothing outside the export's folder.
@@ -337,14 +337,14 @@ write("names/tileset.json", json.dumps(names_doc))
 case("export_names_are_not_paths", ["export-tiled", "--scene", write("names.scene.json", json.dumps(
     {"width": 4, "height": 4, "tileset": T("names", "tileset.json")})), "--out", T("names", "out", "map.tmx")], 0)
 # A name isolux gives a file of its own in the chosen folder that is a link
-# out of it is refused by name (tests/files_test.cpp checks nothing lands outside).
+# out of it is refused by name (tests/core/formats/files_test.cpp checks nothing lands outside).
 os.makedirs(T("link_out", "elsewhere"))
 os.makedirs(T("link_out", "export"))
 os.symlink(T("link_out", "elsewhere"), T("link_out", "export", "map_images"))
 case("export_images_folder_is_a_link_out", ["export-tiled", "--scene", SCENE, "--out", T("link_out", "export", "map.tmx")],
      2, "map_images: is a symbolic link")
 # A first export beside a user's own file under an export's name is refused
-# by that name, and the file keeps its bytes (tests/tiled_test.cpp).
+# by that name, and the file keeps its bytes (tests/core/formats/tiled_test.cpp).
 write("own_tsx/export/map_floors.tsx", "the user's own")
 case("export_beside_a_users_own_tsx", ["export-tiled", "--scene", SCENE, "--out", T("own_tsx", "export", "map.tmx")],
      2, "map_floors.tsx: already exists")

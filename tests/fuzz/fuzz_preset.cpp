@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     std::vector<std::string> warnings;

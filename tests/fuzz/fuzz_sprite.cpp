@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_map.hpp"
 

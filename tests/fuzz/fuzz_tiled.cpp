@@ -8,7 +8,7 @@
 #include <string>
 
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 #include "isolux/tiled.hpp"
 
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "isolux/error.hpp"
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 
 namespace fs = std::filesystem;
 

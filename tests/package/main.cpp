@@ -1,7 +1,6 @@
-// Uses the installed library the way a game would: a seeded map on a tileset
-// of its own, an obstacle map and one traced light.
-#include <isolux/frame.hpp>
-#include <isolux/obstacle_map.hpp>
+// Uses the installed library the way a game would, through its one umbrella
+// header: a seeded map on a tileset of its own, and one traced light.
+#include <isolux/isolux.hpp>
 
 #include <cstdio>
 

@@ -4,7 +4,7 @@ centre lies from its base (expected_base) under the paper's footprint and
 under auto; then, for every object that fills its tile or spans several
 (expected_whole_base: its base's left, front and right corners), how far the
 obstacle's centre lies from the base's centre and how much of the base's
-width the obstacle spans: the evidence for the default in docs/method.md.
+width the obstacle spans: the evidence for the default in docs/beyond.md.
 Usage: python3 tests/realart/compare.py PATH/TO/isolux-cli [CACHE]"""
 import json, math, os, shutil, subprocess, sys
 

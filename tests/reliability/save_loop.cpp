@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-#include "isolux/files.hpp"
+#include "isolux/isolux.hpp"
 
 int main(int argc, char** argv) {
     if (argc < 2) return 2;

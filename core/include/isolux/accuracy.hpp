@@ -111,11 +111,10 @@ void mark_pareto(std::vector<SweepPoint>& points);
 // The marked points, fastest first (a chart's line, a report's list).
 std::vector<const SweepPoint*> pareto_front(const std::vector<SweepPoint>& points);
 
-// CSV (one row per combination) and an SVG chart of error against time.
-// `pareto_known` false (a sweep under way): the pareto column is left empty.
+// CSV, one row per combination (isolux-cli's sweep draws its SVG chart,
+// app/cli/sweep_chart.hpp). `pareto_known` false (a sweep under way): the
+// pareto column is left empty.
 std::string sweep_csv(const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points,
                       bool pareto_known = true);
-std::string sweep_svg(const std::vector<SweepAxis>& axes, const std::vector<SweepPoint>& points,
-                      const std::string& title);
 
 }  // namespace isolux

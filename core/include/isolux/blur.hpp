@@ -20,13 +20,8 @@ LightTexture box_blur(const LightTexture& tex, int radius);
 // light changed. Row-major exact integer running sums, a few rows of scratch.
 void box_blur_into(const LightTexture& tex, int radius, Rect region, LightTexture& out);
 
-// The rule stated as plainly as possible: per texel, per channel, the sum of
-// its clamped window and one rounded division. The oracle box_blur is tested
-// against.
-LightTexture box_blur_reference(const LightTexture& tex, int radius);
-
 // Beyond the paper: the blur within surfaces (with occluders solids or
-// shapes, docs/method.md). Which surface each pixel shows, over `rect`
+// shapes, docs/beyond.md). Which surface each pixel shows, over `rect`
 // (world pixels): the overlay instance (PlacedMap::instances' index), -1 the
 // ground; -1 outside `rect`.
 struct SurfaceIds {
@@ -63,8 +58,5 @@ void index_surfaces(SurfaceIds& ids);
 // shaders/blur.frag mirrors it (u_within_surfaces).
 void box_blur_within_into(const LightTexture& tex, int radius, const SurfaceIds& ids, Rect region, LightTexture& out);
 LightTexture box_blur_within(const LightTexture& tex, int radius, const SurfaceIds& ids);
-
-// The same rule per texel, as plainly as possible: the oracle of the above.
-LightTexture box_blur_within_reference(const LightTexture& tex, int radius, const SurfaceIds& ids);
 
 }  // namespace isolux

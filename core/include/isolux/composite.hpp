@@ -22,14 +22,7 @@ Image composite(const Image& colour, Rect view, const LightTexture& light, const
 // kept otherwise) for `region` (world pixels) only: a band of rows for one
 // thread, or where the light changed. Computed in float with the frame's
 // constants; a pixel whose exact value lies near a rounding boundary is
-// redone in double, so the bytes are always composite_reference's.
+// redone in double, so the bytes are always those of the rule in double.
 void composite_into(const Image& colour, Rect view, const LightTexture& light, const Params& p, Rect region, Image& out);
-
-// The rule stated plainly: composite_pixel in double for every pixel. The
-// oracle composite is tested against.
-Image composite_reference(const Image& colour, Rect view, const LightTexture& light, const Params& p);
-
-// The same formula for one pixel, in [0, 1]; for tests and the shader's comments.
-void composite_pixel(const double colour[3], const double light[3], const Params& p, double out[3]);
 
 }  // namespace isolux

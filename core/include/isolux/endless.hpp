@@ -3,7 +3,7 @@
 // own coordinates (generate_map), so a world needs no edge: what a view
 // shows is lit from a window of whole chunks of tiles around it, made on
 // demand, and its cost and memory follow the view and the lights' reach,
-// never the world (docs/method.md, "Endless worlds").
+// never the world (docs/beyond.md, "Endless worlds").
 //
 // Coordinates: an endless world's tiles and pixels are 64-bit. Its pixel
 // frame puts tile (0, 0)'s centre at the layout's origin (tile_center), so a

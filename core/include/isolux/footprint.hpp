@@ -1,7 +1,7 @@
 // Where a sprite meets the ground, on real art: Algorithm 1 (paper 3.1) run on
 // what is left of the sprite once a baked ground diamond and baked shadows are
 // taken out, or a footprint the manifest gives. Not in the paper, which draws
-// its own sprites with neither (docs/method.md has the evidence for the
+// its own sprites with neither (docs/beyond.md has the evidence for the
 // default).
 #pragma once
 #include <cstdint>

@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 #include <functional>
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -15,7 +16,7 @@
 #include "isolux/light_texture.hpp"
 #include "isolux/light_trace.hpp"
 #include "isolux/blur.hpp"
-#include "isolux/occluders.hpp"
+#include "isolux/occluder_map.hpp"
 #include "isolux/opacity_correction.hpp"
 #include "isolux/scene.hpp"
 #include "isolux/stage.hpp"
@@ -101,63 +102,20 @@ struct FrameOptions {
     std::function<Mask(const World&, const Params&, Rect, const std::vector<Mask>& footprints)> obstacle_map;
 };
 
-// What the last frame was built from: private to render_frame, which reads
-// it to skip the stages whose inputs did not change.
-struct FrameCache {
-    // The obstacle map's inputs and the region it covers, and each sprite's
-    // Algorithm 1 mask (what an edit's partial rebuild stamps).
-    bool has_obstacles = false;
-    std::vector<Mask> footprints;
-    std::uint64_t sprites_built = 0;  // the World::built_revision footprints and opacity maps were made for
-    std::uint64_t world_revision = ~0ull;
-    Params obstacle_params;
-    Rect obstacle_region;
-    SolidsCache solids;  // with occluders solids: each sprite's, estimated once
-
-    // Each light's traced and corrected pixels, kept while the obstacle map,
-    // the tracing parameters and the light's centre, area and clip are the
-    // same: an unchanged light is never traced twice.
-    struct TracedLight {
-        std::int64_t cx = 0, cy = 0;
-        int a = 0, b = 0;
-        double height = 0;  // read only with rays_over_obstacles
-        std::array<std::uint8_t, 3> colour{255, 255, 255};  // what the light added with: a change re-adds its area
-        double intensity = 1;
-        LightMask mask;
-        // What tracing and correcting it took, in ms (0: not timed yet):
-        // the next frame traces the costliest first, so that threads finish together.
-        double cost_ms = 0;
-    };
-    std::vector<TracedLight> lights;
-    bool lights_corrected = true;  // whether the cached masks had the opacity correction
-
-    // The last trace's inputs.
-    bool has_trace = false;
-    Params trace_params;
-    std::vector<Light> trace_lights;
-
-    // The opacity correction's per-pixel ground lines over the obstacle
-    // region, built with the obstacle map (opacity_correction.hpp).
-    GroundLines ground;
-
-    // The blurred light texture and its inputs (the blur re-runs after every
-    // trace, over the part the trace changed when the rest still holds). Empty
-    // with radius 0: the composite reads the traced texture.
-    bool has_blur = false;
-    Params blur_params;
-    LightTexture blurred;
-    std::vector<Rect> blur_pending;  // texels traced since the last blur
-    std::uint64_t blur_surface_ids = 0;  // the surface_ids_revision the blur stayed within
-
-    // The final image's inputs.
-    bool has_final = false;
-    Params composite_params;
+// What the last frame was built from (core/src/frame/frame_cache.hpp):
+// private to render_frame, which reads it to skip the stages whose inputs
+// did not change.
+struct FrameCache;
+struct FrameCacheDeleter {
+    void operator()(FrameCache* c) const;
 };
+std::unique_ptr<FrameCache, FrameCacheDeleter> new_frame_cache();
+
 
 // Beyond the paper: whether the blur stays within surfaces (box_blur_within):
 // with occluders solids or shapes, each sprite pixel is lit by the 3D point it
 // shows, and averaging it with the ground or another sprite beside it on
-// screen mixes in the light of points far from it in depth (docs/method.md).
+// screen mixes in the light of points far from it in depth (docs/beyond.md).
 inline bool blur_within_surfaces(const Params& p) {
     return p.occluders != Occluders::footprints && p.mode != Mode::flat && p.blur_radius > 0;
 }
@@ -185,7 +143,8 @@ struct FrameState {
     LightTexture light;          // the view's blurred light texture, what the composite reads
     Image final;                 // the lit frame (cpu_blur_and_composite)
 
-    FrameCache cache;
+    // Never null but in a moved-from state.
+    std::unique_ptr<FrameCache, FrameCacheDeleter> cache = new_frame_cache();
 };
 
 // The Bresenham steps a full trace of the scene's lights that meet `view`

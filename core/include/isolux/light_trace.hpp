@@ -120,7 +120,7 @@ void for_each_ray_target(std::int64_t cx, std::int64_t cy, int a, int b, const P
 // covers it): rays step through the obstacle map and the mask by pointer,
 // branch-free, with no bounds tests. `area_is_clear` (the caller knows no
 // obstacle lies in the area) lets k = 1 and every-pixel tracing fill the area
-// from its closed form: every pixel is lit (see docs/method.md). The result is
+// from its closed form: every pixel is lit (see docs/beyond.md). The result is
 // the same bytes as the general path's.
 // `control` (optional) reports progress and may cancel (TraceControl).
 LightMask trace_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
@@ -133,24 +133,5 @@ void trace_light_into(LightMask& m, const Mask& obstacles, std::int64_t cx, std:
 // Whether `area` holds no obstacle pixel (outside `obstacles` there are none):
 // the condition for trace_light's closed form.
 bool area_is_clear(const Mask& obstacles, Rect area);
-
-// Bresenham steps the last trace_light calls on this thread took (for the
-// benchmark's steps-per-pixel figure).
-std::uint64_t& bresenham_steps();
-
-// How the ray tree was traced by this thread's trace_light calls (for tests
-// and the benchmark): walked node by node, or pruned (the clear mask, minus
-// what the obstacles' subtrees cut off: cheaper when obstacles are few).
-struct TreeTraces {
-    std::uint64_t walked = 0, pruned = 0;
-};
-TreeTraces& tree_traces();
-
-// The plain transcription of Algorithm 2 for one ray, kept as the reference
-// implementation the fast tracer is measured against (bench/): "enlighten
-// pixel" writes the paper's intensity 255 / (1 + max(|Δx|, |Δy|)), computed
-// per pixel, into texture[] (clip-relative) until the first blocked pixel.
-void trace_light_ray_paper(const Mask& obstacles, std::int64_t orgX, std::int64_t orgY, std::int64_t dstX,
-                           std::int64_t dstY, Rect clip, std::vector<std::uint8_t>& texture);
 
 }  // namespace isolux

@@ -74,7 +74,7 @@ struct Params {
     Rays rays = Rays::border;
     double light_height = 32;      // a light's height above the ground, pixels, when it gives none (not in the paper)
     bool rays_over_obstacles = false;  // rays pass over obstacles lower than the ray (height_rays.hpp; not in the paper)
-    Occluders occluders = Occluders::footprints;  // what stops the rays (occluders.hpp; not in the paper)
+    Occluders occluders = Occluders::footprints;  // what stops the rays (occluder_map.hpp; not in the paper)
     Footprint footprint = Footprint::automatic;  // sprites without their own footprint (not in the paper)
     FalloffShape falloff_shape = FalloffShape::chebyshev;
     bool edge_fade = false;         // intensity falls to 0 at the area's border (not in the paper)

@@ -12,7 +12,7 @@
 // solid is the largest of revolution the silhouette allows. Then each
 // widens across the view (ground direction (1, -1), screen x) to what the
 // silhouette shows at its height: its depth stays the disc's radius, which
-// the silhouette cannot tell (docs/method.md).
+// the silhouette cannot tell (docs/beyond.md).
 #pragma once
 #include <vector>
 
@@ -49,7 +49,7 @@ struct EstimatedObject {
 // foliage over a trunk the sprite never shows), the discs below it keep at
 // most this share of its radius: a stem. The median of the lone trees'
 // visible trunks in the real art nobody here drew
-// (RealArt.hiddenStemRatioIsTheRealTreesMedian; docs/method.md).
+// (RealArt.hiddenStemRatioIsTheRealTreesMedian; docs/beyond.md).
 constexpr double hidden_stem_ratio = 0.2;
 
 // Whether the discs from object `o`'s widest one up draw every opaque pixel

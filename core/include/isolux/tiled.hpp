@@ -1,6 +1,6 @@
 // Tiled maps (TMX, https://doc.mapeditor.org/en/stable/reference/tmx-map-format/):
 // a level out of isolux into any engine's Tiled importer, and Tiled's
-// isometric and staggered maps into isolux to be lit. File I/O like files.hpp:
+// isometric and staggered maps into isolux to be lit. File I/O like file_io.hpp:
 // every reader throws Error naming the file and the element; every writer is
 // atomic. The rules (which layer is the floor, how sprites are anchored, the
 // paper layout's nearest form) are in docs/guide.md, "Tiled maps".

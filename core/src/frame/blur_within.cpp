@@ -1,0 +1,315 @@
+// Beyond the paper: the blur within surfaces (blur.hpp, box_blur_within):
+// the paper's box blur, its windows never crossing into another surface, so
+// light on the ground never bleeds onto a sprite in front of it.
+#include "isolux/blur.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cstring>
+#include <utility>
+#include <vector>
+
+#include "frame/fused_radius.hpp"
+#include "frame/oracles.hpp"
+
+namespace isolux {
+
+namespace {
+
+// A texel whose window lies inside the texture and the surfaces' rectangle,
+// summed as box_blur_within's rule says: straight reads, and no branch on
+// the runs' lengths (a flag carried outwards from the centre along the
+// column and each row). R is the radius, known when compiled.
+template <int C, int R>
+void blur_within_texel(const LightTexture& tex, const SurfaceIds& ids, int x, int y, LightTexture& out) {
+    const Rect t = tex.rect, s = ids.rect;
+    const std::int32_t* id0 = &ids.id[std::size_t(y - s.y) * s.w + std::size_t(x - s.x)];
+    const std::uint8_t* v0 = &tex.texels[(std::size_t(y - t.y) * t.w + std::size_t(x - t.x)) * C];
+    const std::int32_t surface = *id0;
+    std::uint32_t sum[C] = {};
+    std::uint32_t n = 0;
+    auto add_row = [&](int dy, std::uint32_t on) {
+        const std::int32_t* row = id0 + std::ptrdiff_t(dy) * s.w;
+        const std::uint8_t* v = v0 + std::ptrdiff_t(dy) * t.w * C;
+        for (int k = 0; k < C; ++k) sum[k] += v[k] & (0u - on);
+        n += on;
+        std::uint32_t left = on, right = on;
+        for (int i = 1; i <= R; ++i) {
+            left &= std::uint32_t(row[-i] == surface);
+            right &= std::uint32_t(row[i] == surface);
+            for (int k = 0; k < C; ++k) sum[k] += (v[-i * C + k] & (0u - left)) + (v[i * C + k] & (0u - right));
+            n += left + right;
+        }
+    };
+    add_row(0, 1);
+    std::uint32_t up = 1, down = 1;
+    for (int k = 1; k <= R; ++k) {
+        up &= std::uint32_t(id0[-std::ptrdiff_t(k) * s.w] == surface);
+        down &= std::uint32_t(id0[std::ptrdiff_t(k) * s.w] == surface);
+        add_row(-k, up);
+        add_row(k, down);
+    }
+    std::uint8_t* o = &out.texels[(std::size_t(y - t.y) * t.w + std::size_t(x - t.x)) * C];
+    for (int k = 0; k < C; ++k) o[k] = std::uint8_t((sum[k] + n / 2) / n);
+}
+
+// The same for any texel: the texture's edge bounds the walks, and pixels
+// outside the surfaces' rectangle are the ground.
+template <int C>
+void blur_within_texel_any(const LightTexture& tex, int r, const SurfaceIds& ids, int x, int y, LightTexture& out) {
+    const Rect t = tex.rect;
+    const std::int32_t surface = ids.at(x, y);
+    std::uint32_t sum[C] = {};
+    std::uint32_t n = 0;
+    auto add_row = [&](int yy) {
+        const std::uint8_t* v = &tex.texels[std::size_t(yy - t.y) * t.w * C];
+        int lo = x, hi = x;
+        while (lo > t.x && x - lo < r && ids.at(lo - 1, yy) == surface) --lo;
+        while (hi + 1 < t.x + t.w && hi - x < r && ids.at(hi + 1, yy) == surface) ++hi;
+        for (int xx = lo; xx <= hi; ++xx)
+            for (int k = 0; k < C; ++k) sum[k] += v[std::size_t(xx - t.x) * C + k];
+        n += std::uint32_t(hi - lo + 1);
+    };
+    add_row(y);
+    for (int k = 1; k <= r && y - k >= t.y && ids.at(x, y - k) == surface; ++k) add_row(y - k);
+    for (int k = 1; k <= r && y + k < t.y + t.h && ids.at(x, y + k) == surface; ++k) add_row(y + k);
+    std::uint8_t* o = &out.texels[(std::size_t(y - t.y) * t.w + std::size_t(x - t.x)) * C];
+    for (int k = 0; k < C; ++k) o[k] = std::uint8_t((sum[k] + n / 2) / n);
+}
+
+// box_blur_within_into's work over z (inside the texture) for radii the
+// plain blur fuses. Where a texel's whole window lies inside the texture and
+// on its own surface (its reach exceeds R), the rule is the plain box blur's,
+// whose clamping never applies there: so the plain blur first, at its speed,
+// then only the texels near another surface or the edge summed by the rule.
+template <int C, int R>
+void blur_within_region(const LightTexture& tex, const SurfaceIds& ids, Rect z, LightTexture& out) {
+    box_blur_into(tex, R, z, out);
+    const Rect t = tex.rect, s = ids.rect;
+    // Where a window lies inside both the texture and the surfaces' rectangle.
+    const Rect inner = intersect(Rect{t.x + R, t.y + R, t.w - 2 * R, t.h - 2 * R}, Rect{s.x + R, s.y + R, s.w - 2 * R, s.h - 2 * R});
+    for (int y = z.y; y < z.y + z.h; ++y) {
+        const bool row_inner = y >= inner.y && y < inner.y + inner.h;
+        const int xa = row_inner ? std::clamp(inner.x, z.x, z.x + z.w) : z.x + z.w;
+        const int xb = row_inner ? std::clamp(inner.x + inner.w, xa, z.x + z.w) : z.x + z.w;
+        auto edge = [&](int x) {
+            // Off `inner`: plain only inside the texture with no surface's
+            // rectangle in reach (the ground all round); else by the rule.
+            const bool texture_inside = x - R >= t.x && x + R < t.x + t.w && y - R >= t.y && y + R < t.y + t.h;
+            if (texture_inside && intersect(Rect{x - R, y - R, 2 * R + 1, 2 * R + 1}, s).empty()) return;
+            blur_within_texel_any<C>(tex, R, ids, x, y, out);
+        };
+        for (int x = z.x; x < xa; ++x) edge(x);
+        if (xa < xb) {
+            const std::uint8_t* reach = &ids.reach[std::size_t(y - s.y) * s.w];
+            for (int x = xa; x < xb; ++x)
+                if (reach[x - s.x] <= R) blur_within_texel<C, R>(tex, ids, x, y, out);
+        }
+        for (int x = std::max(xb, xa); x < z.x + z.w; ++x) edge(x);
+    }
+}
+
+template <int C, int... R>
+void blur_within_fused(int r, const LightTexture& tex, const SurfaceIds& ids, Rect z, LightTexture& out,
+                       std::integer_sequence<int, R...>) {
+    ((r == R ? blur_within_region<C, R>(tex, ids, z, out) : void()), ...);
+}
+
+// The same for any radius, O(radius) per texel: per row, prefix sums cut into
+// runs of one surface give each texel's row sum and count in O(1); then per
+// output row, the rows above and below are added while every texel's column
+// stays on its surface (flags, r rows each way: O(r) per texel, branch-free).
+template <int C>
+void blur_within_separable(const LightTexture& tex, int radius, const std::int32_t* id, Rect z, LightTexture& out) {
+    const Rect t = tex.rect;
+    const int w = t.w;
+    const int y0 = std::max(t.y, z.y - radius), y1 = std::min(t.y + t.h, z.y + z.h + radius);
+    const int zx = z.x - t.x, zw = z.w;
+    const int xa = std::max(0, zx - radius), xb = std::min(w, zx + zw + radius);
+    std::vector<std::uint32_t> sums(std::size_t(y1 - y0) * zw * C), counts(std::size_t(y1 - y0) * zw);
+    std::vector<std::uint32_t> prefix(std::size_t(xb - xa + 1) * C);
+    std::vector<int> left(std::size_t(xb - xa)), right(std::size_t(xb - xa));
+    for (int y = y0; y < y1; ++y) {
+        const std::int32_t* ids = id + std::size_t(y - t.y) * w;
+        const std::uint8_t* v = &tex.texels[std::size_t(y - t.y) * w * C];
+        for (int k = 0; k < C; ++k) prefix[std::size_t(k)] = 0;
+        for (int x = xa; x < xb; ++x)
+            for (int k = 0; k < C; ++k)
+                prefix[std::size_t(x - xa + 1) * C + k] = prefix[std::size_t(x - xa) * C + k] + v[std::size_t(x) * C + k];
+        for (int x = xa; x < xb; ++x)
+            left[std::size_t(x - xa)] = x > xa && ids[x - 1] == ids[x] ? left[std::size_t(x - xa - 1)] : x;
+        for (int x = xb - 1; x >= xa; --x)
+            right[std::size_t(x - xa)] = x + 1 < xb && ids[x + 1] == ids[x] ? right[std::size_t(x - xa + 1)] : x;
+        std::uint32_t* s = &sums[std::size_t(y - y0) * zw * C];
+        std::uint32_t* n = &counts[std::size_t(y - y0) * zw];
+        for (int i = 0; i < zw; ++i) {
+            const int x = zx + i;
+            const int lo = std::max(left[std::size_t(x - xa)], x - radius), hi = std::min(right[std::size_t(x - xa)], x + radius);
+            for (int k = 0; k < C; ++k)
+                s[std::size_t(i) * C + k] = prefix[std::size_t(hi - xa + 1) * C + k] - prefix[std::size_t(lo - xa) * C + k];
+            n[i] = std::uint32_t(hi - lo + 1);
+        }
+    }
+    std::vector<std::uint32_t> sum(std::size_t(zw) * C), count(std::size_t(zw), 0u);
+    std::vector<std::uint8_t> on(std::size_t(zw), std::uint8_t(1));
+    for (int y = z.y; y < z.y + z.h; ++y) {
+        const std::int32_t* own = id + std::size_t(y - t.y) * w + zx;
+        std::copy_n(&sums[std::size_t(y - y0) * zw * C], std::size_t(zw) * C, sum.begin());
+        std::copy_n(&counts[std::size_t(y - y0) * zw], std::size_t(zw), count.begin());
+        for (int dir : {-1, 1}) {
+            std::fill(on.begin(), on.end(), std::uint8_t(1));
+            for (int k = 1; k <= radius; ++k) {
+                const int yy = y + dir * k;
+                if (yy < y0 || yy >= y1) break;
+                const std::int32_t* ids = id + std::size_t(yy - t.y) * w + zx;
+                const std::uint32_t* s = &sums[std::size_t(yy - y0) * zw * C];
+                const std::uint32_t* n = &counts[std::size_t(yy - y0) * zw];
+                for (int i = 0; i < zw; ++i) {
+                    on[std::size_t(i)] &= std::uint8_t(ids[i] == own[i]);
+                    const std::uint32_t m = 0u - std::uint32_t(on[std::size_t(i)]);
+                    for (int c = 0; c < C; ++c) sum[std::size_t(i) * C + c] += s[std::size_t(i) * C + c] & m;
+                    count[std::size_t(i)] += n[i] & m;
+                }
+            }
+        }
+        std::uint8_t* o = &out.texels[(std::size_t(y - t.y) * w + std::size_t(zx)) * C];
+        for (int i = 0; i < zw; ++i)
+            for (int c = 0; c < C; ++c)
+                o[std::size_t(i) * C + c] = std::uint8_t((sum[std::size_t(i) * C + c] + count[std::size_t(i)] / 2) / count[std::size_t(i)]);
+    }
+}
+
+}  // namespace
+
+void index_surfaces(SurfaceIds& ids) {
+    constexpr int cap = surface_reach_cap;
+    static_assert(cap == max_fused_radius + 1, "reach is only ever compared with a fused radius");
+    const Rect s = ids.rect;
+    const int w = std::max(0, s.w), h = std::max(0, s.h);
+    ids.reach.assign(std::size_t(w) * h, std::uint8_t(cap));
+    if (w == 0 || h == 0) return;
+    // The reach is one more than the Chebyshev distance to the nearest edge
+    // pixel (one with a neighbour of another surface, the outside counting
+    // as the ground): per row, the distance along the row to its nearest
+    // edge; then per pixel, the least over the rows up to cap - 1 away of
+    // max(rows away, that row's distance). Capped, so the second step reads
+    // a fixed number of rows, each a straight byte loop.
+    std::vector<std::uint8_t> along(std::size_t(w) * h);
+    std::vector<std::int32_t> framed(3 * (std::size_t(w) + 2), -1);  // rows y - 1, y, y + 1, a ground pixel each side
+    std::vector<std::uint8_t> edge(static_cast<std::size_t>(w));
+    auto frame_row = [&](int y, std::size_t slot) {
+        std::int32_t* row = &framed[slot * (std::size_t(w) + 2)];
+        if (y < 0 || y >= h) std::fill_n(row, w + 2, -1);
+        else std::copy_n(&ids.id[std::size_t(y) * w], w, row + 1);
+    };
+    frame_row(-1, 0), frame_row(0, 1);
+    for (int y = 0; y < h; ++y) {
+        frame_row(y + 1, std::size_t(y + 2) % 3);
+        const std::int32_t* up = &framed[std::size_t(y) % 3 * (std::size_t(w) + 2) + 1];
+        const std::int32_t* at = &framed[std::size_t(y + 1) % 3 * (std::size_t(w) + 2) + 1];
+        const std::int32_t* down = &framed[std::size_t(y + 2) % 3 * (std::size_t(w) + 2) + 1];
+        for (int x = 0; x < w; ++x) {
+            const std::int32_t c = at[x];
+            edge[std::size_t(x)] = std::uint8_t((up[x - 1] != c) | (up[x] != c) | (up[x + 1] != c) | (at[x - 1] != c) |
+                                                (at[x + 1] != c) | (down[x - 1] != c) | (down[x] != c) | (down[x + 1] != c));
+        }
+        std::uint8_t* d = &along[std::size_t(y) * w];
+        std::uint8_t run = cap;
+        for (int x = 0; x < w; ++x) run = edge[std::size_t(x)] ? 0 : std::uint8_t(std::min(run + 1, cap)), d[x] = run;
+        run = cap;
+        for (int x = w - 1; x >= 0; --x)
+            run = edge[std::size_t(x)] ? 0 : std::uint8_t(std::min(run + 1, cap)), d[x] = std::min(d[x], run);
+    }
+    for (int y = 0; y < h; ++y) {
+        std::uint8_t* out = &ids.reach[std::size_t(y) * w];
+        for (int k = -(cap - 1); k <= cap - 1; ++k) {
+            if (y + k < 0 || y + k >= h) continue;
+            const std::uint8_t away = std::uint8_t(std::abs(k) + 1);
+            const std::uint8_t* d = &along[std::size_t(y + k) * w];
+            for (int x = 0; x < w; ++x) out[x] = std::min(out[x], std::max(away, std::uint8_t(d[x] + 1)));
+        }
+    }
+}
+
+void box_blur_within_into(const LightTexture& tex, int radius, const SurfaceIds& ids, Rect region, LightTexture& out) {
+    assert(radius >= 0 && well_formed(tex));
+    assert(ids.id.size() == std::size_t(std::max(0, ids.rect.w)) * std::max(0, ids.rect.h));
+    if (!(out.rect == tex.rect) || out.channels != tex.channels || !well_formed(out)) out = LightTexture(tex.rect, tex.channels);
+    const Rect z = intersect(region, tex.rect);
+    if (z.empty()) return;
+    // A radius past the texture reaches no further than its size.
+    const int r = std::min(radius, std::max(tex.rect.w, tex.rect.h));
+    if (r <= max_fused_radius) {
+        const SurfaceIds* indexed = &ids;
+        SurfaceIds own;
+        if (ids.reach.size() != ids.id.size()) {  // not indexed yet
+            own.rect = ids.rect;
+            own.id = ids.id;
+            index_surfaces(own);
+            indexed = &own;
+        }
+        using radii = std::integer_sequence<int, 1, 2, 3, 4, 5, 6, 7>;
+        static_assert(max_fused_radius == 7);
+        if (r == 0) return box_blur_into(tex, 0, z, out);
+        tex.channels == 1 ? blur_within_fused<1>(r, tex, *indexed, z, out, radii{})
+                          : blur_within_fused<3>(r, tex, *indexed, z, out, radii{});
+        return;
+    }
+    // Past the plain blur's fused radii a window off its surface costs r^2:
+    // the separable sums instead, over surfaces on the texture's rectangle.
+    std::vector<std::int32_t> on_texture;
+    const std::int32_t* id = ids.id.data();
+    if (!(ids.rect == tex.rect)) {
+        on_texture.resize(std::size_t(tex.rect.w) * tex.rect.h);
+        for (int y = 0; y < tex.rect.h; ++y)
+            for (int x = 0; x < tex.rect.w; ++x)
+                on_texture[std::size_t(y) * tex.rect.w + x] = ids.at(tex.rect.x + x, tex.rect.y + y);
+        id = on_texture.data();
+    }
+    tex.channels == 1 ? blur_within_separable<1>(tex, r, id, z, out) : blur_within_separable<3>(tex, r, id, z, out);
+}
+
+LightTexture box_blur_within(const LightTexture& tex, int radius, const SurfaceIds& ids) {
+    assert(radius >= 0 && well_formed(tex));
+    LightTexture out(tex.rect, tex.channels);
+    box_blur_within_into(tex, radius, ids, tex.rect, out);
+    return out;
+}
+
+LightTexture box_blur_within_reference(const LightTexture& tex, int radius, const SurfaceIds& ids) {
+    assert(radius >= 0 && well_formed(tex));
+    const Rect t = tex.rect;
+    LightTexture out(t, tex.channels);
+    // Whether (x, y + dy) is reached along the column from (x, y) without
+    // leaving the texture or the surface; the same along a row.
+    auto column_reaches = [&](int x, int y, int dy) {
+        const int step = dy < 0 ? -1 : 1;
+        for (int i = step; i != dy + step; i += step)
+            if (!t.contains(x, y + i) || ids.at(x, y + i) != ids.at(x, y)) return false;
+        return true;
+    };
+    auto row_reaches = [&](int x, int y, int dx) {
+        const int step = dx < 0 ? -1 : 1;
+        for (int i = step; i != dx + step; i += step)
+            if (!t.contains(x + i, y) || ids.at(x + i, y) != ids.at(x, y)) return false;
+        return true;
+    };
+    for (int y = t.y; y < t.y + t.h; ++y)
+        for (int x = t.x; x < t.x + t.w; ++x)
+            for (int k = 0; k < tex.channels; ++k) {
+                std::uint64_t sum = 0, n = 0;
+                for (int dy = -radius; dy <= radius; ++dy) {
+                    if (dy != 0 && !column_reaches(x, y, dy)) continue;
+                    for (int dx = -radius; dx <= radius; ++dx) {
+                        if (dx != 0 && !row_reaches(x, y + dy, dx)) continue;
+                        sum += tex.at(x + dx, y + dy)[k];
+                        ++n;
+                    }
+                }
+                out.texels[(std::size_t(y - t.y) * t.w + std::size_t(x - t.x)) * tex.channels + k] = std::uint8_t((sum + n / 2) / n);
+            }
+    return out;
+}
+
+}  // namespace isolux

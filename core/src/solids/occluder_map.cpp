@@ -1,0 +1,343 @@
+// Beyond the paper: the occluder map, each ground pixel's spans of solid
+// height and the sprite points standing over it (occluder_map.hpp), built
+// for a region and kept across pans.
+#include "isolux/occluder_map.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "isolux/error.hpp"
+
+namespace isolux {
+
+void Spans::add(float lo, float hi) {
+    // The spans held and the new one, lowest first, those that meet joined;
+    // three left: the narrowest gap closed.
+    std::array<Span, 3> v{};
+    int n = 0;
+    for (const Span& s : {lower, upper, Span{lo, hi}})
+        if (s.any()) v[std::size_t(n++)] = s;
+    auto before = [](const Span& a, const Span& b) { return a.low < b.low || (a.low == b.low && a.high < b.high); };
+    for (int i = 1; i < n; ++i)  // three at most: by insertion
+        for (int k = i; k > 0 && before(v[std::size_t(k)], v[std::size_t(k - 1)]); --k) std::swap(v[std::size_t(k)], v[std::size_t(k - 1)]);
+    int kept = 0;
+    for (int k = 0; k < n; ++k) {
+        if (kept > 0 && v[std::size_t(k)].low <= v[std::size_t(kept - 1)].high)
+            v[std::size_t(kept - 1)].high = std::max(v[std::size_t(kept - 1)].high, v[std::size_t(k)].high);
+        else
+            v[std::size_t(kept++)] = v[std::size_t(k)];
+    }
+    if (kept == 3) {
+        const int j = v[1].low - v[0].high <= v[2].low - v[1].high ? 0 : 1;  // the narrower gap, the lower on a tie
+        v[std::size_t(j)].high = v[std::size_t(j + 1)].high;
+        if (j == 0) v[1] = v[2];
+        kept = 2;
+    }
+    lower = kept > 0 ? v[0] : Span{};
+    upper = kept > 1 ? v[1] : Span{};
+}
+
+namespace {
+
+// Widens the span at ground pixel i to hold [lo, hi), and flags it.
+void fill(OccluderMap& m, std::size_t i, double lo, double hi) {
+    lo = std::max(0.0, lo);
+    if (hi <= lo) return;
+    m.spans[i].add(float(lo), float(hi));
+    m.flags[i] = OccluderMap::has_span;
+}
+
+// The heights the solid fills on the vertical line through ground point (X, Y).
+bool vertical_span(const Solid& s, double X, double Y, double& lo, double& hi) {
+    switch (s.kind) {
+        case SolidKind::box:
+            if (X < s.a.x || X > s.b.x || Y < s.a.y || Y > s.b.y) return false;
+            lo = s.a.z, hi = s.b.z;
+            return true;
+        case SolidKind::cylinder:
+        case SolidKind::cone: {
+            const double d = std::hypot(X - s.a.x, Y - s.a.y), r = s.b.x;
+            if (r <= 0 || d > r) return false;
+            lo = s.a.z;
+            hi = s.a.z + s.b.z * (s.kind == SolidKind::cone ? 1 - d / r : 1);
+            return true;
+        }
+        case SolidKind::ellipsoid: {
+            if (s.b.x <= 0 || s.b.y <= 0) return false;
+            const double u = (X - s.a.x) / s.b.x, v = (Y - s.a.y) / s.b.y, q = u * u + v * v;
+            if (q > 1) return false;
+            const double half = s.b.z * std::sqrt(1 - q);
+            lo = s.a.z - half, hi = s.a.z + half;
+            return true;
+        }
+    }
+    return false;
+}
+
+void fill_estimated(OccluderMap& m, const World& world, const Params& p, const std::vector<std::uint32_t>& near,
+                    SolidsCache& cache, std::vector<std::vector<float>>& heights) {
+    if (cache.made.size() != world.tileset.sprites.size()) {
+        cache.sprites.assign(world.tileset.sprites.size(), SpriteSolids{});
+        cache.made.assign(world.tileset.sprites.size(), 0);
+    }
+    for (std::uint32_t k : near) {
+        const SpriteInstance& in = world.placed.instances[k];
+        const std::size_t si = std::size_t(in.sprite);
+        if (!cache.made[si]) {
+            cache.sprites[si] = sprite_solids(world.tileset, world.tileset.sprites[si], p);
+            cache.made[si] = 1;
+        }
+        const SpriteSolids& ss = cache.sprites[si];
+        if (heights[si].empty()) heights[si] = ss.heights;
+        for (const SpanStamp& stamp : ss.stamps) {
+            const Rect box = intersect(Rect{in.x + stamp.rect.x, in.y + stamp.rect.y, stamp.rect.w, stamp.rect.h}, m.rect);
+            for (int y = box.y; y < box.y + box.h; ++y)
+                for (int x = box.x; x < box.x + box.w; ++x) {
+                    const auto [lo, hi] = stamp.spans[std::size_t(y - in.y - stamp.rect.y) * stamp.rect.w + std::size_t(x - in.x - stamp.rect.x)];
+                    if (hi > lo) fill(m, std::size_t(y - m.rect.y) * m.rect.w + (x - m.rect.x), lo, hi);
+                }
+        }
+    }
+}
+
+void fill_shapes(OccluderMap& m, const World& world, Rect region) {
+    const WorldSolids solids = world_solids(world, region);  // Error naming a sprite without a shape
+    for (std::size_t k = 0; k < solids.solids.size(); ++k) {
+        const auto g = ground_box(solids.solids[k]);
+        const Rect box = intersect(Rect{int(g[0]), int(g[1]), int(g[2]), int(g[3])}, m.rect);
+        for (int y = box.y; y < box.y + box.h; ++y)
+            for (int x = box.x; x < box.x + box.w; ++x) {
+                const Vec3 q = ground_frame(x + 0.5, y + 0.5, 0);
+                double lo = 0, hi = 0;
+                if (vertical_span(solids.solids[k], q.x, q.y, lo, hi))
+                    fill(m, std::size_t(y - m.rect.y) * m.rect.w + (x - m.rect.x), lo, hi);
+            }
+    }
+}
+
+// The has_span flags of the pixels of `part` (inside the map), from their spans.
+void flag_spans(OccluderMap& m, Rect part) {
+    for (int y = part.y; y < part.y + part.h; ++y) {
+        const std::size_t at = std::size_t(y - m.rect.y) * std::size_t(m.rect.w) + std::size_t(part.x - m.rect.x);
+        for (std::size_t i = at; i < at + std::size_t(part.w); ++i)
+            m.flags[i] = std::uint8_t(m.spans[i].any() ? OccluderMap::has_span : 0);
+    }
+}
+
+// The lists of a map before a pan, and the ground pixels (in both the old
+// region and the new) whose lists the pan cannot change.
+struct KeptIndex {
+    Rect rect, unchanged;
+    std::vector<std::uint32_t> start;
+    std::vector<OccluderMap::Shown> shown;
+};
+
+// The sprite points by ground pixel, and the has_shown flags (the has_span
+// flags set). A ground pixel's points are the sprite pixels of its own
+// column, at most reach_rows above it: with `kept`, the pixels it holds
+// unchanged keep their lists, and only the others are listed from the
+// surface (a pan: the strips that came in, and the rows below a top that
+// moved, which gain or lose the points of sprites above).
+void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
+    const Surface& s = m.surface;
+    const std::size_t n = s.instance.size();
+    if (n >= std::numeric_limits<std::uint32_t>::max() - 1)
+        throw Error("occluders: the region of " + std::to_string(n) + " pixels is too large to trace against solids");
+    const Rect region = s.rect;
+    const std::size_t w = std::size_t(std::max(0, region.w));
+    const Rect unchanged = kept ? intersect(kept->unchanged, region) : Rect{};
+    for (std::uint8_t& f : m.flags) f &= OccluderMap::has_span;
+    // 1. The points of the ground pixels listed anew: each sprite pixel of
+    // row y shows a point `rows` high over ground pixel i + rows * w, listed
+    // in scan order where that ground pixel lies in the part.
+    struct Point {
+        std::uint32_t ground;
+        OccluderMap::Shown shown;
+    };
+    thread_local std::vector<Point> points;
+    points.clear();
+    std::vector<std::uint32_t>& start = m.shown_start;
+    start.assign(n + 2, 0);
+    std::uint32_t tallest = 0, reach = 0;
+    const std::vector<Rect> anew = unchanged.empty() ? std::vector<Rect>{region} : outside(region, unchanged);
+    for (const Rect part : anew) {
+        const std::size_t x0 = std::size_t(part.x - region.x), x1 = x0 + std::size_t(part.w);
+        const std::size_t g0 = std::size_t(part.y - region.y), g1 = g0 + std::size_t(part.h);  // its ground rows
+        const std::size_t from = part == region ? 0 : g0 - std::min<std::size_t>(g0, std::size_t(m.reach_rows));
+        for (std::size_t y = from; y < g1; ++y)
+            for (std::size_t i = y * w + x0; i < y * w + x1; ++i) {
+                if (s.instance[i] < 0) continue;
+                const float height = std::max(s.height[i], 0.f);  // one below the ground counts as on it
+                const std::uint32_t rows = std::uint32_t(rows_above(height));
+                reach = std::max(reach, rows);
+                if (y + rows < g0 || y + rows >= g1) continue;
+                const std::size_t g = i + rows * w;
+                points.push_back({std::uint32_t(g), {height, rows}});
+                ++start[g + 2];
+                tallest = std::max(tallest, rows);
+            }
+    }
+    // 2. The unchanged pixels' counts from their old lists.
+    const auto old_index = [&](std::size_t y, std::size_t x) {  // region row and column -> the old map's pixel
+        return std::size_t(int(y) + region.y - kept->rect.y) * std::size_t(kept->rect.w) + std::size_t(int(x) + region.x - kept->rect.x);
+    };
+    const std::size_t ux0 = std::size_t(unchanged.x - region.x), uy0 = std::size_t(unchanged.y - region.y);
+    for (std::size_t y = uy0; y < uy0 + std::size_t(unchanged.h); ++y) {
+        const std::size_t o = old_index(y, ux0);
+        for (std::size_t x = 0; x < std::size_t(unchanged.w); ++x)
+            start[y * w + ux0 + x + 2] = kept->start[o + x + 1] - kept->start[o + x];
+    }
+    // 3. The starts (a running sum of the counts: shown_start[g + 1] is then
+    // where g's points start) and the has_shown flags.
+    for (std::size_t g = 0; g < n; ++g) {
+        if (start[g + 2]) m.flags[g] |= OccluderMap::has_shown;
+        start[g + 2] += start[g + 1];
+    }
+    m.shown.resize(start[n + 1]);
+    // 4. The unchanged pixels' lists, a row's at once, then the points
+    // placed at their ground pixels' cursors shown_start[g + 1], which end
+    // where g + 1's start: the starts, with one last entry to drop.
+    for (std::size_t y = uy0; y < uy0 + std::size_t(unchanged.h); ++y) {
+        const std::size_t g = y * w + ux0, o = old_index(y, ux0);
+        const std::uint32_t first = kept->start[o], last = kept->start[o + std::size_t(unchanged.w)];
+        std::copy(kept->shown.begin() + first, kept->shown.begin() + last, m.shown.begin() + start[g + 1]);
+        for (std::uint32_t k = first; k < last; ++k) tallest = std::max(tallest, kept->shown[k].rows);
+        for (std::size_t x = 0; x < std::size_t(unchanged.w); ++x) start[g + x + 1] = start[g + x + 2];
+    }
+    for (const Point& p : points) m.shown[start[p.ground + 1]++] = p.shown;
+    start.pop_back();
+    m.tallest = int(tallest);
+    m.reach_rows = unchanged.empty() ? int(reach) : std::max(m.reach_rows, int(reach));
+}
+
+}  // namespace
+
+void index_occluders(OccluderMap& m) {
+    m.flags.resize(m.surface.instance.size());
+    flag_spans(m, m.rect);
+    index_shown(m);
+}
+
+int occluder_reach(const Tileset& ts) {
+    // A disc's ellipse fits its sprite's width (2 r sqrt(2) <= w), so the
+    // ground it stands over lies at most r / sqrt(2) <= w / 4 rows below the
+    // foot, and the foot lies inside the sprite; 4 more for the box's rounding.
+    int reach = 0;
+    for (const Sprite& s : ts.sprites) reach = std::max(reach, s.image.width / 4 + 4);
+    return reach;
+}
+
+namespace {
+
+// `m` made the spans, their has_span flags and the surface of `region`,
+// without the index, in the storage it has: each pixel's values depend only
+// on the sprites near it, so the map of a part of a region equals that part
+// of the region's map.
+void fill_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, SolidsCache* cache) {
+    m.rect = region;
+    const std::size_t n = std::size_t(std::max(0, region.w)) * std::max(0, region.h);
+    m.spans.assign(n, Spans{});
+    m.flags.assign(n, 0);  // has_span set where a span is filled in
+    if (region.empty() || p.occluders == Occluders::footprints) {
+        build_surface_into(m.surface, world, region, p.opacity_threshold);
+        return;
+    }
+    if (p.occluders == Occluders::shapes) {
+        fill_shapes(m, world, region);
+        build_surface_into(m.surface, world, region, p.opacity_threshold);
+        return;
+    }
+    // The sprites whose solids stand over the region: a solid's ground lies
+    // up to occluder_reach below its sprite.
+    std::vector<std::uint32_t> near;
+    instances_in(world.placed, region, true, near, occluder_reach(world.tileset));
+    std::vector<std::vector<float>> heights(world.tileset.sprites.size());
+    SolidsCache own;
+    fill_estimated(m, world, p, near, cache ? *cache : own, heights);
+    build_surface_into(m.surface, world, region, p.opacity_threshold, &heights);
+}
+
+// Copies `from`'s spans, their flags and surface inside `r` (in both maps) into `to`.
+void copy_part(OccluderMap& to, const OccluderMap& from, Rect r) {
+    for (int y = r.y; y < r.y + r.h; ++y) {
+        const std::size_t i = std::size_t(y - to.rect.y) * to.rect.w + std::size_t(r.x - to.rect.x);
+        const std::size_t j = std::size_t(y - from.rect.y) * from.rect.w + std::size_t(r.x - from.rect.x);
+        std::copy_n(&from.spans[j], r.w, &to.spans[i]);
+        std::copy_n(&from.flags[j], r.w, &to.flags[i]);
+        std::copy_n(&from.surface.instance[j], r.w, &to.surface.instance[i]);
+        std::copy_n(&from.surface.height[j], r.w, &to.surface.height[i]);
+    }
+}
+
+}  // namespace
+
+namespace {
+
+void check_occluder_region(Rect region, const Params& p) {
+    if ((long long)std::max(region.w, 0) * std::max(region.h, 0) <= max_occluder_pixels) return;
+    throw Error("occluders " + std::string(p.occluders == Occluders::shapes ? "shapes" : "solids") +
+                ": the view and its lights need a region of " + std::to_string(region.w) + "x" +
+                std::to_string(region.h) + " pixels, over the " + std::to_string(max_occluder_pixels >> 20) +
+                "-megapixel limit for tracing against solids (about 35 bytes a pixel): show a smaller part of the "
+                "map (isolux-cli: --view X,Y,W,H), use smaller light areas, or occluders footprints");
+}
+
+}  // namespace
+
+OccluderMap build_occluders(const World& world, const Params& p, Rect region, SolidsCache* cache) {
+    OccluderMap m;
+    rebuild_occluders(m, world, p, region, cache);
+    return m;
+}
+
+void rebuild_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, SolidsCache* cache) {
+    check_occluder_region(region, p);
+    fill_occluders(m, world, p, region, cache);
+    index_shown(m);
+}
+
+void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, Rect changed, SolidsCache* cache) {
+    check_occluder_region(region, p);
+    const Rect keep = intersect(m.rect, region);
+    // The manifest's shapes may stand anywhere around their sprites: no
+    // bound says which sprites reach a part, so shapes are built whole.
+    if (p.occluders == Occluders::shapes || keep.empty() || region.empty() || m.flags.size() != m.spans.size()) {
+        rebuild_occluders(m, world, p, region, cache);
+        return;
+    }
+    // The kept pixels' spans, surface and has_span flags hold where they are
+    // (in place when the size is the same: a pan).
+    KeptIndex kept{m.rect, keep, std::move(m.shown_start), std::move(m.shown)};
+    move_grid(m.spans, m.rect, region);
+    move_grid(m.surface.instance, m.rect, region, -1);
+    move_grid(m.surface.height, m.rect, region);
+    move_grid(m.flags, m.rect, region);
+    m.rect = m.surface.rect = region;
+    // What came into the region, and what the world changed: built.
+    std::vector<Rect> parts = outside(region, keep);
+    const Rect edited = intersect(changed, region);
+    if (!edited.empty()) parts.push_back(edited);
+    for (Rect r : parts) {
+        OccluderMap part;
+        fill_occluders(part, world, p, r, cache);
+        copy_part(m, part, r);
+        for (std::size_t i = 0; i < part.surface.instance.size(); ++i)
+            if (part.surface.instance[i] >= 0)
+                m.reach_rows = std::max(m.reach_rows, int(rows_above(std::max(part.surface.height[i], 0.f))));
+    }
+    // The lists that cannot change: not where the world changed (those are
+    // listed whole), nor in the rows below a top that moved, within reach of
+    // the sprites above it, which came or went.
+    if (!edited.empty()) return index_shown(m);
+    if (region.y != kept.rect.y) {
+        const int top = std::max(region.y, kept.rect.y) + m.reach_rows;
+        kept.unchanged = intersect(keep, Rect{keep.x, top, keep.w, std::max(0, keep.y + keep.h - top)});
+    }
+    index_shown(m, &kept);
+}
+
+}  // namespace isolux

@@ -1,0 +1,416 @@
+// The GPU's blur and composite held to core's CPU reference (box_blur,
+// composite) within 2/255 per channel. Runs under Xvfb with Mesa's llvmpipe
+// in CI (scripts/test.sh); needs a display.
+#include <gtest/gtest.h>
+
+#include <GLFW/glfw3.h>
+
+#include <array>
+
+#include "gpu/gpu_tracer.hpp"
+#include "gpu/renderer.hpp"
+#include "gui/window.hpp"
+#include "isolux/blur.hpp"
+#include "isolux/frame.hpp"
+#include "isolux/hash.hpp"
+#include "isolux/obstacle_map.hpp"
+#include "isolux/occluder_map.hpp"
+#include "test_util.hpp"
+
+using namespace isolux;
+using namespace isolux::app;
+
+namespace {
+
+struct Gl {
+    GLFWwindow* window = nullptr;
+    Renderer renderer;
+    std::string error;
+};
+
+Gl& gl() {
+    static Gl g = [] {
+        Gl g;
+        g.window = open_window(64, 64, false, g.error);
+        if (g.window && !renderer_init(g.renderer, g.error)) g.window = nullptr;
+        return g;
+    }();
+    return g;
+}
+
+const World& world() {
+    static World w = [] {
+        Scene s;
+        s.width = 7;
+        s.height = 6;
+        return make_world(test::default_tileset(), s);
+    }();
+    return w;
+}
+
+int max_diff(const Image& a, const Image& b, bool opaque_only = false) {
+    EXPECT_EQ(a.width, b.width);
+    EXPECT_EQ(a.height, b.height);
+    int worst = 0;
+    for (std::size_t i = 0; i < std::min(a.rgba.size(), b.rgba.size()); i += 4) {
+        if (opaque_only && b.rgba[i + 3] != 255) continue;
+        for (int k = 0; k < 4; ++k) worst = std::max(worst, std::abs(int(a.rgba[i + k]) - int(b.rgba[i + k])));
+    }
+    return worst;
+}
+
+struct Case {
+    const char* name;
+    void (*edit)(Scene&);
+};
+
+const Case cases[] = {
+    {"paper defaults", [](Scene&) {}},
+    {"no blur", [](Scene& s) { s.params.blur_radius = 0; }},
+    {"blur 5", [](Scene& s) { s.params.blur_radius = 5; }},
+    {"blur larger than the texture", [](Scene& s) { s.params.blur_radius = 200; }},
+    {"ambient 0", [](Scene& s) { s.params.ambient_clarity = 0; }},
+    {"ambient 1", [](Scene& s) { s.params.ambient_clarity = 1; }},
+    {"light mix surface", [](Scene& s) { s.params.light_mix = LightMix::surface; }},
+    {"light mix surface, shadow", [](Scene& s) { s.params.light_mix = LightMix::surface, s.params.mode = Mode::shadow; }},
+    {"game preset", [](Scene& s) { s.params = builtin_preset("game"); }},
+    {"dark unlit", [](Scene& s) { s.params.dark_unlit = true; }},
+    {"shadow mode", [](Scene& s) { s.params.mode = Mode::shadow; }},
+    {"coloured lights", [](Scene& s) {
+         s.lights[0].r = 255, s.lights[0].g = 90, s.lights[0].b = 10;
+         s.lights[1].intensity = 3;
+     }},
+};
+
+Scene lit_scene() {
+    Scene s;
+    s.params.falloff_scale = 8;
+    s.params.area_a = s.params.area_b = 90;
+    s.lights = {Light{400, 250}, Light{560, 330}};
+    return s;
+}
+
+}  // namespace
+
+TEST(Gl, contextAndShadersAreAvailable) {
+    ASSERT_NE(gl().window, nullptr) << "no GL 3.3 context (run under xvfb-run): " << gl().error;
+    EXPECT_TRUE(gl().renderer.shader_error.empty()) << gl().renderer.shader_error;
+}
+
+TEST(Gl, blurAndCompositeMatchTheCpuReference) {
+    ASSERT_NE(gl().window, nullptr) << gl().error;
+    Renderer& r = gl().renderer;
+    for (const Case& c : cases) {
+        Scene s = lit_scene();
+        c.edit(s);
+        FrameState cpu;
+        const Camera cam{100, 60, 600, 380};
+        render_frame(cpu, world(), s, cam, 0);
+        renderer_upload_light(r, cpu.traced, cpu.traced.rect);
+        renderer_upload_surface_ids(r, cpu.surface_ids, cpu.surface_ids_revision);
+        renderer_draw_with_colour(r, cpu.sprites, cpu.view, s.params, CompositeOptions{});
+        // The blurred light texture: exactly box_blur's 8-bit values (within
+        // surfaces where the preset's occluders say so, as the game preset's).
+        const LightTexture ref = rgb_texture(blur_within_surfaces(s.params)
+                                                 ? box_blur_within(cpu.traced, s.params.blur_radius, cpu.surface_ids)
+                                                 : box_blur(cpu.traced, s.params.blur_radius));
+        Image blurred = renderer_read_blurred(r);
+        int worst_blur = 0;
+        for (std::size_t i = 0; i < ref.texels.size() / 3; ++i)
+            for (int k = 0; k < 3; ++k)
+                worst_blur = std::max(worst_blur, std::abs(int(blurred.rgba[i * 4 + k]) - int(ref.texels[i * 3 + k])));
+        EXPECT_EQ(worst_blur, 0) << c.name << ": the GPU blur differs from box_blur";
+        const int worst = max_diff(renderer_read_final(r), cpu.final);
+        EXPECT_LE(worst, 2) << c.name << ": GPU composite differs from core's by " << worst << "/255";
+    }
+}
+
+TEST(Gl, theGpuBlursWithinSurfacesAsTheCpuDoes) {
+    // With occluders solids the frame's blur stays within the surface each
+    // texel shows (box_blur_within): the GPU's blurred texture has its bytes,
+    // at several radii and in shadow mode; footprints go back to box_blur.
+    ASSERT_NE(gl().window, nullptr) << gl().error;
+    Renderer& r = gl().renderer;
+    int checked = 0;
+    for (int radius : {1, 2, 5}) {
+        for (Mode mode : {Mode::light, Mode::shadow}) {
+            Scene s = lit_scene();
+            s.params.occluders = Occluders::solids;
+            s.params.blur_radius = radius;
+            s.params.mode = mode;
+            FrameState cpu;
+            cpu.options.grey_when_lights_are = false;
+            const Camera cam{100, 60, 600, 380};
+            render_frame(cpu, world(), s, cam, 0);
+            ASSERT_FALSE(cpu.surface_ids.id.empty());
+            renderer_upload_light(r, cpu.traced, cpu.traced.rect);
+            renderer_upload_surface_ids(r, cpu.surface_ids, cpu.surface_ids_revision);
+            renderer_draw_with_colour(r, cpu.sprites, cpu.view, s.params, CompositeOptions{});
+            const LightTexture want = box_blur_within(cpu.traced, radius, cpu.surface_ids);
+            ASSERT_NE(want.texels, box_blur(cpu.traced, radius).texels);  // the case tells the two apart
+            const Image blurred = renderer_read_blurred(r);
+            int worst = 0;
+            for (std::size_t i = 0; i < want.texels.size() / 3; ++i)
+                for (int k = 0; k < 3; ++k)
+                    worst = std::max(worst, std::abs(int(blurred.rgba[i * 4 + k]) - int(want.texels[i * 3 + k])));
+            EXPECT_EQ(worst, 0) << "radius " << radius << ": the GPU blur differs from box_blur_within";
+            EXPECT_LE(max_diff(renderer_read_final(r), cpu.final), 2) << "radius " << radius;
+            ++checked;
+        }
+    }
+    EXPECT_EQ(checked, 6);
+    // Back to footprints: the plain blur again.
+    Scene s = lit_scene();
+    FrameState cpu;
+    render_frame(cpu, world(), s, Camera{100, 60, 600, 380}, 0);
+    renderer_upload_light(r, cpu.traced, cpu.traced.rect);
+    renderer_upload_surface_ids(r, cpu.surface_ids, cpu.surface_ids_revision);
+    renderer_draw_with_colour(r, cpu.sprites, cpu.view, s.params, CompositeOptions{});
+    const LightTexture want = rgb_texture(box_blur(cpu.traced, s.params.blur_radius));
+    const Image blurred = renderer_read_blurred(r);
+    int worst = 0;
+    for (std::size_t i = 0; i < want.texels.size() / 3; ++i)
+        for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(int(blurred.rgba[i * 4 + k]) - int(want.texels[i * 3 + k])));
+    EXPECT_EQ(worst, 0);
+}
+
+TEST(Gl, theLightTextureShiftsWithTheCameraOnTheGpuToo) {
+    ASSERT_NE(gl().window, nullptr) << gl().error;
+    Renderer& r = gl().renderer;
+    Scene s = lit_scene();
+    s.params.trace_every = 4;
+    FrameState cpu;
+    Camera cam{100, 60, 600, 380};
+    render_frame(cpu, world(), s, cam, 0);
+    renderer_upload_light(r, cpu.traced, cpu.traced.rect);
+    cam.x += 23;
+    cam.y += 11;
+    FrameReport rep = render_frame(cpu, world(), s, cam, 1);  // no retrace: the CPU shifts
+    ASSERT_FALSE(rep.ran_stage(Stage::trace));
+    renderer_draw_with_colour(r, cpu.sprites, cpu.view, s.params, CompositeOptions{});
+    EXPECT_LE(max_diff(renderer_read_final(r), cpu.final), 2);
+}
+
+TEST(Gl, theWholeGpuFrameMatchesTheCpuFrame) {
+    ASSERT_NE(gl().window, nullptr) << gl().error;
+    Renderer& r = gl().renderer;
+    Scene s = lit_scene();
+    FrameState cpu;
+    render_frame(cpu, world(), s, Camera{}, 0);
+    renderer_set_world(r, world());
+    renderer_upload_light(r, cpu.traced, cpu.traced.rect);
+    renderer_draw(r, cpu.view, s.params, CompositeOptions{});
+    // Sprites too: the atlas is straight alpha, premultiplied in float.
+    EXPECT_LE(max_diff(renderer_read_final(r), cpu.final), 2);
+}
+
+// ------------------------------------------------------------ the GPU tracer
+
+namespace {
+
+// The obstacle maps the tracer is held to: the default seed's map, a forest
+// (every tile three trees) and hand-made walls with doorways.
+struct TraceCase {
+    std::string name;
+    Mask obstacles;
+};
+
+std::vector<TraceCase> trace_cases() {
+    std::vector<TraceCase> cases;
+    const Tileset ts = test::default_tileset();
+    for (const char* kind : {"default", "forest"}) {
+        Scene s;
+        s.width = s.height = 10;
+        World w = make_world(ts, s);
+        if (std::string(kind) == "forest") {
+            const std::vector<int> trees = w.tileset.find(SpriteKind::overlay, "tree");
+            for (std::size_t i = 0; i < w.map.tiles.size(); ++i) {
+                Tile& t = w.map.tiles[i];
+                t.overlay_count = 3;
+                const int slots[3][2] = {{0, 0}, {-25, 0}, {25, 0}};
+                for (int k = 0; k < 3; ++k) t.overlays[k] = {trees[(i + k) % trees.size()], slots[k][0], slots[k][1]};
+            }
+            w.placed = place_sprites(w.map, w.tileset);
+        }
+        cases.push_back({kind, build_obstacle_map(w.tileset, w.placed, Params{}, w.placed.bounds)});
+    }
+    Mask walls(Rect{-50, -30, 400, 300});
+    for (int y = -20; y < 270; y += 40)
+        for (int x = -50; x < 350; ++x)
+            if (((x + 50) % 90) > 20) walls.set(x, y), walls.set(x, y + 1);
+    cases.push_back({"walls", walls});
+    return cases;
+}
+
+}  // namespace
+
+TEST(Gl, theGpuTracerGivesTheCpuTracersBytes) {
+    ASSERT_NE(gl().window, nullptr) << "no GL context (run under xvfb-run): " << gl().error;
+    GpuTracer tracer;
+    std::string error;
+    ASSERT_TRUE(gpu_tracer_init(tracer, error)) << "compute shaders are required (Mesa's llvmpipe has them): " << error;
+    int compared = 0, lit_pixels = 0;
+    std::uint64_t revision = 0;
+    for (const TraceCase& c : trace_cases()) {
+        ++revision;  // a new obstacle map: uploaded again
+        const Rect b = c.obstacles.rect();
+        Pcg32 rng(3);
+        for (Mode mode : {Mode::light, Mode::shadow, Mode::flat})
+            for (int variant = 0; variant < 6; ++variant) {
+                Params p;
+                p.mode = mode;
+                p.ray_skip = variant % 3 == 0 ? 1 : variant % 3 == 1 ? 2 : 5;
+                if (variant == 5) p.rays = Rays::every_pixel;
+                if (variant == 4) p.falloff_scale = 2.5;
+                const int a = variant == 5 ? 15 + int(rng.below(20)) : 10 + int(rng.below(150));
+                const int bb = variant == 5 ? 15 + int(rng.below(20)) : 10 + int(rng.below(150));
+                // Centres inside the map, near its edge, and just outside it.
+                const std::int64_t cx = b.x - 20 + std::int64_t(rng.below(std::uint32_t(b.w + 40)));
+                const std::int64_t cy = b.y - 20 + std::int64_t(rng.below(std::uint32_t(b.h + 40)));
+                Rect clip{int(cx) - a, int(cy) - bb, 2 * a + 1, 2 * bb + 1};
+                if (variant == 3) clip = intersect(clip, {int(cx) - a / 3, int(cy) - bb, a, 2 * bb});  // a view cuts it
+                const LightMask want = trace_light(c.obstacles, cx, cy, a, bb, p, clip);
+                LightMask got;
+                got.clip = clip, got.cx = cx, got.cy = cy, got.a = a, got.b = bb;
+                const std::size_t n = std::size_t(clip.w) * clip.h;
+                got.value.assign(n, 0);
+                got.reached.assign(mode == Mode::shadow ? n : 0, 0);
+                std::vector<LightMask*> masks{&got};
+                ASSERT_TRUE(gpu_trace(tracer, c.obstacles, revision, masks, p));
+                EXPECT_EQ(got.value, want.value) << c.name << " " << to_string(mode) << " variant " << variant << " at "
+                                                 << cx << "," << cy << " a " << a << " b " << bb;
+                EXPECT_EQ(got.reached, want.reached) << c.name << " " << to_string(mode) << " variant " << variant;
+                for (std::uint8_t v : want.value) lit_pixels += v != 0;
+                ++compared;
+            }
+    }
+    EXPECT_EQ(compared, 54);
+    EXPECT_GT(lit_pixels, 100000) << "the cases must light something";
+    gpu_tracer_free(tracer);
+}
+
+namespace {
+
+// Frames drawn with the GPU tracer against the CPU's, a light moving 9 px a frame.
+void expect_gpu_frames_are_cpu_frames(GpuTracer& tracer, const World& w, Scene s, FrameState& cpu, FrameState& gpu) {
+    gpu.options.tracer = [&tracer](const Mask& ob, std::uint64_t rev, const OccluderMap* occ,
+                                   const std::vector<LightMask*>& masks, const std::vector<double>& heights,
+                                   const Params& p, bool sprite_points) {
+        return gpu_trace_frame(tracer, ob, rev, occ, masks, heights, p, sprite_points);
+    };
+    for (long f = 0; f < 3; ++f) {
+        s.lights[0].x += 9;
+        const FrameReport rc = render_frame(cpu, w, s, Camera{}, f);
+        const FrameReport rg = render_frame(gpu, w, s, Camera{}, f);
+        EXPECT_EQ(rc.tracer, "cpu");
+        EXPECT_EQ(rg.tracer, "gpu");
+        EXPECT_EQ(gpu.traced.texels, cpu.traced.texels) << "frame " << f;
+        EXPECT_EQ(gpu.final.rgba, cpu.final.rgba) << "frame " << f;
+    }
+}
+
+}  // namespace
+
+TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
+    ASSERT_NE(gl().window, nullptr) << "no GL context (run under xvfb-run): " << gl().error;
+    GpuTracer tracer;
+    std::string error;
+    ASSERT_TRUE(gpu_tracer_init(tracer, error)) << error;
+    Scene s;
+    s.lights = {Light{120.5, 90.5}, Light{300.5, 160.5, 60, 40}};
+    FrameState cpu, gpu;
+    expect_gpu_frames_are_cpu_frames(tracer, world(), s, cpu, gpu);
+    // A new frame state on another map, with the same tracer: its obstacle
+    // map is uploaded again (revisions are unique in the process).
+    Scene other;
+    other.width = other.height = 9;
+    other.seed = "another map";
+    const World w2 = make_world(test::default_tileset(), other);
+    FrameState cpu2, gpu2;
+    gpu2.options.tracer = gpu.options.tracer;
+    render_frame(cpu2, w2, s, Camera{}, 0);
+    const FrameReport r2 = render_frame(gpu2, w2, s, Camera{}, 0);
+    EXPECT_EQ(r2.tracer, "gpu");
+    EXPECT_EQ(gpu2.traced.texels, cpu2.traced.texels) << "a second frame state";
+    gpu_tracer_free(tracer);
+}
+
+// Beyond the paper: the ground pass against solids with height on the GPU
+// (shaders/trace_solids.comp) gives trace_light_solids's bytes, and the
+// sprite pass after it (shaders/sprite_points.comp) light_sprite_points's:
+// estimated solids and the manifest's shapes, light and shadow modes, ray
+// skips, every pixel, light heights from the ground to above every solid,
+// clipped views and centres near and past the map's edge; and whole frames
+// equal the CPU's.
+TEST(Gl, theGpuTracesAgainstSolidsAsTheCpuDoes) {
+    ASSERT_NE(gl().window, nullptr) << "no GL context (run under xvfb-run): " << gl().error;
+    GpuTracer tracer;
+    std::string error;
+    ASSERT_TRUE(gpu_tracer_init(tracer, error)) << error;
+    const World& w = world();
+    const Rect b = w.placed.bounds;
+    int compared = 0, lit_pixels = 0, shaded_pixels = 0, sprites_lit = 0, sprites_shaded = 0;
+    std::uint64_t revision = 1000;
+    for (Occluders kind : {Occluders::solids, Occluders::shapes}) {
+        Params base;
+        base.occluders = kind;
+        const OccluderMap occ = build_occluders(w, base, b);
+        ++revision;
+        Pcg32 rng(7);
+        for (Mode mode : {Mode::light, Mode::shadow})
+            for (int variant = 0; variant < 6; ++variant) {
+                Params p = base;
+                p.mode = mode;
+                p.falloff_scale = 8;
+                p.ray_skip = variant % 3 == 0 ? 1 : variant % 3 == 1 ? 2 : 5;
+                if (variant == 5) p.rays = Rays::every_pixel;
+                const int a = variant == 5 ? 20 + int(rng.below(30)) : 40 + int(rng.below(140));
+                const int bb = variant == 5 ? 20 + int(rng.below(30)) : 40 + int(rng.below(140));
+                const double height = std::array<double, 6>{0, 4, 16, 32, 64, 200}[std::size_t(variant)];
+                const std::int64_t cx = b.x - 20 + std::int64_t(rng.below(std::uint32_t(b.w + 40)));
+                const std::int64_t cy = b.y - 20 + std::int64_t(rng.below(std::uint32_t(b.h + 40)));
+                Rect clip{int(cx) - a, int(cy) - bb, 2 * a + 1, 2 * bb + 1};
+                if (variant == 3) clip = intersect(clip, {int(cx) - a / 3, int(cy) - bb, a, 2 * bb});  // a view cuts it
+                const LightMask want = trace_light_solids(occ, cx, cy, a, bb, height, p, clip);
+                LightMask got, got_points;
+                start_mask(got, cx, cy, a, bb, p, clip, mode == Mode::shadow);
+                start_mask(got_points, cx, cy, a, bb, p, clip, mode == Mode::shadow);
+                std::vector<LightMask*> masks{&got}, with_points{&got_points};
+                ASSERT_TRUE(gpu_trace_solids(tracer, occ, revision, masks, {height}, p, false)) << to_string(mode) << " " << variant;
+                ASSERT_TRUE(gpu_trace_solids(tracer, occ, revision, with_points, {height}, p, true)) << to_string(mode) << " " << variant;
+                const std::string where = std::string(kind == Occluders::solids ? "solids " : "shapes ") + std::string(to_string(mode)) +
+                                          " variant " + std::to_string(variant);
+                EXPECT_EQ(got.value, want.value) << where;
+                EXPECT_EQ(got.reached, want.reached) << where;
+                LightMask want_points = want;
+                light_sprite_points(want_points, occ, height, p);
+                EXPECT_EQ(got_points.value, want_points.value) << where << " with the sprite pass";
+                EXPECT_EQ(got_points.reached, want_points.reached) << where << " with the sprite pass";
+                // The sprite pass both lights and unlights sprite pixels the ground pass left.
+                for (std::size_t i = 0; i < want.value.size(); ++i) {
+                    sprites_lit += want_points.value[i] != 0 && want.value[i] == 0;
+                    sprites_shaded += want_points.value[i] == 0 && want.value[i] != 0;
+                }
+                // What the ground pass would light with nothing in the way: some of it is shaded.
+                const LightMask open = trace_light_solids(OccluderMap{}, cx, cy, a, bb, height, p, clip);
+                for (std::size_t i = 0; i < want.value.size(); ++i) {
+                    lit_pixels += want.value[i] != 0;
+                    shaded_pixels += open.value[i] != 0 && want.value[i] == 0;
+                }
+                ++compared;
+            }
+    }
+    EXPECT_EQ(compared, 24);
+    EXPECT_GT(lit_pixels, 100000) << "the cases must light something";
+    EXPECT_GT(shaded_pixels, 5000) << "and solids must shade some of it";
+    EXPECT_GT(sprites_lit, 1000) << "the sprite pass must light sprite pixels the ground pass did not";
+    EXPECT_GT(sprites_shaded, 1000) << "and shade some it did";
+
+    Scene s;
+    s.params.occluders = Occluders::solids;
+    s.params.falloff_scale = 8;
+    s.lights = {Light{b.x + b.w / 3.0 + 0.5, b.y + b.h / 2.0 + 0.5}, Light{b.x + 2 * b.w / 3.0 + 0.5, b.y + b.h / 3.0 + 0.5}};
+    FrameState cpu, gpu;
+    expect_gpu_frames_are_cpu_frames(tracer, w, s, cpu, gpu);
+    gpu_tracer_free(tracer);
+}

@@ -1,0 +1,125 @@
+// Stamping a sprite's solids (occluder_stamp.cpp): every pixel holds its
+// object's span, and a sprite pixel the topmost point on its view line.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "isolux/accuracy.hpp"
+#include "isolux/error.hpp"
+#include "isolux/hash.hpp"
+#include "isolux/frame.hpp"
+#include "isolux/obstacle_map.hpp"
+#include "isolux/occluder_map.hpp"
+#include "isolux/opacity_correction.hpp"
+#include "isolux/opacity_map.hpp"
+#include "isolux/scene_file.hpp"
+#include "isolux/solid.hpp"
+#include "isolux/solid_estimate.hpp"
+#include "test_util.hpp"
+#include "solids/oracles.hpp"
+#include "frame/frame_cache.hpp"
+
+using namespace isolux;
+using isolux::test::error_of;
+
+// The height each shown sprite pixel takes (sprite_solids tests only the
+// heights near its view line's crossing of the deepest cross-section): the topmost
+// half-pixel height on its view line inside a solid, front object first,
+// found here by trying every height, on every overlay of the default tileset.
+TEST(OccluderStamp, aSpritePixelShowsTheTopmostSolidPointOnItsViewLine) {
+    const Tileset ts = test::default_tileset();
+    Params p;
+    p.occluders = Occluders::solids;
+    long tested = 0, from_solids = 0;
+    for (const Sprite& sp : ts.sprites) {
+        if (sp.kind != SpriteKind::overlay) continue;
+        const SpriteSolids ss = sprite_solids(ts, sp, p);
+        const Mask shown = opacity_map(sp.image, sprite_threshold(sp, p.opacity_threshold));
+        ASSERT_EQ(ss.objects.size(), 1u) << sp.name;
+        const EstimatedObject& o = ss.objects[0];
+        for (int y = 0; y < sp.image.height; ++y)
+            for (int x = 0; x < sp.image.width; ++x) {
+                if (!shown.get(x, y)) continue;
+                const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y;
+                double expected = -1;
+                for (double z = o.height() - 0.5; z >= 0 && expected < 0; z -= 0.5)
+                    if (o.contains(ground_frame(sx, sy, z))) expected = z;
+                from_solids += expected >= 0;
+                if (expected < 0) expected = std::max(0.0, o.center_y - (y + 0.5));
+                ++tested;
+                ASSERT_EQ(ss.heights[std::size_t(y) * sp.image.width + x], float(expected)) << sp.name << " at " << x << "," << y;
+            }
+    }
+    EXPECT_GT(from_solids, tested / 2);  // most shown pixels show a solid's point
+}
+
+// A solid's stamp (its spans over the ground under it) and its silhouette
+// are made row by row; here every pixel asks the estimate itself
+// (EstimatedObject::span_at, and each cross-section's ellipse drawn pixel by
+// pixel), on the default tileset's overlays and on a tree four times their
+// size, drawn from its true shapes.
+TEST(OccluderStamp, eachStampPixelHoldsItsObjectsSpanAndTheSilhouetteEachCrossSection) {
+    Tileset ts = test::default_tileset();
+    {
+        const std::vector<Solid> tree = {Solid{SolidKind::cylinder, {0, 0, 0}, {16, 16, 120}},
+                                         Solid{SolidKind::ellipsoid, {0, 0, 180}, {112, 112, 96}}};
+        Sprite big;
+        big.name = "big_tree";
+        big.image = Image(330, 450);
+        big.anchor_x = 165, big.anchor_y = 420;
+        for (int y = 0; y < big.image.height; ++y)
+            for (int x = 0; x < big.image.width; ++x)
+                if (std::isfinite(surface_height(tree, x + 0.5 - big.anchor_x, y + 0.5 - big.anchor_y))) {
+                    std::uint8_t* px = big.image.at(x, y);
+                    px[0] = px[1] = px[2] = 90, px[3] = 255;
+                }
+        ts.sprites.push_back(big);
+    }
+    Params p;
+    p.occluders = Occluders::solids;
+    long spans = 0, drawn = 0;
+    bool big_seen = false;
+    for (const Sprite& sp : ts.sprites) {
+        if (sp.kind != SpriteKind::overlay) continue;
+        const SpriteSolids ss = sprite_solids(ts, sp, p);
+        ASSERT_EQ(ss.stamps.size(), ss.objects.size()) << sp.name;
+        big_seen = big_seen || (sp.name == "big_tree" && !ss.objects.empty() && ss.objects[0].height() > 200);
+        Mask want(Rect{0, 0, sp.image.width, sp.image.height});
+        for (std::size_t k = 0; k < ss.objects.size(); ++k) {
+            const EstimatedObject& o = ss.objects[k];
+            const SpanStamp& st = ss.stamps[k];
+            for (int j = 0; j < st.rect.h; ++j)
+                for (int i = 0; i < st.rect.w; ++i) {
+                    const Vec3 q = ground_frame(st.rect.x + i + 0.5 - o.center_x, st.rect.y + j + 0.5 - o.center_y, 0);
+                    double lo = 0, hi = 0;
+                    std::pair<float, float> expected{0.f, 0.f};
+                    if (o.span_at(q.x, q.y, lo, hi)) expected = {float(lo), float(hi)}, ++spans;
+                    ASSERT_EQ(st.spans[std::size_t(j) * st.rect.w + std::size_t(i)], expected)
+                        << sp.name << " at " << st.rect.x + i << "," << st.rect.y + j;
+                }
+            for (std::size_t z = 0; z < o.radius.size(); ++z) {
+                const double r = o.radius[z], a = o.across_at(z) * std::sqrt(2.0), b = r / std::sqrt(2.0),
+                             yc = o.center_y - (double(z) + 0.5);
+                if (r <= 0) continue;
+                for (int y = int(std::floor(yc - b)); y <= int(std::ceil(yc + b)); ++y) {
+                    const double v = (y + 0.5 - yc) / b;
+                    if (v * v > 1) continue;
+                    const double hw = a * std::sqrt(1 - v * v);
+                    for (int x = int(std::ceil(o.center_x - hw - 0.5)); x <= int(std::floor(o.center_x + hw - 0.5)); ++x)
+                        want.set(x, y);
+                }
+            }
+        }
+        const Mask got = solid_silhouette(ss.objects, sp.image.width, sp.image.height);
+        EXPECT_TRUE(got.bits == want.bits) << sp.name;
+        drawn += want.count();
+    }
+    EXPECT_TRUE(big_seen) << "the large tree gets a solid over 200 px high";
+    EXPECT_GT(spans, 10000);
+    EXPECT_GT(drawn, 10000);
+}

@@ -1,0 +1,285 @@
+// Solids estimated from a sprite's alpha alone (core/src/solids/solid_estimate.cpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "isolux/footprint.hpp"
+#include "isolux/solid_estimate.hpp"
+#include "test_util.hpp"
+
+using namespace isolux;
+
+namespace {
+
+// The opaque pixels of `shape` drawn by the projection with its anchor at
+// (ax, ay) of a w x h sprite: where the view line meets a solid.
+Mask drawn(const std::vector<Solid>& shape, int w, int h, int ax, int ay) {
+    Mask m(Rect{0, 0, w, h});
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (std::isfinite(surface_height(shape, x + 0.5 - ax, y + 0.5 - ay))) m.set(x, y);
+    return m;
+}
+
+// A footprint of a few pixels around the anchor: where the trunk stands.
+Mask foot(int w, int h, int ax, int ay) {
+    Mask m(Rect{0, 0, w, h});
+    for (int y = ay - 2; y < ay + 2; ++y)
+        for (int x = ax - 2; x < ax + 2; ++x) m.set(x, y);
+    return m;
+}
+
+// The heights the solid fills `d` ground pixels from its axis in depth
+// (toward the viewer), where its cross-sections are the discs it fitted.
+bool span_in_depth(const EstimatedObject& o, double d, double& lo, double& hi) {
+    return o.span_at(d / std::sqrt(2.0), d / std::sqrt(2.0), lo, hi);
+}
+
+const Solid trunk{SolidKind::cylinder, {0, 0, 0}, {4, 4, 30}};
+const Solid canopy{SolidKind::ellipsoid, {0, 0, 45}, {28, 28, 24}};
+
+}  // namespace
+
+// A tree drawn from its true shapes: the estimate stands a canopy off the
+// ground above a thin trunk and shares most of the tree's volume. A dome's
+// outline reaches above its top (seen from above at an angle), and the discs
+// go up to the outline's top row: the top is estimated a few pixels high.
+TEST(SolidEstimate, aTreeGetsATrunkAndACanopyStandingOffTheGround) {
+    const int w = 200, h = 170, ax = 100, ay = 150;
+    const Mask object = drawn({trunk, canopy}, w, h, ax, ay);
+    const auto objects = estimate_objects(object, foot(w, h, ax, ay));
+    ASSERT_EQ(objects.size(), 1u);
+    const EstimatedObject& o = objects[0];
+    EXPECT_NEAR(o.center_x, ax, 0.01);
+    EXPECT_NEAR(o.center_y, ay, 0.01);
+    EXPECT_NEAR(o.height(), 45 + 24, 10);
+    double lo = 0, hi = 0;
+    ASSERT_TRUE(o.span_at(0, 0, lo, hi));  // at the axis: from the ground to the top
+    EXPECT_EQ(lo, 0);
+    EXPECT_EQ(hi, o.height());
+    // 20 px from the axis, past the trunk: only the canopy, well off the ground.
+    ASSERT_TRUE(span_in_depth(o, 20, lo, hi));
+    const double half = 24 * std::sqrt(1 - (20.0 / 28) * (20.0 / 28));
+    EXPECT_NEAR(lo, 45 - half, 4);
+    EXPECT_GT(lo, 20);
+    EXPECT_NEAR(hi, 45 + half, 6);
+    EXPECT_FALSE(span_in_depth(o, 35, lo, hi));  // beyond the canopy: nothing
+    EXPECT_GT(volume_overlap(objects, ax, ay, {trunk, canopy}), 0.75);
+}
+
+// A bush whose footprint Algorithm 1 puts at its widest row (its equator,
+// 10 px above where it stands): the foot moves down to where the bush meets
+// the ground, so the solid is a dome on the ground, not a pancake at the
+// equator. Its discs reach the outline's top row: the ellipsoid's outline
+// tops out sqrt(13^2 + 17^2 / 2) = 17.7 px above its centre, 27.7 px up.
+// The equator's lines may also have put the footprint a column or two off
+// the axis: the axis moves back to it.
+TEST(SolidEstimate, aBushsFootMovesDownFromItsEquatorToWhereItStands) {
+    const int w = 120, h = 120, ax = 60, ay = 100;
+    const std::vector<Solid> bush{{SolidKind::ellipsoid, {0, 0, 10}, {17, 17, 13}}};
+    const Mask object = drawn(bush, w, h, ax, ay);
+    const auto at_equator = estimate_objects(object, foot(w, h, ax, ay - 10));
+    ASSERT_EQ(at_equator.size(), 1u);
+    EXPECT_NEAR(at_equator[0].center_y, ay, 3);
+    EXPECT_GE(at_equator[0].height(), 10 + 13);  // a dome up to the outline's top
+    EXPECT_LE(at_equator[0].height(), 28);
+    EXPECT_GT(volume_overlap(at_equator, ax, ay, bush), 0.6);
+    for (int off : {-2, 2}) {
+        const auto off_axis = estimate_objects(object, foot(w, h, ax + off, ay - 10));
+        ASSERT_EQ(off_axis.size(), 1u);
+        EXPECT_NEAR(off_axis[0].center_x, ax, 0.5) << "footprint " << off << " px off the axis";
+        EXPECT_NEAR(off_axis[0].center_y, ay, 3);
+    }
+    // A footprint already where it stands stays there.
+    const auto at_foot = estimate_objects(object, foot(w, h, ax, ay));
+    ASSERT_EQ(at_foot.size(), 1u);
+    EXPECT_NEAR(at_foot[0].center_y, ay, 3);
+}
+
+// The default tileset's bush: a dome with two smaller clumps at its sides
+// (across the view), all sunk a little into the ground. The largest disc
+// that fits near the ground stops at the dome's lower front, short of the
+// clumps; widened across the view to the silhouette's width at their
+// height, the cross-sections near the ground reach them, as a low light's
+// shadow needs.
+TEST(SolidEstimate, aBushsSideClumpsNearTheGroundAreReachedAcrossTheView) {
+    const int w = 160, h = 130, ax = 80, ay = 110;
+    const std::vector<Solid> bush{{SolidKind::ellipsoid, {0, 0, 10}, {17, 17, 13}},
+                                  {SolidKind::ellipsoid, {9, -6, 8}, {11, 11, 9}},
+                                  {SolidKind::ellipsoid, {-7, 8, 9}, {11, 11, 10}}};
+    const auto objects = estimate_objects(drawn(bush, w, h, ax, ay), foot(w, h, ax, ay));
+    ASSERT_EQ(objects.size(), 1u);
+    const EstimatedObject& o = objects[0];
+    const Vec3 axis = ground_frame(o.center_x - ax, o.center_y - ay, 0);
+    for (const Vec3 clump : {Vec3{9, -6, 0}, Vec3{-7, 8, 0}}) {
+        // 7 px beyond the clump's centre, away from the axis, 2 px up: inside the clump.
+        const Vec3 out = clump + 7.0 * glm::normalize(clump);
+        bool in_shape = false;
+        for (const Solid& s : bush) in_shape = in_shape || solid_contains(s, Vec3{out.x, out.y, 2});
+        ASSERT_TRUE(in_shape);
+        double lo = 0, hi = 0;
+        ASSERT_TRUE(o.span_at(out.x - axis.x, out.y - axis.y, lo, hi)) << "clump at " << clump.x << "," << clump.y;
+        EXPECT_LT(lo, 4) << "the estimate stands there from near the ground";
+        EXPECT_FALSE(span_in_depth(o, glm::length(out - axis), lo, hi) && lo < 4)
+            << "in depth, where the silhouette says nothing, the same distance is past the discs near the ground";
+    }
+}
+
+// A skirted tree: a cone of foliage from 10 px up whose front edge hangs
+// lower on screen than its trunk's foot, so the sprite never shows the
+// trunk. Every disc below the skirt is hidden behind it: they stand on a
+// stem (hidden_stem_ratio of the skirt), not on a cone of foliage reaching
+// the ground. A bush resting on the ground shows its lower half below its
+// widest disc and keeps its discs as the silhouette allows.
+TEST(SolidEstimate, aSkirtThatHidesItsTrunkStandsOnAStem) {
+    const int w = 160, h = 150, ax = 80, ay = 120;
+    const std::vector<Solid> pine{{SolidKind::cylinder, {0, 0, 0}, {3, 3, 16}}, {SolidKind::cone, {0, 0, 10}, {24, 24, 60}}};
+    const Mask object = drawn(pine, w, h, ax, ay);
+    const auto objects = estimate_objects(object, foot(w, h, ax, ay));
+    ASSERT_EQ(objects.size(), 1u);
+    const std::vector<double>& r = objects[0].radius;
+    const auto widest = std::size_t(std::max_element(r.begin(), r.end()) - r.begin());
+    EXPECT_GE(widest, 6u);
+    EXPECT_GT(r[widest], 18);
+    for (std::size_t z = 0; z < widest; ++z) EXPECT_LE(r[z], hidden_stem_ratio * r[widest] + 1e-9) << z;
+    double lo = 0, hi = 0;
+    ASSERT_TRUE(span_in_depth(objects[0], 12, lo, hi));  // under the skirt: the foliage starts off the ground
+    EXPECT_GE(lo, double(widest) - 1);
+    EXPECT_GT(volume_overlap(objects, ax, ay, pine), 0.6);
+
+    const std::vector<Solid> bush{{SolidKind::ellipsoid, {0, 0, 10}, {17, 17, 13}}};
+    const auto resting = estimate_objects(drawn(bush, w, h, ax, ay), foot(w, h, ax, ay));
+    ASSERT_EQ(resting.size(), 1u);
+    const std::vector<double>& b = resting[0].radius;
+    EXPECT_GT(b[0], 0.5 * *std::max_element(b.begin(), b.end()));
+}
+
+// On the default tileset the pine alone hides what stands below its widest
+// disc (its skirt); its bushes and rocks show their lower halves and its
+// trees their trunks.
+TEST(SolidEstimate, onTheDefaultTilesetOnlyThePinesSkirtHidesItsStem) {
+    const Tileset ts = test::default_tileset();
+    const Params p;
+    int overlays = 0;
+    for (const Sprite& s : ts.sprites) {
+        if (s.kind != SpriteKind::overlay) continue;
+        ++overlays;
+        FootprintReport r;
+        tileset_footprint(ts, s, p, &r);
+        const auto objects = sprite_objects(ts, s, p);
+        ASSERT_EQ(objects.size(), 1u) << s.name;
+        EXPECT_EQ(hidden_below_widest(r.estimate, objects[0]), s.name == "pine") << s.name;
+    }
+    EXPECT_EQ(overlays, 9);
+}
+
+// A user's correction (the tileset inspector's): the axis stands on the
+// pixel they chose and the solid is as tall as they said, lower or higher
+// than the estimate's own; an object with no footprint gets one where they
+// put it.
+TEST(SolidEstimate, aCorrectionSetsTheFootAndTheHeight) {
+    const int w = 200, h = 170, ax = 100, ay = 150;
+    const Mask object = drawn({trunk, canopy}, w, h, ax, ay);
+    FootprintSpec fix;
+    fix.object_foot = std::pair{ax - 3, ay - 2};
+    fix.object_height = 40;
+    auto objects = estimate_objects(object, foot(w, h, ax, ay), &fix);
+    ASSERT_EQ(objects.size(), 1u);
+    EXPECT_EQ(objects[0].center_x, ax - 3 + 0.5);
+    EXPECT_EQ(objects[0].center_y, ay - 2 + 0.5);
+    EXPECT_EQ(objects[0].height(), 40);
+    fix.object_height = 90;  // above what the estimate reaches (about 69): its top disc held up
+    objects = estimate_objects(object, foot(w, h, ax, ay), &fix);
+    ASSERT_EQ(objects.size(), 1u);
+    EXPECT_EQ(objects[0].height(), 90);
+    EXPECT_GT(objects[0].radius.back(), 0);
+    fix.object_height = 0;  // the foot alone: the estimate's height from there
+    objects = estimate_objects(object, Mask(Rect{0, 0, w, h}), &fix);
+    ASSERT_EQ(objects.size(), 1u);
+    EXPECT_NEAR(objects[0].height(), 45 + 24, 12);
+    EXPECT_EQ(objects[0].rect, (Rect{ax - 3, ay - 2, 1, 1}));
+}
+
+// A cylinder standing on its whole base (a building) is itself: its flat
+// top is one disc's ellipse. On a footprint (a trunk, a bush) it is the
+// largest solid of revolution its outline allows: the cylinder, and above
+// its top the discs that fit inside the top's ellipse, up to the outline's
+// top row (20 / sqrt(2) px higher), which the camera cannot tell from a
+// dome. And an empty footprint or sprite gives no object.
+TEST(SolidEstimate, aCylinderIsItselfAndEmptyInputsGiveNoObject) {
+    const int w = 120, h = 120, ax = 60, ay = 100;
+    const Solid post{SolidKind::cylinder, {0, 0, 0}, {20, 20, 50}};
+    const Mask object = drawn({post}, w, h, ax, ay);
+    const auto objects = estimate_objects(object, foot(w, h, ax, ay), nullptr, nullptr, true);
+    ASSERT_EQ(objects.size(), 1u);
+    EXPECT_NEAR(objects[0].height(), 50, 3);
+    double lo = 0, hi = 0;
+    ASSERT_TRUE(span_in_depth(objects[0], 15, lo, hi));
+    EXPECT_EQ(lo, 0);
+    EXPECT_NEAR(hi, 50, 3);
+    EXPECT_GT(volume_overlap(objects, ax, ay, {post}), 0.85);
+    const auto on_footprint = estimate_objects(object, foot(w, h, ax, ay));
+    ASSERT_EQ(on_footprint.size(), 1u);
+    EXPECT_NEAR(on_footprint[0].height(), 50 + 20 / std::sqrt(2.0), 3);
+    const std::vector<double>& r = on_footprint[0].radius;
+    for (std::size_t z = 0; z + 3 < 50; ++z) EXPECT_NEAR(r[z], 20, 1) << "the cylinder's disc at " << z;
+    for (std::size_t z = 53; z < r.size(); ++z) EXPECT_LT(r[z], 20 - 1) << "the cap's disc at " << z;
+    EXPECT_GT(volume_overlap(on_footprint, ax, ay, {post}), 0.8);
+    EXPECT_TRUE(estimate_objects(object, Mask(Rect{0, 0, w, h})).empty());
+    EXPECT_TRUE(estimate_objects(Mask(Rect{0, 0, w, h}), foot(w, h, ax, ay)).empty());
+}
+
+// The default tileset, whose sprites were drawn from their manifest shapes:
+// every overlay gets an object, and the trees' estimates share most of their
+// shapes' volume. (Walls and fences are long boxes, not solids of revolution;
+// docs/beyond.md has every sprite's figure.)
+TEST(SolidEstimate, theDefaultTilesetsTreesShareMostOfTheirShapesVolume) {
+    const Tileset ts = test::default_tileset();
+    const Params p;
+    int trees = 0;
+    for (const Sprite& s : ts.sprites) {
+        if (s.kind != SpriteKind::overlay) continue;
+        const auto objects = sprite_objects(ts, s, p);
+        ASSERT_EQ(objects.size(), 1u) << s.name;
+        EXPECT_GE(objects[0].height(), 4) << s.name;
+        ASSERT_FALSE(s.shape.empty()) << s.name;
+        if (std::find(s.tags.begin(), s.tags.end(), "tree") == s.tags.end()) continue;
+        ++trees;
+        EXPECT_GT(volume_overlap(objects, s.anchor_x, s.anchor_y, s.shape), 0.6) << s.name;
+    }
+    EXPECT_EQ(trees, 3);
+}
+
+// The estimate's silhouette covers most of the sprite's opaque pixels. Each
+// disc is the largest that fits, and each cross-section reaches across the
+// view no farther than the sprite does on the row where its centre shows:
+// there every pixel it draws is opaque. (Below that row a widened
+// cross-section may draw past the outline, where the sprite narrows to
+// its front.)
+TEST(SolidEstimate, theSolidsSilhouetteCoversTheSpriteAndEachCrossSectionFitsItsRow) {
+    const int w = 200, h = 170, ax = 100, ay = 150;
+    const Mask object = drawn({trunk, canopy}, w, h, ax, ay);
+    const auto objects = estimate_objects(object, foot(w, h, ax, ay));
+    ASSERT_EQ(objects.size(), 1u);
+    const EstimatedObject& o = objects[0];
+    const Mask drawn_solid = solid_silhouette(objects, w, h);
+    long inside = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) inside += drawn_solid.get(x, y) && object.get(x, y);
+    EXPECT_GT(double(inside), 0.85 * double(object.count()));
+    int widened = 0;
+    for (std::size_t z = 0; z < o.radius.size(); ++z) {
+        EXPECT_GE(o.across_at(z), o.radius[z]) << z;
+        if (o.radius[z] <= 0) continue;
+        widened += o.across_at(z) > o.radius[z] + 1;
+        // The centre row: the pixels whose centres the cross-section's ellipse holds there.
+        const int y = int(std::floor(o.center_y - (double(z) + 0.5)));
+        const double hw = o.across_at(z) * std::sqrt(2.0);
+        for (int x = int(std::ceil(o.center_x - hw - 0.5)); x <= int(std::floor(o.center_x + hw - 0.5)); ++x)
+            EXPECT_TRUE(object.get(x, y)) << "cross-section " << z << " draws " << x << "," << y << " outside the sprite";
+    }
+    EXPECT_GT(widened, 0) << "the canopy's underside reaches wider across than its discs";
+}
