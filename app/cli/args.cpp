@@ -40,9 +40,7 @@ void add_param_flags(CLI::App& cmd, ParamArgs& pa) {
 Params params_from_args(const ParamArgs& a, Params p) {
     if (!a.preset.empty()) {
         std::vector<std::string> warnings;
-        std::error_code ec;
-        bool builtin = !std::filesystem::exists(a.preset, ec) && a.preset.find('.') == std::string::npos;
-        p = builtin ? builtin_preset(a.preset) : load_preset(a.preset, &warnings);
+        p = preset_named(a.preset, &warnings);
         for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << printable(w) << "\n";
     }
     if (a.area) {

@@ -5,7 +5,10 @@
  * call returns an isolux_status; when it is not ISOLUX_OK, isolux_last_error()
  * says what failed (the file and field, as isolux-cli does). No C++ exception
  * crosses this API. A world is used by one thread at a time; different worlds
- * may be used on different threads. docs/games.md walks through it. */
+ * may be used on different threads. A call on a world while another thread's
+ * call runs on it is refused (ISOLUX_ERROR_ARGUMENT), never a race; only
+ * isolux_world_cancel may come from another thread. docs/games.md walks
+ * through it. */
 #ifndef ISOLUX_H
 #define ISOLUX_H
 
@@ -13,7 +16,7 @@
 #include <stdint.h>
 
 /* Bumped whenever a declaration below changes meaning or layout. */
-#define ISOLUX_API_VERSION 1
+#define ISOLUX_API_VERSION 2
 
 #if defined(ISOLUX_BUILDING_API)
 #define ISOLUX_API __attribute__((visibility("default")))
@@ -30,7 +33,9 @@ typedef enum isolux_status {
     ISOLUX_ERROR_INPUT = 1,    /* a file, parameter or value was refused */
     ISOLUX_ERROR_ARGUMENT = 2, /* a null pointer, an unknown light id, a buffer of the wrong size */
     ISOLUX_ERROR_MEMORY = 3,   /* out of memory; the world is as it was */
-    ISOLUX_ERROR_INTERNAL = 4  /* a bug in isolux: please report the message */
+    ISOLUX_ERROR_INTERNAL = 4, /* a bug in isolux: please report the message */
+    ISOLUX_ERROR_TOO_MUCH_WORK = 5, /* the frame's estimated work is over the budget (isolux_world_allow_huge) */
+    ISOLUX_CANCELLED = 6       /* isolux_world_cancel stopped the call; the world is as it was before it */
 } isolux_status;
 
 typedef struct isolux_world isolux_world; /* opaque */
@@ -69,27 +74,48 @@ ISOLUX_API isolux_status isolux_world_open_seeded(const char* seed, int width, i
 ISOLUX_API isolux_status isolux_world_open_scene(const char* scene_path, isolux_world** out);
 /* A Tiled map (.tmx): its floors, sprites, lights and preset. */
 ISOLUX_API isolux_status isolux_world_open_tmx(const char* tmx_path, isolux_world** out);
-ISOLUX_API void isolux_world_free(isolux_world* world); /* NULL is ignored */
+/* NULL is ignored; a world another thread's call is using is not freed
+ * (isolux_last_error says so). */
+ISOLUX_API void isolux_world_free(isolux_world* world);
+
+/* --- Long work: a budget, and a way to stop */
+
+/* Makes the call running on `world` on another thread (a render) stop within
+ * milliseconds and return ISOLUX_CANCELLED, the world as it was before that
+ * call (its next frame is drawn afresh). The one call allowed while another
+ * thread's call runs on the world; a cancel while none runs is forgotten when
+ * the next call starts. */
+ISOLUX_API isolux_status isolux_world_cancel(isolux_world* world);
+/* A render whose estimated work (isolux-cli's, in ray steps) is beyond
+ * minutes on one core returns ISOLUX_ERROR_TOO_MUCH_WORK with the estimate,
+ * before any of it; `allow` 1 lets this world run it anyway (0: the default). */
+ISOLUX_API isolux_status isolux_world_allow_huge(isolux_world* world, int allow);
 
 /* --- Parameters, by the names of `isolux-cli params` */
 
-/* A preset JSON file, or a built-in name (paper, fast, quality, game). */
+/* A built-in preset name (paper, fast, quality, game: always the built-in,
+ * whatever the working folder holds), else a preset JSON file's path. */
 ISOLUX_API isolux_status isolux_world_load_preset(isolux_world* world, const char* preset);
 /* One parameter, as text ("4", "true", "solids"); refused by name when out of range. */
 ISOLUX_API isolux_status isolux_world_set_param(isolux_world* world, const char* name, const char* value);
 /* Its value as text into `buf` (NUL-terminated; ISOLUX_ERROR_ARGUMENT when
- * `size` is too small). */
+ * `size` is too small; ISOLUX_ERROR_INPUT for a name set_param refuses). */
 ISOLUX_API isolux_status isolux_world_get_param(const isolux_world* world, const char* name, char* buf, size_t size);
 /* Threads that trace and correct lights: 0 one per core, 1 (the default) the
  * caller's thread only. The pixels are the same for any count. */
 ISOLUX_API isolux_status isolux_world_set_threads(isolux_world* world, int threads);
 
-/* --- Lights. Ids are stable for a world's life; a scene's or a map's own
- * lights have ids 0, 1, ... in their order. */
+/* --- Lights. Ids are stable for a world's life and never reused (add_light
+ * refuses once a world has given out INT_MAX of them); a scene's or a map's
+ * own lights have ids 0, 1, ... in their order. */
 
 ISOLUX_API isolux_status isolux_light_init(isolux_light* light, double x, double y); /* white, intensity 1, the preset's area and height */
 ISOLUX_API isolux_status isolux_world_add_light(isolux_world* world, const isolux_light* light, int* id);
+/* Sets the struct's fields; the light's name, and whether it is hidden or
+ * locked (a scene's own lights may be), stay as they are. */
 ISOLUX_API isolux_status isolux_world_set_light(isolux_world* world, int id, const isolux_light* light);
+/* A hidden light is kept but lights nothing (`hidden` 1), or shown again (0). */
+ISOLUX_API isolux_status isolux_world_set_light_hidden(isolux_world* world, int id, int hidden);
 ISOLUX_API isolux_status isolux_world_get_light(const isolux_world* world, int id, isolux_light* light);
 ISOLUX_API isolux_status isolux_world_move_light(isolux_world* world, int id, double x, double y);
 ISOLUX_API isolux_status isolux_world_remove_light(isolux_world* world, int id);
@@ -101,7 +127,8 @@ ISOLUX_API isolux_status isolux_world_lights(const isolux_world* world, int* ids
 /* Tile (col, row) holds `floor` (a floor sprite's name; NULL: unchanged) and
  * the `overlay_count` overlays named in `overlays` (at most 3; overlay_count
  * < 0: unchanged). Refused by name when a name is not a sprite of the tileset
- * or the tile is outside the map; the world is then unchanged. */
+ * or the tile is outside the map; the world is then unchanged. An edit costs
+ * its tile, whatever the edits before it. */
 ISOLUX_API isolux_status isolux_world_set_tile(isolux_world* world, int col, int row, const char* floor,
                                                const char* const* overlays, int overlay_count);
 /* Every edit undone: the seed's map again. */

@@ -7,7 +7,10 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <atomic>
+#include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -27,12 +30,19 @@ namespace fs = std::filesystem;
 using namespace isolux;
 
 struct isolux_world {
-    Scene scene;
+    Scene scene;                 // its edits are the opened file's; world.edits holds the level's
     World world;
     FrameState state;
     std::vector<int> light_ids;  // light_ids[i] names scene.lights[i]
-    int next_id = 0;
+    int next_id = 0;             // never reused; add_light refuses once it reaches INT_MAX
     std::string source;          // the file it came from, for messages
+    bool allow_huge = false;     // isolux_world_allow_huge
+    // A call is running on the world (one thread at a time): a second call
+    // meanwhile is refused instead of racing it. isolux_world_cancel alone
+    // may come from another thread: it sets `cancel`, which the running
+    // frame reads (FrameOptions::control) and each call clears as it starts.
+    mutable std::atomic<bool> busy{false};
+    std::atomic<bool> cancel{false};
 };
 
 namespace {
@@ -46,8 +56,8 @@ isolux_status guarded(const char* call, F&& body) {
         body();
         return ISOLUX_OK;
     } catch (const Cancelled&) {
-        last_error = std::string(call) + ": cancelled";
-        return ISOLUX_ERROR_INTERNAL;
+        last_error = std::string(call) + ": cancelled by isolux_world_cancel";
+        return ISOLUX_CANCELLED;
     } catch (const Error& e) {
         last_error = printable(e.what());
         return ISOLUX_ERROR_INPUT;
@@ -67,6 +77,39 @@ isolux_status argument_error(const std::string& message) {
     last_error = message;
     return ISOLUX_ERROR_ARGUMENT;
 }
+
+// Holds a world for one call: `held` is false (and the call must be refused)
+// when another call is running on it, from another thread.
+class Busy {
+public:
+    explicit Busy(const isolux_world* w) : w_(w) {
+        bool idle = false;
+        held_ = w_->busy.compare_exchange_strong(idle, true, std::memory_order_acquire);
+        if (held_) const_cast<isolux_world*>(w_)->cancel.store(false, std::memory_order_relaxed);
+    }
+    ~Busy() {
+        if (held_) w_->busy.store(false, std::memory_order_release);
+    }
+    Busy(const Busy&) = delete;
+    Busy& operator=(const Busy&) = delete;
+    bool held() const { return held_; }
+
+private:
+    const isolux_world* w_;
+    bool held_ = false;
+};
+
+isolux_status busy_error(const char* call) {
+    return argument_error(std::string(call) +
+                          ": the world is in use by another call (a world is used by one thread at a time; "
+                          "isolux_world_cancel alone may come from another thread)");
+}
+
+// The start of every call on a world: null and busy worlds refused.
+#define ISOLUX_HOLD(world, call)                                                        \
+    if (!(world)) return argument_error(std::string(call) + ": world must not be NULL"); \
+    const Busy hold_##world(world);                                                       \
+    if (!hold_##world.held()) return busy_error(call)
 
 // The default tileset beside the library: $ISOLUX_ASSETS, else
 // <libdir>/../share/isolux/assets (an installed prefix), else
@@ -98,7 +141,11 @@ World build_world(const Scene& s, const std::string& source) {
 }
 
 isolux_world* new_world(Scene scene, World world, std::string source) {
-    auto* w = new isolux_world{std::move(scene), std::move(world), {}, {}, 0, std::move(source)};
+    auto* w = new isolux_world;
+    w->scene = std::move(scene);
+    w->world = std::move(world);
+    w->source = std::move(source);
+    w->state.options.control.cancel = &w->cancel;  // kept when a cancelled frame resets the state
     for (std::size_t i = 0; i < w->scene.lights.size(); ++i) w->light_ids.push_back(w->next_id++);
     return w;
 }
@@ -191,20 +238,38 @@ isolux_status isolux_world_open_tmx(const char* tmx_path, isolux_world** out) {
     });
 }
 
-void isolux_world_free(isolux_world* world) { delete world; }
+void isolux_world_free(isolux_world* world) {
+    if (!world) return;
+    if (world->busy.load(std::memory_order_acquire)) {
+        // Freed while another thread's call runs on it: kept (a leak) rather
+        // than pulled from under that call.
+        last_error = "isolux_world_free: the world is in use by another call; not freed";
+        return;
+    }
+    delete world;
+}
+
+isolux_status isolux_world_cancel(isolux_world* w) {
+    if (!w) return argument_error("isolux_world_cancel: world must not be NULL");
+    w->cancel.store(true, std::memory_order_relaxed);
+    return ISOLUX_OK;
+}
+
+isolux_status isolux_world_allow_huge(isolux_world* w, int allow) {
+    ISOLUX_HOLD(w, "isolux_world_allow_huge");
+    w->allow_huge = allow != 0;
+    return ISOLUX_OK;
+}
 
 isolux_status isolux_world_load_preset(isolux_world* w, const char* preset) {
-    if (!w || !preset) return argument_error("isolux_world_load_preset: world and preset must not be NULL");
-    return guarded("isolux_world_load_preset", [&] {
-        std::error_code ec;
-        const std::string text = preset;
-        const bool builtin = !fs::exists(text, ec) && text.find('.') == std::string::npos && text.find('/') == std::string::npos;
-        w->scene.params = builtin ? builtin_preset(text) : load_preset(text);
-    });
+    ISOLUX_HOLD(w, "isolux_world_load_preset");
+    if (!preset) return argument_error("isolux_world_load_preset: preset must not be NULL");
+    return guarded("isolux_world_load_preset", [&] { w->scene.params = preset_named(preset); });
 }
 
 isolux_status isolux_world_set_param(isolux_world* w, const char* name, const char* value) {
-    if (!w || !name || !value) return argument_error("isolux_world_set_param: world, name and value must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_set_param");
+    if (!name || !value) return argument_error("isolux_world_set_param: name and value must not be NULL");
     return guarded("isolux_world_set_param", [&] {
         Params p = w->scene.params;
         set_param(p, name, value, std::string("isolux_world_set_param: ") + name);
@@ -214,9 +279,15 @@ isolux_status isolux_world_set_param(isolux_world* w, const char* name, const ch
 }
 
 isolux_status isolux_world_get_param(const isolux_world* w, const char* name, char* buf, size_t size) {
-    if (!w || !name || !buf) return argument_error("isolux_world_get_param: world, name and buf must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_get_param");
+    if (!name || !buf) return argument_error("isolux_world_get_param: name and buf must not be NULL");
     std::string value;
-    const isolux_status st = guarded("isolux_world_get_param", [&] { value = get_param(w->scene.params, name); });
+    const isolux_status st = guarded("isolux_world_get_param", [&] {
+        if (!find_param(name))  // what set_param refuses, get_param refuses too
+            throw Error(std::string("isolux_world_get_param: unknown parameter \"") + printable(name) +
+                        "\" (isolux-cli params lists them)");
+        value = get_param(w->scene.params, name);
+    });
     if (st != ISOLUX_OK) return st;
     if (value.size() + 1 > size)
         return argument_error("isolux_world_get_param: " + std::string(name) + " needs a buffer of " +
@@ -226,7 +297,7 @@ isolux_status isolux_world_get_param(const isolux_world* w, const char* name, ch
 }
 
 isolux_status isolux_world_set_threads(isolux_world* w, int threads) {
-    if (!w) return argument_error("isolux_world_set_threads: world must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_set_threads");
     if (threads < 0 || threads > 256) return argument_error("isolux_world_set_threads: threads must be in [0, 256]");
     w->state.options.threads = threads;
     return ISOLUX_OK;
@@ -242,9 +313,13 @@ isolux_status isolux_light_init(isolux_light* light, double x, double y) {
 }
 
 isolux_status isolux_world_add_light(isolux_world* w, const isolux_light* light, int* id) {
-    if (!w || !light) return argument_error("isolux_world_add_light: world and light must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_add_light");
+    if (!light) return argument_error("isolux_world_add_light: light must not be NULL");
     return guarded("isolux_world_add_light", [&] {
         check_light(*light, "isolux_world_add_light");
+        if (w->next_id == INT_MAX)
+            throw Error("isolux_world_add_light: this world has given out every light id (ids are never reused); "
+                        "open a new world");
         w->scene.lights.push_back(to_light(*light));
         w->light_ids.push_back(w->next_id);
         if (id) *id = w->next_id;
@@ -253,19 +328,33 @@ isolux_status isolux_world_add_light(isolux_world* w, const isolux_light* light,
 }
 
 isolux_status isolux_world_set_light(isolux_world* w, int id, const isolux_light* light) {
-    if (!w || !light) return argument_error("isolux_world_set_light: world and light must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_set_light");
+    if (!light) return argument_error("isolux_world_set_light: light must not be NULL");
     const int i = light_index(w, id);
     if (i < 0) return argument_error("isolux_world_set_light: no light with id " + std::to_string(id));
     return guarded("isolux_world_set_light", [&] {
         check_light(*light, "isolux_world_set_light");
+        Light& now = w->scene.lights[std::size_t(i)];
         Light l = to_light(*light);
-        l.name = w->scene.lights[std::size_t(i)].name;
-        w->scene.lights[std::size_t(i)] = l;
+        // What the struct does not carry stays as it is.
+        l.name = now.name;
+        l.hidden = now.hidden;
+        l.locked = now.locked;
+        now = l;
     });
 }
 
+isolux_status isolux_world_set_light_hidden(isolux_world* w, int id, int hidden) {
+    ISOLUX_HOLD(w, "isolux_world_set_light_hidden");
+    const int i = light_index(w, id);
+    if (i < 0) return argument_error("isolux_world_set_light_hidden: no light with id " + std::to_string(id));
+    w->scene.lights[std::size_t(i)].hidden = hidden != 0;
+    return ISOLUX_OK;
+}
+
 isolux_status isolux_world_get_light(const isolux_world* w, int id, isolux_light* light) {
-    if (!w || !light) return argument_error("isolux_world_get_light: world and light must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_get_light");
+    if (!light) return argument_error("isolux_world_get_light: light must not be NULL");
     const int i = light_index(w, id);
     if (i < 0) return argument_error("isolux_world_get_light: no light with id " + std::to_string(id));
     *light = from_light(w->scene.lights[std::size_t(i)]);
@@ -273,7 +362,7 @@ isolux_status isolux_world_get_light(const isolux_world* w, int id, isolux_light
 }
 
 isolux_status isolux_world_move_light(isolux_world* w, int id, double x, double y) {
-    if (!w) return argument_error("isolux_world_move_light: world must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_move_light");
     const int i = light_index(w, id);
     if (i < 0) return argument_error("isolux_world_move_light: no light with id " + std::to_string(id));
     isolux_light c = from_light(w->scene.lights[std::size_t(i)]);
@@ -287,7 +376,7 @@ isolux_status isolux_world_move_light(isolux_world* w, int id, double x, double 
 }
 
 isolux_status isolux_world_remove_light(isolux_world* w, int id) {
-    if (!w) return argument_error("isolux_world_remove_light: world must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_remove_light");
     const int i = light_index(w, id);
     if (i < 0) return argument_error("isolux_world_remove_light: no light with id " + std::to_string(id));
     w->scene.lights.erase(w->scene.lights.begin() + i);
@@ -296,8 +385,9 @@ isolux_status isolux_world_remove_light(isolux_world* w, int id) {
 }
 
 isolux_status isolux_world_lights(const isolux_world* w, int* ids, int capacity, int* count) {
-    if (!w || !count || (capacity > 0 && !ids))
-        return argument_error("isolux_world_lights: world and count must not be NULL (ids neither, with a capacity)");
+    ISOLUX_HOLD(w, "isolux_world_lights");
+    if (!count || (capacity > 0 && !ids))
+        return argument_error("isolux_world_lights: count must not be NULL (ids neither, with a capacity)");
     *count = int(w->light_ids.size());
     for (int i = 0; i < std::min(capacity, *count); ++i) ids[i] = w->light_ids[std::size_t(i)];
     return ISOLUX_OK;
@@ -305,7 +395,7 @@ isolux_status isolux_world_lights(const isolux_world* w, int* ids, int capacity,
 
 isolux_status isolux_world_set_tile(isolux_world* w, int col, int row, const char* floor, const char* const* overlays,
                                     int overlay_count) {
-    if (!w) return argument_error("isolux_world_set_tile: world must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_set_tile");
     if (overlay_count > 3) return argument_error("isolux_world_set_tile: at most 3 overlays");
     if (overlay_count > 0 && !overlays) return argument_error("isolux_world_set_tile: overlays must not be NULL");
     for (int i = 0; i < overlay_count; ++i)
@@ -325,39 +415,37 @@ isolux_status isolux_world_set_tile(isolux_world* w, int col, int row, const cha
         if (overlay_count >= 0) e.overlays.emplace(overlays, overlays + overlay_count);
         const ResolvedEdit r = resolve_edits({e}, w->world.tileset, where).at(0);
         const Tile& now = m.at(col, row);
-        std::vector<TileEdit> edits = w->world.edits;
-        set_tile_edit(edits, w->world.seeded, w->world.tileset, col, row, r.floor.value_or(now.floor),
-                      r.overlays.value_or(overlay_sprites(now)));
-        set_edits(w->world, edits, where);
-        w->scene.edits = w->world.edits;
+        set_tile(w->world, col, row, r.floor.value_or(now.floor), r.overlays.value_or(overlay_sprites(now)));
     });
 }
 
 isolux_status isolux_world_clear_edits(isolux_world* w) {
-    if (!w) return argument_error("isolux_world_clear_edits: world must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_clear_edits");
     return guarded("isolux_world_clear_edits", [&] {
         if (w->world.edits.empty()) return;
         set_edits(w->world, {}, "isolux_world_clear_edits");
-        w->scene.edits.clear();
     });
 }
 
 isolux_status isolux_world_tiles(const isolux_world* w, int* columns, int* rows) {
-    if (!w || !columns || !rows) return argument_error("isolux_world_tiles: world, columns and rows must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_tiles");
+    if (!columns || !rows) return argument_error("isolux_world_tiles: columns and rows must not be NULL");
     *columns = w->world.map.width;
     *rows = w->world.map.height;
     return ISOLUX_OK;
 }
 
 isolux_status isolux_world_bounds(const isolux_world* w, isolux_rect* out) {
-    if (!w || !out) return argument_error("isolux_world_bounds: world and out must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_bounds");
+    if (!out) return argument_error("isolux_world_bounds: out must not be NULL");
     const Rect r = w->world.placed.bounds;
     *out = {r.x, r.y, r.w, r.h};
     return ISOLUX_OK;
 }
 
 isolux_status isolux_world_default_view(const isolux_world* w, isolux_rect* out) {
-    if (!w || !out) return argument_error("isolux_world_default_view: world and out must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_default_view");
+    if (!out) return argument_error("isolux_world_default_view: out must not be NULL");
     return guarded("isolux_world_default_view", [&] {
         const Rect r = camera_view(w->scene.camera, w->world);
         *out = {r.x, r.y, r.w, r.h};
@@ -366,7 +454,7 @@ isolux_status isolux_world_default_view(const isolux_world* w, isolux_rect* out)
 
 isolux_status isolux_world_render(isolux_world* w, isolux_rect view, int frame, uint8_t* rgba, size_t size,
                                   uint8_t* light_rgba, size_t light_size) {
-    if (!w) return argument_error("isolux_world_render: world must not be NULL");
+    ISOLUX_HOLD(w, "isolux_world_render");
     if (view.width < 1 || view.height < 1 || view.width > max_image_side || view.height > max_image_side)
         return argument_error("isolux_world_render: view width and height must be in [1, " +
                               std::to_string(max_image_side) + "]");
@@ -382,6 +470,16 @@ isolux_status isolux_world_render(isolux_world* w, isolux_rect view, int frame, 
     if (light_rgba && light_size != bytes)
         return argument_error("isolux_world_render: light_rgba holds " + std::to_string(light_size) +
                               " bytes; the view needs " + std::to_string(bytes));
+    // The work budget isolux-cli keeps (--allow-huge), before any of it.
+    const double steps = render_work(w->scene, Rect{view.x, view.y, view.width, view.height}, 1);
+    if (steps > huge_trace_steps && !w->allow_huge) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.2g", steps);
+        last_error = std::string("isolux_world_render: this frame would trace about ") + text +
+                     " ray steps (minutes or more): use a smaller area or view, border rays, or "
+                     "isolux_world_allow_huge(world, 1)";
+        return ISOLUX_ERROR_TOO_MUCH_WORK;
+    }
     return guarded("isolux_world_render", [&] {
         w->state.options.view_light_texture = light_rgba != nullptr;
         Camera cam = w->scene.camera;

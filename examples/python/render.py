@@ -11,7 +11,7 @@ import ctypes.util
 import os
 import sys
 
-API_VERSION = 1  # isolux.h's ISOLUX_API_VERSION
+API_VERSION = 2  # isolux.h's ISOLUX_API_VERSION
 
 
 class Rect(ctypes.Structure):

@@ -7,17 +7,19 @@ crash, hang or print a sanitizer report. Usage: run.py PATH/TO/isolux-cli SOURCE
 import json, os, resource, shutil, struct, subprocess, sys, tempfile, time, zlib
 
 cli, src = sys.argv[1], sys.argv[2]
+if os.sep in cli:
+    cli = os.path.abspath(cli)  # some cases run in a folder of their own
 tmp = tempfile.mkdtemp(prefix="isolux_bad_")
 T = lambda *p: os.path.join(tmp, *p)
 LIMIT_S, LIMIT_MB = 10.0, 1024
 if "--instrumented" in sys.argv[3:]:
     # AddressSanitizer's shadow memory and checks: the same cases, budgets for an instrumented binary.
     LIMIT_S, LIMIT_MB = 60.0, 4096
-cases = []  # (name, args, want_exit, fragment)
+cases = []  # (name, args, want_exit, fragment, max_lines, cwd)
 
 
-def case(name, args, want, fragment="", max_lines=None):
-    cases.append((name, args, want, fragment, max_lines))
+def case(name, args, want, fragment="", max_lines=None, cwd=None):
+    cases.append((name, args, want, fragment, max_lines, cwd))
 
 
 def write(name, data):
@@ -337,7 +339,7 @@ write("names/tileset.json", json.dumps(names_doc))
 case("export_names_are_not_paths", ["export-tiled", "--scene", write("names.scene.json", json.dumps(
     {"width": 4, "height": 4, "tileset": T("names", "tileset.json")})), "--out", T("names", "out", "map.tmx")], 0)
 # A name isolux gives a file of its own in the chosen folder that is a link
-# out of it is refused by name (tests/core/formats/files_test.cpp checks nothing lands outside).
+# out of it is refused by name (tests/core/formats/file_io_test.cpp checks nothing lands outside).
 os.makedirs(T("link_out", "elsewhere"))
 os.makedirs(T("link_out", "export"))
 os.symlink(T("link_out", "elsewhere"), T("link_out", "export", "map_images"))
@@ -413,14 +415,24 @@ tileset("shape_beyond_its_sprite", O(shape=[{"kind": "box", "min": [-1e5, -1e5, 
 case("occluders_shapes_without_shapes", ["render", "--size", "4x4", "--tileset",
      os.path.join(src, "tests/data/foreign_tileset/tileset.json"), "--occluders", "shapes", "--out", T("out.png")], 2,
      "has no shape")
+# A built-in preset's name is always the built-in, whatever the working folder
+# holds (a folder named game, a file named paper); "./paper" reaches the file.
+os.makedirs(T("shadow", "game"), exist_ok=True)
+write("shadow/paper", "this is not a preset")
+case("preset_name_beside_a_folder_of_that_name", ["render", "--size", "3x3", "--preset", "game", "--out", T("shadow.png")], 0,
+     cwd=T("shadow"))
+case("preset_name_beside_a_file_of_that_name", ["render", "--size", "3x3", "--preset", "paper", "--out", T("shadow.png")], 0,
+     cwd=T("shadow"))
+case("preset_path_to_a_file_of_a_builtins_name", ["render", "--size", "3x3", "--preset", "./paper", "--out", T("shadow.png")], 2,
+     "paper", cwd=T("shadow"))
 must_not_exist = [T("escaped.png"), T("names", "escaped.png"), "/tmp/isolux_bad_absolute.png"]
 
 # Run them all.
 failures = []
 worst_s = worst_mb = 0.0
-for name, args, want, fragment, max_lines in cases:
+for name, args, want, fragment, max_lines, cwd in cases:
     start = time.monotonic()
-    proc = subprocess.Popen([cli, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    proc = subprocess.Popen([cli, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, cwd=cwd)
     try:
         _, err = proc.communicate(timeout=LIMIT_S * 3)
     except subprocess.TimeoutExpired:

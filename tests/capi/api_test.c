@@ -1,11 +1,16 @@
 /* The C API's contract, from C: statuses, messages that name the field,
  * stable light ids, edits refused by name with the world unchanged, buffers
- * checked, NULL handled, and a moved light changing only what it should. */
+ * checked, NULL handled, and a moved light changing only what it should;
+ * and against a hostile caller: a second thread on a busy world, work over
+ * the budget, a cancel from another thread, a light texture asked for again
+ * after frames without it, hidden lights kept hidden, unknown parameters. */
 #include <isolux.h>
 
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 static int failures = 0, passes = 0;
 #define CHECK(cond, ...)                                         \
@@ -19,6 +24,23 @@ static int failures = 0, passes = 0;
             printf(" (last error: %s)\n", isolux_last_error());  \
         }                                                        \
     } while (0)
+
+/* A render on another thread, and what it returned. */
+struct render_job {
+    isolux_world* world;
+    isolux_rect view;
+    isolux_status status;
+};
+static void* render_thread(void* arg) {
+    struct render_job* job = arg;
+    job->status = isolux_world_render(job->world, job->view, 0, NULL, 0, NULL, 0);
+    return NULL;
+}
+
+static void sleep_ms(int ms) {
+    struct timespec t = {ms / 1000, (long)(ms % 1000) * 1000000L};
+    nanosleep(&t, NULL);
+}
 
 static size_t differing(const uint8_t* a, const uint8_t* b, size_t bytes) {
     size_t n = 0;
@@ -129,6 +151,112 @@ int main(int argc, char** argv) {
     CHECK(isolux_world_clear_edits(w) == ISOLUX_OK, "clear");
     CHECK(isolux_world_render(w, view, 5, back, bytes, NULL, 0) == ISOLUX_OK && differing(first, back, bytes) == 0,
           "cleared edits give the seed's picture again: %zu", differing(first, back, bytes));
+
+    /* A parameter get_param does not know is refused as set_param refuses it. */
+    CHECK(isolux_world_get_param(w, "no_such_param", buf, sizeof buf) == ISOLUX_ERROR_INPUT &&
+              strstr(isolux_last_error(), "no_such_param") != NULL,
+          "unknown name read");
+
+    /* A light texture asked for again after frames without it is the
+     * current one, not the last one made: a fresh world's bytes. */
+    {
+        isolux_world* x = NULL;
+        isolux_world* fresh = NULL;
+        CHECK(isolux_world_open_seeded("isolux", 8, 8, NULL, tileset, &x) == ISOLUX_OK, "open x");
+        CHECK(isolux_world_open_seeded("isolux", 8, 8, NULL, tileset, &fresh) == ISOLUX_OK, "open fresh");
+        int id = -1, fid = -1;
+        isolux_light_init(&l, 500, 300);
+        CHECK(isolux_world_add_light(x, &l, &id) == ISOLUX_OK, "add");
+        CHECK(isolux_world_render(x, view, 0, NULL, 0, light, bytes) == ISOLUX_OK, "frame 0 with its light");
+        CHECK(isolux_world_move_light(x, id, 620, 380) == ISOLUX_OK, "move");
+        CHECK(isolux_world_render(x, view, 1, moved, bytes, NULL, 0) == ISOLUX_OK, "frame 1 without");
+        CHECK(isolux_world_render(x, view, 2, moved, bytes, light, bytes) == ISOLUX_OK, "frame 2 with it again");
+        l.x = 620;
+        l.y = 380;
+        CHECK(isolux_world_add_light(fresh, &l, &fid) == ISOLUX_OK, "add to fresh");
+        CHECK(isolux_world_render(fresh, view, 0, NULL, 0, back, bytes) == ISOLUX_OK, "fresh");
+        CHECK(differing(light, back, bytes) == 0, "the light texture after a frame without it: %zu pixels stale",
+              differing(light, back, bytes));
+
+        /* A hidden light stays hidden through get_light and set_light. */
+        CHECK(isolux_world_render(fresh, view, 1, back, bytes, NULL, 0) == ISOLUX_OK, "lit");
+        CHECK(isolux_world_set_light_hidden(fresh, fid, 1) == ISOLUX_OK, "hide");
+        CHECK(isolux_world_get_light(fresh, fid, &l) == ISOLUX_OK, "get");
+        l.r = 10;
+        CHECK(isolux_world_set_light(fresh, fid, &l) == ISOLUX_OK, "set");
+        CHECK(isolux_world_render(fresh, view, 2, moved, bytes, NULL, 0) == ISOLUX_OK, "hidden");
+        CHECK(isolux_world_remove_light(fresh, fid) == ISOLUX_OK, "remove");
+        CHECK(isolux_world_render(fresh, view, 3, first, bytes, NULL, 0) == ISOLUX_OK, "unlit");
+        CHECK(differing(moved, first, bytes) == 0 && differing(back, first, bytes) > 100,
+              "set_light kept the light hidden: %zu pixels differ from no light", differing(moved, first, bytes));
+        CHECK(isolux_world_set_light_hidden(fresh, fid, 0) == ISOLUX_ERROR_ARGUMENT, "a removed id");
+
+        /* Ids are never reused. */
+        int again = -1;
+        CHECK(isolux_world_add_light(fresh, &l, &again) == ISOLUX_OK && again != fid, "new id %d after %d", again, fid);
+        isolux_world_free(x);
+        isolux_world_free(fresh);
+    }
+
+    /* Work over the budget: refused with its estimate, before any of it; a
+     * second thread's call on the busy world refused; a cancel stops it. */
+    {
+        isolux_world* h = NULL;
+        CHECK(isolux_world_open_seeded("isolux", 8, 8, NULL, tileset, &h) == ISOLUX_OK, "open h");
+        CHECK(isolux_world_set_param(h, "rays", "every_pixel") == ISOLUX_OK, "every pixel");
+        isolux_light_init(&l, 500, 300);
+        l.area_a = l.area_b = 4096;
+        int id = -1;
+        CHECK(isolux_world_add_light(h, &l, &id) == ISOLUX_OK, "a huge light");
+        CHECK(isolux_world_render(h, view, 0, NULL, 0, NULL, 0) == ISOLUX_ERROR_TOO_MUCH_WORK &&
+                  strstr(isolux_last_error(), "ray steps") != NULL &&
+                  strstr(isolux_last_error(), "isolux_world_allow_huge") != NULL,
+              "refused with its estimate");
+        CHECK(isolux_world_allow_huge(h, 1) == ISOLUX_OK, "allowed");
+        struct render_job job = {h, view, ISOLUX_OK};
+        pthread_t thread;
+        CHECK(pthread_create(&thread, NULL, render_thread, &job) == 0, "thread");
+        sleep_ms(300);
+        CHECK(isolux_world_get_param(h, "rays", buf, sizeof buf) == ISOLUX_ERROR_ARGUMENT &&
+                  strstr(isolux_last_error(), "in use") != NULL,
+              "a second thread's call on a busy world is refused");
+        CHECK(isolux_world_move_light(h, id, 1, 1) == ISOLUX_ERROR_ARGUMENT, "and changes nothing");
+        const time_t asked = time(NULL);
+        CHECK(isolux_world_cancel(h) == ISOLUX_OK, "cancel");
+        pthread_join(thread, NULL);
+        CHECK(job.status == ISOLUX_CANCELLED, "the render was cancelled: status %d", (int)job.status);
+        CHECK(time(NULL) - asked <= 5, "within seconds: %ld s", (long)(time(NULL) - asked));
+        CHECK(isolux_world_get_light(h, id, &l) == ISOLUX_OK && l.x == 500 && l.area_a == 4096,
+              "the world as it was before the cancelled call");
+        /* The world goes on: with the light back to a small area, a frame is the one a fresh world draws. */
+        l.area_a = l.area_b = 64;
+        CHECK(isolux_world_set_light(h, id, &l) == ISOLUX_OK, "smaller");
+        CHECK(isolux_world_set_param(h, "rays", "border") == ISOLUX_OK, "border rays");
+        CHECK(isolux_world_render(h, view, 1, moved, bytes, NULL, 0) == ISOLUX_OK, "a frame after the cancel");
+        isolux_world* fresh = NULL;
+        CHECK(isolux_world_open_seeded("isolux", 8, 8, NULL, tileset, &fresh) == ISOLUX_OK, "fresh");
+        CHECK(isolux_world_add_light(fresh, &l, NULL) == ISOLUX_OK, "same light");
+        CHECK(isolux_world_render(fresh, view, 0, back, bytes, NULL, 0) == ISOLUX_OK, "fresh frame");
+        CHECK(differing(moved, back, bytes) == 0, "after a cancel, a fresh world's bytes: %zu differ",
+              differing(moved, back, bytes));
+        isolux_world_free(fresh);
+        isolux_world_free(h);
+    }
+
+    /* Many edits: each costs its tile, not the edits before it (8,000 on a
+     * 128x128 map within the bad-input budget, 10 s). */
+    {
+        isolux_world* m = NULL;
+        CHECK(isolux_world_open_seeded("many edits", 128, 128, NULL, tileset, &m) == ISOLUX_OK, "open m");
+        const char* bush[] = {"bush"};
+        const time_t start = time(NULL);
+        int ok = 0;
+        for (int i = 0; i < 8000; ++i) ok += isolux_world_set_tile(m, i % 128, i / 128, NULL, bush, 1) == ISOLUX_OK;
+        const long seconds = (long)(time(NULL) - start);
+        CHECK(ok == 8000, "%d of 8000 edits", ok);
+        CHECK(seconds <= 10, "8000 edits took %ld s", seconds);
+        isolux_world_free(m);
+    }
 
     /* NULL handles are refused, not crashed on. */
     CHECK(isolux_world_render(NULL, view, 0, first, bytes, NULL, 0) == ISOLUX_ERROR_ARGUMENT, "NULL world");

@@ -7,7 +7,7 @@ extends SceneTree
 
 func _init():
 	var lighting = load("res://addons/isolux/isolux_lighting.gdns").new()
-	if lighting.api_version() != 1:
+	if lighting.api_version() != 2:
 		printerr("api version ", lighting.api_version())
 		quit(1)
 		return

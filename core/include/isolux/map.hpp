@@ -25,12 +25,14 @@ Layout parse_layout(std::string_view s, std::string_view source);  // throws Err
 struct Overlay {
     int sprite = -1;
     int dx = 0, dy = 0;
+    friend bool operator==(const Overlay&, const Overlay&) = default;
 };
 
 struct Tile {
     int floor = -1;
     int overlay_count = 0;
     std::array<Overlay, 3> overlays{};
+    friend bool operator==(const Tile&, const Tile&) = default;
 };
 
 struct Map {

@@ -20,6 +20,11 @@ inline constexpr int scene_schema_version = 2;
 
 // Presets. Unknown fields are reported in `warnings`.
 Params load_preset(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
+// A preset by name or path, as every front end takes one (--preset, the C
+// API, Godot): a built-in name (builtin_preset_names) is always the built-in,
+// whatever the working folder holds; anything else is a preset file's path
+// ("./game" reaches a file named game).
+Params preset_named(const std::string& name_or_path, std::vector<std::string>* warnings = nullptr);
 void save_preset(const std::filesystem::path& path, const Params& params);
 std::string preset_to_json(const Params& params);
 Params preset_from_json(std::string_view text, std::string_view source,

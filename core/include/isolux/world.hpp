@@ -47,6 +47,14 @@ World make_world(Tileset tileset, const Scene& scene, std::string_view source = 
 // as make_world does. Returns the world rectangle that changed.
 Rect set_edits(World& w, const std::vector<TileEdit>& edits, std::string_view source = "scene");
 
+// One tile of a seeded map to hold `floor` and `overlays` (sprite indices of
+// the tileset, of the right kinds): the world's edits get the one entry for
+// it that set_tile_edit writes, and only that tile is replaced, so an edit
+// costs its tile whatever the edits before it (a brush, the C API). Throws
+// Error, the world unchanged, for a tile outside the seeded map. Returns the
+// world rectangle that changed.
+Rect set_tile(World& w, int col, int row, int floor, const std::vector<int>& overlays);
+
 // The world rectangle changed in place since `revision`; false when the
 // world was rebuilt since (or the record is gone): everything changed.
 bool changed_since(const World& w, std::uint64_t revision, Rect& region);

@@ -266,4 +266,10 @@ void save_scene(const fs::path& path, const Scene& scene) {
     write_file_atomic(path, scene_to_json(copy));
 }
 
+Params preset_named(const std::string& name_or_path, std::vector<std::string>* warnings) {
+    const std::vector<std::string> names = builtin_preset_names();
+    if (std::find(names.begin(), names.end(), name_or_path) != names.end()) return builtin_preset(name_or_path);
+    return load_preset(name_or_path, warnings);
+}
+
 }  // namespace isolux

@@ -301,7 +301,13 @@ std::vector<Rect> blur_step(FrameState& st, const Params& p, FrameReport& rep) {
 // The light texture cut to the view, for a caller that shows it (the paper's
 // inverse translation between retraces: the texture stays world-anchored).
 void shift_step(FrameState& st, const Params& p, Rect view, const std::vector<Rect>& changed, FrameReport& rep) {
-    if (!st.options.view_light_texture || (changed.empty() && st.light.rect == view)) return;
+    if (!st.options.view_light_texture) {
+        // Dropped, not left stale: a later frame that wants it again then
+        // finds no copy of this view and makes one.
+        st.light = LightTexture{};
+        return;
+    }
+    if (changed.empty() && st.light.rect == view) return;
     Timer t{rep, Stage::shift};
     st.light = shift_light_texture(shown_light(st, p), view);
     touch(rep, Stage::shift, {view});

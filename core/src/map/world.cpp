@@ -17,6 +17,18 @@ std::atomic<std::uint64_t> next_revision{1};
 // Changes remembered for caches; older ones make a cache rebuild everything.
 constexpr std::size_t max_changes = 4096;
 
+// Records an in-place change of `changed` (nothing when it is empty).
+void record_change(World& w, Rect changed) {
+    if (changed.empty()) return;
+    w.revision = next_revision++;
+    if (w.changes.size() >= max_changes) {
+        // Too long a record: caches older than its start rebuild everything.
+        w.changes.erase(w.changes.begin(), w.changes.begin() + std::ptrdiff_t(max_changes / 2));
+        w.built_revision = 0;
+    }
+    w.changes.push_back({w.revision, changed});
+}
+
 }  // namespace
 
 void touch(World& w) {
@@ -69,14 +81,25 @@ Rect set_edits(World& w, const std::vector<TileEdit>& edits, std::string_view so
         changed = bounding(changed, replace_tile(w.placed, w.map, w.tileset, col, row, t));
     }
     w.edits = edits;
-    if (changed.empty()) return changed;
-    w.revision = next_revision++;
-    if (w.changes.size() >= max_changes) {
-        // Too long a record: caches older than its start rebuild everything.
-        w.changes.erase(w.changes.begin(), w.changes.begin() + std::ptrdiff_t(max_changes / 2));
-        w.built_revision = 0;
-    }
-    w.changes.push_back({w.revision, changed});
+    record_change(w, changed);
+    return changed;
+}
+
+Rect set_tile(World& w, int col, int row, int floor, const std::vector<int>& overlays) {
+    if (w.seeded.tiles.empty() || col < 0 || row < 0 || col >= w.map.width || row >= w.map.height)
+        throw Error("set_tile: tile " + std::to_string(col) + ", " + std::to_string(row) + " is not a tile of the " +
+                    std::to_string(w.map.width) + "x" + std::to_string(w.map.height) + " seeded map");
+    set_tile_edit(w.edits, w.seeded, w.tileset, col, row, floor, overlays);
+    // The tile's one entry now holds what differs from the seed: the same
+    // tile apply_edits makes of the whole list.
+    const Tile& seed = w.seeded.at(col, row);
+    ResolvedEdit e{col, row, {}, {}};
+    if (floor != seed.floor) e.floor = floor;
+    if (overlays != overlay_sprites(seed)) e.overlays = overlays;
+    const Tile t = edited_tile(w.seeded, col, row, {&e});
+    w.map.tiles[std::size_t(row) * std::size_t(w.map.width) + std::size_t(col)] = t;
+    const Rect changed = replace_tile(w.placed, w.map, w.tileset, col, row, t);
+    record_change(w, changed);
     return changed;
 }
 

@@ -614,3 +614,22 @@ TEST(LightLook, surfaceLightMixKeepsTheSpritesHue) {
     composite_pixel(red, white, p, surf);
     EXPECT_NEAR(surf[0], 0.8 * std::sqrt(p.ambient_clarity) * 0.25, 1e-12);
 }
+
+TEST(Frame, theViewsLightTextureAskedForAgainAfterFramesWithoutItIsTheCurrentOne) {
+    Scene s;
+    s.width = s.height = 8;
+    s.lights = {Light{300.5, 200.5}};
+    s.params.area_a = s.params.area_b = 64;
+    const Camera cam{100, 50, 500, 400};
+    FrameState st;
+    render_frame(st, test_world(), s, cam, 0);  // with the view's light texture
+    st.options.view_light_texture = false;
+    s.lights[0].x = 420.5;
+    render_frame(st, test_world(), s, cam, 1);  // the light moved, no copy wanted
+    st.options.view_light_texture = true;
+    render_frame(st, test_world(), s, cam, 2);  // nothing changed since: the copy is made now
+    FrameState fresh;
+    render_frame(fresh, test_world(), s, cam, 0);
+    EXPECT_EQ(st.light.rect, fresh.light.rect);
+    EXPECT_EQ(st.light.texels, fresh.light.texels);
+}

@@ -293,3 +293,36 @@ TEST(Edits, anEditRetracesOnlyTheLightsItsRegionMeets) {
     EXPECT_FALSE(intersect(rep.rebuilt, Rect{300 - 64, 300 - 64, 129, 129}).empty());
     EXPECT_TRUE(intersect(rep.rebuilt, Rect{1200 - 64, 600 - 64, 129, 129}).empty());
 }
+
+TEST(Edits, setTileGivesTheBytesOfTheBrushsEditsAppliedWholeAndTouchesOnlyItsTile) {
+    Scene s = small_scene();
+    s.seed = "one tile";
+    const Camera camera{0, 0, 1400, 900};
+    World w = make_world(tiles(), s);
+    FrameState st;
+    render_frame(st, w, s, camera, 0);
+    const std::vector<int> floors = {sprite("grass"), sprite("water"), sprite("sand"), sprite("stone")};
+    const std::vector<int> overlays = {sprite("oak"), sprite("pine"), sprite("bush"), sprite("rock"), sprite("wall")};
+    Pcg32 rng(7);
+    for (int step = 0; step < 24; ++step) {
+        const int col = int(rng.below(std::uint32_t(s.width))), row = int(rng.below(std::uint32_t(s.height)));
+        const int floor = floors[rng.below(std::uint32_t(floors.size()))];
+        std::vector<int> on;
+        for (std::uint32_t k = rng.below(4); k > 0; --k) on.push_back(overlays[rng.below(std::uint32_t(overlays.size()))]);
+        const std::vector<Tile> before = w.map.tiles;
+        set_tile(w, col, row, floor, on);
+        for (std::size_t i = 0; i < before.size(); ++i) {
+            if (int(i) == row * s.width + col) continue;
+            ASSERT_EQ(w.map.tiles[i], before[i]) << "step " << step << ": tile " << i;
+        }
+        // The edits it wrote, applied whole from the scene, draw the same frame.
+        s.edits = w.edits;
+        render_frame(st, w, s, camera, step + 1);
+        const World full = make_world(tiles(), s);
+        FrameState fresh;
+        render_frame(fresh, full, s, camera, 0);
+        ASSERT_EQ(w.map.tiles, full.map.tiles) << "step " << step;
+        ASSERT_EQ(st.final.rgba, fresh.final.rgba) << "step " << step;
+    }
+    EXPECT_FALSE(error_of([&] { set_tile(w, s.width, 0, floors[0], {}); }).empty());  // outside the map
+}
