@@ -12,6 +12,7 @@
 namespace isolux::cli {
 
 int run_export_tiled(const ExportArgs& a) {
+    check_output_file(a.out);  // before the world is built: a missing folder costs nothing
     std::vector<std::string> warnings;
     Scene scene = load_scene(a.scene, &warnings);
     for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << printable(w) << "\n";

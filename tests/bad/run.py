@@ -256,6 +256,11 @@ tmx("far_object", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup 
 tmx("far_object_projected", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup name="o"><object gid="1" x="9e8" y="-9e8"/></objectgroup>', frag="too far")
 tmx("nan_object", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup name="o"><object gid="1" x="nan" y="0"/></objectgroup>', frag="not a number")
 tmx("big_gid", TS + L('<data encoding="csv">1,1,1,99999999999</data>'), frag="not a gid")
+# XML-encoded gids take the CSV's one reader: beyond 32 bits, or not a number, refused (not truncated).
+tmx("xml_gid_beyond_32_bits", TS + L('<data><tile gid="1"/><tile gid="1"/><tile gid="1"/><tile gid="4294967297"/></data>'), frag="4294967297")
+tmx("xml_gid_not_a_number", TS + L('<data><tile gid="1"/><tile gid="one"/><tile/><tile gid="1"/></data>'), frag="not a gid")
+tmx("xml_gid_negative", TS + L('<data><tile gid="-1"/><tile gid="1"/><tile/><tile gid="1"/></data>'), frag="not a gid")
+tmx("xml_gids_ok", TS + L('<data><tile gid="1"/><tile/><tile gid="1"/><tile gid="1"/></data>'), frag="", want=0)
 tmx("floor_above_overlay", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup name="o"><object gid="1" x="0" y="0"/></objectgroup>' + '<layer name="f" width="2" height="2"><properties><property name="isolux_kind" value="floor"/></properties><data encoding="csv">1,1,1,1</data></layer>', frag="floor layer above")
 tmx("bad_light", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup name="lights"><object x="1" y="1"><properties><property name="a" value="-5"/></properties><point/></object></objectgroup>', frag="property a")
 tmx("malformed", TS + "<layer", frag="malformed XML")
@@ -326,6 +331,7 @@ case("warnings_capped_edits_outside", ["render", "--scene", write("many_edits.sc
 tmx("warnings_capped_image_layers", TS + L('<data encoding="csv">1,1,1,1</data>') + '<imagelayer name="i"/>' * 200000,
     frag="more image layers", want=0, max_lines=12)
 # A map read back exports again (its floors kept: tests/core/formats/tiled_test.cpp checks the pixels).
+os.makedirs(T("reexport"), exist_ok=True)  # export-tiled writes into a folder that exists
 case("reexport_tiled_map", ["export-tiled", "--scene", write("reexport.scene.json", json.dumps({"map": T("tmx", "ok.tmx")})),
                             "--out", T("reexport", "map.tmx")], 0)
 # Sprite names that are paths write nothing outside the export's folder.
@@ -336,6 +342,7 @@ for i, sprite in enumerate(names_doc["sprites"]):
         sprite["height_map"] = os.path.join(os.path.dirname(MANIFEST), sprite["height_map"])
     sprite["name"] = ["../../escaped", "/tmp/isolux_bad_absolute", "same", "same"][i % 4] if i < 8 else sprite["name"]
 write("names/tileset.json", json.dumps(names_doc))
+os.makedirs(T("names", "out"), exist_ok=True)
 case("export_names_are_not_paths", ["export-tiled", "--scene", write("names.scene.json", json.dumps(
     {"width": 4, "height": 4, "tileset": T("names", "tileset.json")})), "--out", T("names", "out", "map.tmx")], 0)
 # A name isolux gives a file of its own in the chosen folder that is a link
@@ -425,7 +432,14 @@ case("preset_name_beside_a_file_of_that_name", ["render", "--size", "3x3", "--pr
      cwd=T("shadow"))
 case("preset_path_to_a_file_of_a_builtins_name", ["render", "--size", "3x3", "--preset", "./paper", "--out", T("shadow.png")], 2,
      "paper", cwd=T("shadow"))
-must_not_exist = [T("escaped.png"), T("names", "escaped.png"), "/tmp/isolux_bad_absolute.png"]
+# export-tiled into a folder that does not exist: refused before the work,
+# as every other output is, and nothing made.
+small_scene = write("export_small.scene.json", json.dumps({"seed": "export", "width": 3, "height": 3}))
+case("export_tiled_into_a_missing_folder", ["export-tiled", "--scene", small_scene, "--out", T("no_such_dir", "level.tmx")],
+     2, "does not exist")
+case("export_tiled_into_a_missing_folder_two_deep", ["export-tiled", "--scene", small_scene, "--out",
+                                                      T("no", "such", "level.tmx")], 2, "does not exist")
+must_not_exist = [T("no_such_dir"), T("no"), T("escaped.png"), T("names", "escaped.png"), "/tmp/isolux_bad_absolute.png"]
 
 # Run them all.
 failures = []

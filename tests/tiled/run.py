@@ -83,6 +83,7 @@ for name, scene in scenes.items():
         import json
         json.dump(scene, f)
     tmx = os.path.join(tmp, "out_" + name, name + ".tmx")
+    os.makedirs(os.path.dirname(tmx), exist_ok=True)  # export-tiled writes into a folder that exists
     p = run(cli, "export-tiled", "--scene", sp, "--out", tmx)
     check(p.returncode == 0 and os.path.exists(tmx), name + ": export-tiled")
     text = open(tmx).read()
@@ -99,6 +100,7 @@ for name, scene in scenes.items():
     # edge): tmxrasterizer draws it as isolux does, and it reads back to the
     # same lit frame.
     inf = os.path.join(tmp, "inf_" + name, name + ".tmx")
+    os.makedirs(os.path.dirname(inf), exist_ok=True)  # export-tiled writes into a folder that exists
     p = run(cli, "export-tiled", "--scene", sp, "--out", inf, "--infinite", "4")
     text = open(inf).read() if os.path.exists(inf) else ""
     check(p.returncode == 0 and 'infinite="1"' in text and text.count("<chunk") >= 4, name + ": export-tiled --infinite")
@@ -117,6 +119,7 @@ with open(endless, "w") as f:
     json.dump({"schema_version": 2, "seed": "tiled", "width": "endless", "height": "endless",
                "lights": [{"x": X + 300, "y": Y + 200, "color": "ffd8a0"}]}, f)
 etmx = os.path.join(tmp, "out_endless", "endless.tmx")
+os.makedirs(os.path.dirname(etmx), exist_ok=True)  # export-tiled writes into a folder that exists
 p = run(cli, "export-tiled", "--scene", endless, "--view", f"{X},{Y},600,400", "--infinite", "16", "--out", etmx)
 text = open(etmx).read() if os.path.exists(etmx) else ""
 check(p.returncode == 0 and 'infinite="1"' in text and text.count("<chunk") >= 16, "endless: export-tiled --view --infinite")

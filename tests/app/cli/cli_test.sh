@@ -207,7 +207,7 @@ cat > "$tmp/endless.json" <<'JSON'
 JSON
 check endless_scene 0 "" -- render --scene "$tmp/endless.json" --out "$tmp/e2.png"
 if cmp -s "$tmp/e1.png" "$tmp/e2.png"; then pass=$((pass + 1)); else echo "FAIL endless_scene_same_pixels"; fail=$((fail + 1)); fi
-check endless_export_refused 2 "endless world" -- export-tiled --scene "$tmp/endless.json" --out "$tmp/endless_export/level.tmx"
+check endless_export_refused 2 "endless world" -- export-tiled --scene "$tmp/endless.json" --out "$tmp/endless_level.tmx"
 # A walk of six frames ends on the pixels of a render of its last view.
 check endless_walk 0 "" -- render --size endless --view 100000,50000,400,300 --light 100700,50400 --frames 6 \
   --camera-step 120,60 --out "$tmp/walk.png"

@@ -164,3 +164,11 @@ TEST(TiledExport, aReExportWritesNewFilesThenTheMapThenRemovesTheOldOnes) {
     EXPECT_FALSE(fs::exists(d.path / "level_images.1"));
     EXPECT_EQ(load_tiled(tmx).scene.lights.size(), 2u);
 }
+
+TEST(TiledExport, aMapIntoAFolderThatDoesNotExistIsRefusedBeforeAnythingIsWritten) {
+    TempDir d;
+    const Scene scene = small_scene();
+    const World w = make_world(test::default_tileset(), scene);
+    EXPECT_MENTIONS(error_of([&] { export_tiled(w, scene, d.path / "missing" / "level.tmx"); }), "does not exist");
+    EXPECT_FALSE(fs::exists(d.path / "missing"));
+}

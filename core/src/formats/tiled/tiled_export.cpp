@@ -523,7 +523,10 @@ void write_image_layers(pugi::xml_node m, const World& world, const Scene& scene
 
 std::pair<int, int> export_tiled(const World& world, const Scene& scene, const fs::path& tmx, const TiledExport& options) {
     if (tmx.extension() != ".tmx") throw Error(tmx.string() + ": the map must be a .tmx file");
-    check_output_target(write_target(tmx));  // a FIFO or a device is refused before any image or TSX is written
+    // A FIFO, a device or a missing folder is refused before any image or
+    // TSX is written, as every other output is (the images' own folder is
+    // the export's to make, the map's is not).
+    check_output_file(tmx);
     if (options.chunk < 0 || options.chunk > max_tiled_side)
         throw Error(tmx.string() + ": the chunk size " + std::to_string(options.chunk) + " is not in [1, " +
                     std::to_string(max_tiled_side) + "]");

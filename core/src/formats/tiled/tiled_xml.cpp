@@ -159,6 +159,18 @@ std::string unzstd_bounded(const fs::path& file, const pugi::xml_node& data, con
 
 namespace {
 
+// One gid as TMX writes it in CSV and in XML <tile>s: a decimal of at most
+// 32 bits (the flip flags included), read from `p` and moved past it; false
+// when there is none or it is larger (truncated, it would draw another tile).
+bool read_gid(const char*& p, std::uint32_t& gid) {
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(p, &end, 10);
+    if (end == p || v > 0xFFFFFFFFull || *p == '-') return false;
+    gid = std::uint32_t(v);
+    p = end;
+    return true;
+}
+
 // `count` gids from `holder` (a layer's <data>, or one of its <chunk>s) in the
 // <data>'s encoding and compression.
 std::vector<std::uint32_t> decode_gids(const fs::path& file, const pugi::xml_node& data, const pugi::xml_node& holder,
@@ -172,12 +184,10 @@ std::vector<std::uint32_t> decode_gids(const fs::path& file, const pugi::xml_nod
         while (*p) {
             while (*p == ' ' || *p == '\n' || *p == '\r' || *p == '\t' || *p == ',') ++p;
             if (!*p) break;
-            char* end = nullptr;
-            const unsigned long long v = std::strtoull(p, &end, 10);
-            if (end == p || v > 0xFFFFFFFFull) fail(file, holder, "CSV data holds a value that is not a gid");
-            gids.push_back(std::uint32_t(v));
+            std::uint32_t gid = 0;
+            if (!read_gid(p, gid)) fail(file, holder, "CSV data holds a value that is not a gid");
+            gids.push_back(gid);
             if (gids.size() > count) break;
-            p = end;
         }
     } else if (encoding == "base64") {
         std::string bytes = base64_decode(file, holder, holder.text().get());
@@ -192,7 +202,13 @@ std::vector<std::uint32_t> decode_gids(const fs::path& file, const pugi::xml_nod
         }
     } else if (encoding.empty()) {
         for (pugi::xml_node t : holder.children("tile")) {
-            gids.push_back(std::uint32_t(std::strtoull(t.attribute("gid").value(), nullptr, 10)));
+            std::uint32_t gid = 0;  // a <tile> without a gid is empty
+            if (const pugi::xml_attribute a = t.attribute("gid")) {
+                const char* p = a.value();
+                if (!read_gid(p, gid) || *p != '\0')
+                    fail(file, t, "gid \"" + std::string(a.value()) + "\" is not a gid (a whole number below 2^32)");
+            }
+            gids.push_back(gid);
             if (gids.size() > count) break;
         }
     } else {
