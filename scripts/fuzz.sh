@@ -20,7 +20,7 @@ export ASAN_OPTIONS="fast_unwind_on_malloc=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # Absolute paths: fuzz_cli works in a folder of its own (it chdirs there).
 root=$PWD
-for t in preset scene tileset sprite tiled cli; do
+for t in preset scene tileset sprite tiled cli capi; do
   work=$root/build/fuzz/corpus_$t
   mkdir -p "$work"
   echo "fuzz: $t for ${seconds}s"

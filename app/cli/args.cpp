@@ -12,12 +12,19 @@
 
 namespace isolux::cli {
 
-void check_work(double steps, bool allow, const std::string& what) {
-    if (steps <= huge_trace_steps || allow) return;
+void check_work(double steps, bool allow, const std::string& what, double bytes) {
+    if (allow) return;
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%.2g", steps);
-    throw Error(what + " would trace about " + std::string(buf) +
-                " ray steps (minutes or more): use a smaller area or view, border rays or fewer frames, or --allow-huge");
+    if (steps > huge_trace_steps) {
+        std::snprintf(buf, sizeof buf, "%.2g", steps);
+        throw Error(what + " would trace about " + std::string(buf) +
+                    " ray steps (minutes or more): use a smaller area or view, border rays or fewer frames, or --allow-huge");
+    }
+    if (bytes > huge_render_bytes) {
+        std::snprintf(buf, sizeof buf, "%.1f", bytes / double(1 << 30));
+        throw Error(what + " would hold about " + std::string(buf) +
+                    " GiB at once (its view's pixels): render part of it with --view X,Y,W,H, or --allow-huge");
+    }
 }
 
 void add_param_flags(CLI::App& cmd, ParamArgs& pa) {

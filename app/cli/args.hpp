@@ -30,7 +30,7 @@ Params params_from_args(const ParamArgs& a, Params p);
 
 // Refuses work beyond what finishes in seconds, with the estimate and the
 // flag that allows it anyway.
-void check_work(double steps, bool allow, const std::string& what);
+void check_work(double steps, bool allow, const std::string& what, double bytes = 0);
 
 // Integers separated by `sep`, and reals separated by commas (finite):
 // false, with `out` partial, on anything else.

@@ -19,6 +19,7 @@ int run_export_tiled(const ExportArgs& a) {
     TiledExport opt;
     opt.images = a.images;
     opt.chunk = a.chunk;
+    opt.allow_huge = a.allow_huge;
     World world;
     std::string region;
     if (scene.endless) {

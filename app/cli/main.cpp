@@ -138,6 +138,7 @@ int isolux_cli_main(int argc, char** argv) {
     export_tiled_cmd->add_option("--scene", ea.scene, "Scene JSON file")->required();
     export_tiled_cmd->add_option("--out", ea.out, "The map to write: DIR/NAME.tmx")->required();
     export_tiled_cmd->add_flag("--images", ea.images, "Also the light texture and the final frame as (hidden) image layers");
+    export_tiled_cmd->add_flag("--allow-huge", ea.allow_huge, "Run even when the export would hold over 1 GiB at once");
     export_tiled_cmd->add_option("--view", ea.view,
                                  "An endless world's view, X,Y,W,H: the window of chunks it needs is the map written");
     export_tiled_cmd->add_option("--infinite", ea.chunk,

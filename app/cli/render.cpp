@@ -249,11 +249,13 @@ struct Layer {
     const char* name;
     Image (*draw)(const RenderArgs&, const RenderTarget&);
     bool reference;
+    bool lit;  // holds a lit frame's textures (render_memory), not only the sprites
 };
 constexpr Layer layers[] = {
-    {"final", draw_lit, false},      {"light", draw_lit, false},           {"map", draw_map, false},
-    {"obstacles", draw_map, false},  {"opacity", draw_opacity, false},     {"truth", draw_reference, true},
-    {"difference", draw_reference, true},
+    {"final", draw_lit, false, true},      {"light", draw_lit, false, true},
+    {"map", draw_map, false, false},       {"obstacles", draw_map, false, false},
+    {"opacity", draw_opacity, false, false}, {"truth", draw_reference, true, true},
+    {"difference", draw_reference, true, true},
 };
 
 const Layer& find_layer(const std::string& name) {
@@ -277,7 +279,7 @@ int run_render(const RenderArgs& a) {
     // Every frame's trace and pixels, and the reference's own work where one is drawn.
     check_work(render_work(t.scene, t.view, a.frames) +
                    (layer.reference ? reference_work(t.world, t.scene, t.view, parse_reference(a.reference, "--reference")) : 0),
-               a.allow_huge, "this render");
+               a.allow_huge, "this render", layer.lit ? render_memory(t.view) : 0);
     save_image(a.out, layer.draw(a, t));
     std::cout << "wrote " << a.out << " (" << t.view.w << "x" << t.view.h << ", layer " << a.layer << ", seed \""
               << t.scene.seed << "\")\n";

@@ -84,7 +84,7 @@ void run_file_action(App& app, const std::string& action, const std::string& pat
     else if (action == "export-obstacles") export_image(app, "obstacles", path);
     else if (action == "export-tiled") {
         try {
-            export_tiled(e.world, e.scene, path);
+            export_tiled(e.world, e.scene, path, editor_export);
             const WorldOffset o = world_offset(e);
             set_status(e, "exported the level as a Tiled map: " + path +
                               (e.scene.endless ? " (the chunks around the view: tiles from (" + std::to_string(o.col) + ", " +

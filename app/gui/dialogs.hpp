@@ -6,6 +6,7 @@
 #include <string>
 
 #include "editor/editor.hpp"
+#include "isolux/tiled.hpp"
 
 namespace isolux::app {
 
@@ -54,5 +55,16 @@ void long_work_prompt(App& app);
 // Exports (PNG or EXR by extension): the final frame as shown (the window's
 // size at zoom 1, exactly), the light texture and the obstacle map of the view.
 bool export_image(App& app, const std::string& what, const std::string& path);
+
+// How the editor exports a Tiled map (File › Export and the script's
+// export-tiled): the level it holds, whatever export_memory estimates. The
+// editor's level is already bounded by what it can show and edit (an endless
+// world's loaded window), and the user asked for this file by name; the CLI's
+// refusal is for a scene nobody has looked at.
+inline const TiledExport editor_export = [] {
+    TiledExport o;
+    o.allow_huge = true;
+    return o;
+}();
 
 }  // namespace isolux::app

@@ -92,7 +92,7 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
     if (ImGui::Checkbox("correct the solid", &fix)) {
         if (fix && !objects.empty())
             spec.object_foot = std::pair{int(std::floor(objects[0].center_x)), int(std::floor(objects[0].center_y))},
-            spec.object_height = int(objects[0].height());
+            spec.object_height = std::min(int(objects[0].height()), s.image.height);  // validate()'s bound
         else if (fix)
             spec.object_foot = std::pair{s.anchor_x, s.anchor_y}, spec.object_height = 0;
         else

@@ -314,7 +314,7 @@ void run_script_step(App& app) {
         export_image(app, "final", step.args[0]);
     } else if (step.op == "export-tiled") {
         try {
-            export_tiled(e.world, e.scene, step.args[0]);
+            export_tiled(e.world, e.scene, step.args[0], editor_export);
         } catch (const Error& err) {
             set_status(e, err.what(), true);
         }

@@ -87,8 +87,9 @@ ISOLUX_API void isolux_world_free(isolux_world* world);
  * the next call starts. */
 ISOLUX_API isolux_status isolux_world_cancel(isolux_world* world);
 /* A render whose estimated work (isolux-cli's, in ray steps) is beyond
- * minutes on one core returns ISOLUX_ERROR_TOO_MUCH_WORK with the estimate,
- * before any of it; `allow` 1 lets this world run it anyway (0: the default). */
+ * minutes on one core, or whose view would hold over 1 GiB at once (about 54
+ * megapixels), returns ISOLUX_ERROR_TOO_MUCH_WORK with the estimate, before
+ * any of it; `allow` 1 lets this world run it anyway (0: the default). */
 ISOLUX_API isolux_status isolux_world_allow_huge(isolux_world* world, int allow);
 
 /* --- Parameters, by the names of `isolux-cli params` */

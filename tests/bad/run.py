@@ -3,7 +3,9 @@
 each with its expected exit code and a fragment of the expected one-line
 message. Every case must end in a clean refusal (exit 2, one line naming the
 file or field) or a correct result (exit 0), within 10 s and 1 GB, and never
-crash, hang or print a sanitizer report. Usage: run.py PATH/TO/isolux-cli SOURCE_DIR [--instrumented]"""
+crash, hang or print a sanitizer report.
+Usage: run.py PATH/TO/isolux-cli SOURCE_DIR [--instrumented] [--only TEXT] [--times]
+(--only: the cases whose names hold TEXT; --times: each case's seconds and peak memory)"""
 import json, os, resource, shutil, struct, subprocess, sys, tempfile, time, zlib
 
 cli, src = sys.argv[1], sys.argv[2]
@@ -70,6 +72,8 @@ for name, args, frag in [
     ("light_far", ["render", "--size", "3x3", "--light", "1e18,0"], "--light"),
     ("endless_view_far", ["render", "--size", "endless", "--view", "200000000000000,0,10,10"], "beyond"),
     ("endless_no_view", ["render", "--size", "endless"], "--view"),
+    ("endless_view_huge", ["render", "--size", "endless", "--view", "0,0,20000,13500"], "megapixel"),
+    ("endless_view_square_huge", ["render", "--size", "endless", "--view", "-5,-5,65536,65536"], "megapixel"),
     ("light_colour", ["render", "--size", "3x3", "--light", "1,2,3,4,zzzzzz"], "colour"),
     ("light_height_text", ["render", "--size", "3x3", "--light", "1,2,h=tall"], "light_height"),
     ("area_negative", ["render", "--size", "3x3", "--area", "-1,5"], "area_a"),
@@ -137,6 +141,9 @@ scene("camera_far", '{"width": 3, "height": 3, "camera": {"x": 1e18, "y": 0, "wi
 scene("camera_far_endless", '{"width": "endless", "height": "endless", "camera": {"x": 1e300, "y": 0, "width": 10, "height": 10}}', 2, "camera")
 scene("edit_beyond_the_world", '{"width": "endless", "height": "endless", "camera": {"x": 0, "y": 0, "width": 10, "height": 10}, "edits": [{"tile": [1000000000001, 0], "floor": "grass"}]}', 2, "edits[0]")
 scene("edit_far_endless", '{"width": "endless", "height": "endless", "camera": {"x": 0, "y": 0, "width": 10, "height": 10}, "edits": [{"tile": [999999999999, -999999999999], "floor": "grass"}]}', 0, "")
+scene("camera_huge_endless", '{"width": "endless", "height": "endless", "camera": {"x": 0, "y": 0, "width": 30000, "height": 10000}}', 2, "megapixel")
+scene("map_and_endless", '{"width": "endless", "height": "endless", "map": "level.tmx", "camera": {"x": 0, "y": 0, "width": 10, "height": 10}}', 2, "map")
+scene("endless_and_map", '{"map": "level.tmx", "height": "endless", "width": "endless"}', 2, "endless")
 scene("preset_name_unknown", '{"preset": "brilliant"}', 2, "brilliant")
 scene("tileset_missing", '{"width": 3, "height": 3, "tileset": "nowhere/tileset.json"}', 2, "tileset.json")
 scene("too_many_lights", '{"lights": [' + ",".join('{"x": 1, "y": 1}' for _ in range(100001)) + "]}", 2, "lights")
@@ -251,6 +258,20 @@ tmx("zlib_bomb", TS + L(f'<data encoding="base64" compression="zlib">{bomb}</dat
 tmx("wrong_layer_size", TS + '<layer name="g" width="3" height="2"><data encoding="csv">1,1,1,1,1,1</data></layer>', frag="is 3x2")
 tmx("infinite", TS, attrs='orientation="isometric" infinite="1" width="2" height="2" tilewidth="64" tileheight="32"')
 tmx("chunks", TS + L('<data encoding="csv"><chunk x="0" y="0" width="2" height="2">1,1,1,1</chunk></data>'), frag="chunks")
+INF = 'orientation="isometric" infinite="1" width="2" height="2" tilewidth="64" tileheight="32"'
+def chunk(x, y, w=2, h=2, data=None):
+    return f'<chunk x="{x}" y="{y}" width="{w}" height="{h}">{data or ",".join("1" * (w * h))}</chunk>'
+tmx("chunks_far_negative", TS + L('<data encoding="csv">' + chunk(-999999998, -999999998) + '</data>'), attrs=INF, frag="1e8 pixels")
+tmx("chunks_far_apart_in_x", TS + L('<data encoding="csv">' + chunk(999999000, 0) + chunk(999999990, 6) + '</data>'), attrs=INF, frag="1e8 pixels")
+tmx("chunks_overlapping", TS + L('<data encoding="csv">' + chunk(0, 0, 4, 4) + chunk(2, 2, 4, 4) + '</data>'), attrs=INF, frag="overlaps an earlier chunk")
+# The same 1024x1024 zlib chunk a hundred times: refused at the second, before it is inflated.
+big = _b64.b64encode(_zlib.compress(bytes(4 << 20), 9)).decode()
+tmx("chunks_repeated", TS + L('<data encoding="base64" compression="zlib">' +
+    "".join(f'<chunk x="0" y="0" width="1024" height="1024">{big}</chunk>' for _ in range(100)) + '</data>'), attrs=INF, frag="overlaps an earlier chunk")
+# Three tiny chunks far apart: a 130-megapixel view of mostly nothing, refused by its memory before any pixel.
+tmx("chunks_sparse", TS + L('<data encoding="csv">' + chunk(0, 0) + chunk(450, 0) + chunk(0, 130) + '</data>'), attrs=INF, frag="GiB")
+case("size_map_whole_memory", ["render", "--size", "128x128", "--out", T("out.png")], 2, "GiB")
+case("size_map_whole_light_memory", ["render", "--size", "100x120", "--layer", "light", "--out", T("out.png")], 2, "--allow-huge")
 tmx("stagger_x", TS, attrs='orientation="staggered" staggeraxis="x" width="2" height="2" tilewidth="64" tileheight="32"')
 tmx("far_object", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup name="o"><object gid="1" x="1e12" y="0"/></objectgroup>', frag="[-1e9, 1e9]")
 tmx("far_object_projected", TS + L('<data encoding="csv">1,1,1,1</data>') + '<objectgroup name="o"><object gid="1" x="9e8" y="-9e8"/></objectgroup>', frag="too far")
@@ -381,6 +402,31 @@ poly_ts = {"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", 
 case("footprint_polygon_1000_points", ["render", "--scene", write("ts/poly.scene.json", json.dumps(
     {"width": 3, "height": 3, "tileset": write("ts/poly.json", json.dumps(poly_ts)),
      "edits": [{"tile": [1, 1], "overlays": ["o"]}]})), "--layer", "obstacles", "--out", T("out.png")], 0)
+# The same polygon scaled to a 4096x4096 sprite, through check-tileset (the
+# footprint, the solid and the sheet of a sprite the size of the largest image).
+write("ts/large4096.png", png(4096, 4096, rows=b"".join(b"\0" + b"\0" * (4096 * 4) for _ in range(4096))))
+poly4096_ts = {"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]},
+                           O(image="large4096.png", footprint={"polygon": [[2 * x, 2 * y] for x, y in ring]})]}
+case("footprint_polygon_1000_points_4096_check", ["check-tileset", write("ts/poly4096.json", json.dumps(poly4096_ts)),
+                                                  "--json"], 0)
+# An object's height is bounded by its image: a hundred sprites asking for
+# solids 65,536 pixels tall are refused as the manifest loads.
+write("ts/small64.png", png(64, 64))
+tall_ts = {"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]}] +
+           [O(name=f"o{i}", image="small64.png", footprint={"object": {"foot": [32, 60], "height": 65536}}) for i in range(100)]}
+case("object_height_65536_a_hundred_times", ["check-tileset", write("ts/tall.json", json.dumps(tall_ts))], 2, "taller than its 64x64")
+tileset("object_height_beyond_image", O(image="small64.png", footprint={"object": {"height": 65}}), 2, "height 65")
+# The shapes' solids are a budget of the whole tileset: four sprites of 1000
+# boxes each are refused, however each shape alone is within its own limit.
+def boxes(n):
+    return [{"kind": "box", "min": [k % 20 - 10, k // 20 - 25, 0], "max": [k % 20 - 9, k // 20 - 24, 8]} for k in range(n)]
+shapes_ts = {"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]}] +
+             [O(name=f"s{i}", image="small64.png", shape=boxes(1000)) for i in range(4)]}
+case("shapes_4_of_1000_boxes", ["render", "--size", "3x3", "--tileset", write("ts/shapes4.json", json.dumps(shapes_ts)),
+                                "--occluders", "shapes", "--out", T("out.png")], 2, "over the 1000")
+shapes2_ts = dict(shapes_ts, sprites=shapes_ts["sprites"][:1] + [O(name=f"s{i}", image="small64.png", shape=boxes(600)) for i in range(2)])
+case("shapes_2_of_600_boxes_truth", ["render", "--size", "3x3", "--tileset", write("ts/shapes2.json", json.dumps(shapes2_ts)),
+                                     "--layer", "truth", "--out", T("out.png")], 2, "solids to 1200")
 # A solid estimated from a 2048x2048 opaque sprite, its silhouette drawn
 # (check-tileset) and traced against (render): the work follows rows times
 # heights, not pixels times heights (minutes before).
@@ -439,9 +485,23 @@ case("export_tiled_into_a_missing_folder", ["export-tiled", "--scene", small_sce
      2, "does not exist")
 case("export_tiled_into_a_missing_folder_two_deep", ["export-tiled", "--scene", small_scene, "--out",
                                                       T("no", "such", "level.tmx")], 2, "does not exist")
-must_not_exist = [T("no_such_dir"), T("no"), T("escaped.png"), T("names", "escaped.png"), "/tmp/isolux_bad_absolute.png"]
+# export-tiled of a map whose export would hold over 1 GiB: refused with the
+# estimate before any file, a whole map and a lit frame of it (--images).
+os.makedirs(T("big_export"), exist_ok=True)
+case("export_tiled_whole_256_map", ["export-tiled", "--scene", write("export_256.scene.json", json.dumps(
+    {"seed": "big", "width": 256, "height": 256})), "--out", T("big_export", "level.tmx")], 2, "GiB")
+case("export_tiled_images_of_a_large_map", ["export-tiled", "--images", "--scene", write("export_80.scene.json", json.dumps(
+    {"seed": "big", "width": 80, "height": 80})), "--out", T("big_export", "level.tmx")], 2, "--allow-huge")
+case("export_tiled_endless_region_too_large", ["export-tiled", "--scene", write("export_endless.scene.json", json.dumps(
+    {"width": "endless", "height": "endless"})), "--view", "0,0,16000,12000", "--out", T("big_export", "level.tmx")], 2, "GiB")
+must_not_exist = [T("big_export", "level.tmx"), T("big_export", "level_images"), T("no_such_dir"), T("no"), T("escaped.png"), T("names", "escaped.png"), "/tmp/isolux_bad_absolute.png"]
 
-# Run them all.
+# Run them all (or those --only names).
+if "--only" in sys.argv[3:]:
+    only = sys.argv[sys.argv.index("--only") + 1]
+    cases = [c for c in cases if only in c[0]]
+    must_not_exist = []
+times = "--times" in sys.argv[3:]
 failures = []
 worst_s = worst_mb = 0.0
 for name, args, want, fragment, max_lines, cwd in cases:
@@ -458,6 +518,8 @@ for name, args, want, fragment, max_lines, cwd in cases:
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     mb = usage.ru_maxrss / 1024
     worst_s, worst_mb = max(worst_s, seconds), max(worst_mb, mb)
+    if times:
+        print(f"{seconds:6.2f} s {mb:6.0f} MB (peak so far)  {name}")
     err = err.decode("utf-8", "replace")
     lines = [l for l in err.splitlines() if l.strip()]
     problems = []

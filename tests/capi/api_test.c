@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 static int failures = 0, passes = 0;
 #define CHECK(cond, ...)                                         \
@@ -60,6 +61,22 @@ int main(int argc, char** argv) {
     isolux_world* w = NULL;
     CHECK(isolux_world_open_scene("/nonexistent/dir/level.json", &w) == ISOLUX_ERROR_INPUT && w == NULL, "missing");
     CHECK(strstr(isolux_last_error(), "level.json") != NULL, "names the file");
+    {
+        /* A scene naming a Tiled map and an endless size contradicts itself:
+         * refused, as isolux-cli refuses it, naming the field. */
+        char path[64];
+        snprintf(path, sizeof path, "/tmp/isolux_api_test_%ld.json", (long)getpid());
+        FILE* f = fopen(path, "w");
+        CHECK(f != NULL, "temp scene");
+        if (f) {
+            fputs("{\"width\": \"endless\", \"height\": \"endless\", \"map\": \"level.tmx\"}", f);
+            fclose(f);
+            CHECK(isolux_world_open_scene(path, &w) == ISOLUX_ERROR_INPUT && w == NULL, "map and endless");
+            CHECK(strstr(isolux_last_error(), "map") != NULL && strstr(isolux_last_error(), "endless") != NULL,
+                  "names both");
+            remove(path);
+        }
+    }
     CHECK(isolux_world_open_seeded("s", 0, 4, NULL, tileset, &w) == ISOLUX_ERROR_INPUT, "width 0");
     CHECK(strstr(isolux_last_error(), "width") != NULL, "names the field");
     CHECK(isolux_world_open_seeded("s", 4, 4, "hexagonal", tileset, &w) == ISOLUX_ERROR_INPUT, "layout");
@@ -212,6 +229,15 @@ int main(int argc, char** argv) {
                   strstr(isolux_last_error(), "ray steps") != NULL &&
                   strstr(isolux_last_error(), "isolux_world_allow_huge") != NULL,
               "refused with its estimate");
+        /* A view whose memory is over the budget (8000x8000 pixels: about
+         * 1.2 GiB): refused with its estimate before any buffer is touched. */
+        isolux_world* m = NULL;
+        CHECK(isolux_world_open_seeded("isolux", 8, 8, NULL, tileset, &m) == ISOLUX_OK, "open m");
+        isolux_rect wide = {0, 0, 8000, 8000};
+        CHECK(isolux_world_render(m, wide, 0, NULL, 0, NULL, 0) == ISOLUX_ERROR_TOO_MUCH_WORK &&
+                  strstr(isolux_last_error(), "GiB") != NULL,
+              "a view over the memory budget");
+        isolux_world_free(m);
         CHECK(isolux_world_allow_huge(h, 1) == ISOLUX_OK, "allowed");
         struct render_job job = {h, view, ISOLUX_OK};
         pthread_t thread;

@@ -20,6 +20,13 @@ the test suite's Xvfb), with the add-on in engines/godot/addons/isolux:
    light for a few frames in godot3-server; its last frame has the bytes of
    `isolux-cli render` with that light.
 
+5. The importer against hostile maps (a sheet declaring two million
+   columns, too many, too few and non-numeric CSV values, truncated files,
+   data outside a layer, a layer of width 0, oversized maps, gids beyond 32
+   bits, lights of area 0 and of areas that are not numbers): each is
+   refused with isolux's reader's message, or imported, and Godot neither
+   crashes nor prints a script error (import_refusals.gd).
+
 Everything runs from an install (`cmake --install BUILD_DIR`), as a game
 gets it.
 
@@ -56,7 +63,7 @@ p = run(["cmake", "--install", build, "--prefix", prefix])
 if not p or p.returncode:
     sys.exit("godot: cmake --install failed")
 project = os.path.join(prefix, "share/isolux/godot")
-for script in ("import_level.gd", "lighting_bytes.gd"):
+for script in ("import_level.gd", "lighting_bytes.gd", "import_refusals.gd"):
     shutil.copy(os.path.join(src, "tests/godot", script), project)
 # No ISOLUX_ASSETS: the library finds the default tileset beside itself.
 godot_env = {"HOME": tmp, "ISOLUX_ASSETS": ""}
@@ -185,5 +192,58 @@ else:
     print(f"demo: frame {f}, the walking light at ({lx}, {ly}): "
           f"{'the same bytes as' if same else 'NOT the bytes of'} isolux-cli")
     check(same, "the demo's frame differs from isolux-cli's")
+
+# ------------------------------------------------------------ 5: hostile maps
+# The importer keeps isolux's reader's limits and messages; none crashes Godot.
+import struct, zlib  # noqa: E402
+def png(w, h):
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+    rows = b"".join(b"\0" + b"\x80" * (w * 4) for _ in range(h))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+hostile = os.path.join(tmp, "hostile")
+os.makedirs(hostile)
+open(os.path.join(hostile, "sheet.png"), "wb").write(png(64, 64))
+MAP = '<map orientation="isometric" width="{w}" height="{h}" tilewidth="64" tileheight="32">'
+SHEET = '<tileset firstgid="1" name="s" tilewidth="{tw}" tileheight="32" columns="{cols}"><image source="sheet.png" width="64" height="64"/></tileset>'
+GOOD_SHEET = SHEET.format(tw=32, cols=2)
+def layer(data, w=2, h=2):
+    return f'<layer name="ground" width="{w}" height="{h}"><data encoding="csv">{data}</data></layer>'
+def lights(*props):
+    objs = "".join(f'<object id="{i + 1}" x="10" y="10"><properties><property name="a" value="{a}"/></properties><point/></object>'
+                   for i, a in enumerate(props))
+    return f'<objectgroup name="lights">{objs}</objectgroup>'
+good = MAP.format(w=2, h=2) + GOOD_SHEET + layer("1,2,3,4")
+cases = {
+    "two_million_columns": (MAP.format(w=2, h=2) + SHEET.format(tw=32, cols=2000000) + layer("1,1,1,1") + "</map>", 'columns="2000000"'),
+    "tile_width_zero": (MAP.format(w=2, h=2) + SHEET.format(tw=0, cols=2) + layer("1,1,1,1") + "</map>", 'tilewidth="0"'),
+    "csv_too_many": (MAP.format(w=2, h=2) + GOOD_SHEET + layer("1,1,1,1,1") + "</map>", "holds more than 4 tiles"),
+    "csv_too_few": (MAP.format(w=2, h=2) + GOOD_SHEET + layer("1,1,1") + "</map>", "holds 3 tiles"),
+    "csv_not_numbers": (MAP.format(w=2, h=2) + GOOD_SHEET + layer("1,x,1,1") + "</map>", "not a gid"),
+    "csv_gid_beyond_32_bits": (MAP.format(w=2, h=2) + GOOD_SHEET + layer("1,99999999999,1,1") + "</map>", "not a gid"),
+    "truncated": ((good + "</map>")[:-40], "ends inside"),
+    "truncated_in_a_tag": ((good + "</map>")[:-9], "ends inside"),
+    "data_outside_a_layer": (MAP.format(w=2, h=2) + GOOD_SHEET + '<data encoding="csv">1,1,1,1</data></map>', "outside a <layer>"),
+    "layer_width_zero": (MAP.format(w=2, h=2) + GOOD_SHEET + layer("", w=0) + "</map>", 'width="0"'),
+    "map_too_wide": (MAP.format(w=5000, h=2) + GOOD_SHEET + "</map>", 'width="5000"'),
+    "map_too_many_tiles": (MAP.format(w=4096, h=300) + GOOD_SHEET + "</map>", "1048576 tiles"),
+    "light_area_not_a_number": (good + lights("wide") + "</map>", 'property a="wide"'),
+    "light_area_beyond": (good + lights("99999") + "</map>", 'property a="99999"'),
+    "object_gid_beyond_32_bits": (good + '<objectgroup name="o"><object id="1" gid="4294967296" x="1" y="1"/></objectgroup></map>', 'gid="4294967296"'),
+    "object_far": (good + '<objectgroup name="o"><object id="1" gid="1" x="1e12" y="1"/></objectgroup></map>', 'x="1e12"'),
+    "light_area_zero": (good + lights("0", "64") + "</map>", ""),
+}
+entries = []
+for name, (text, want) in cases.items():
+    path = os.path.join(hostile, name + ".tmx")
+    open(path, "w").write('<?xml version="1.0"?>' + text)
+    entries.append({"tmx": path, "want": want, "lights": 2})
+json.dump(entries, open(os.path.join(hostile, "cases.json"), "w"))
+p = godot("godot3-server", "import_refusals.gd", {"ISOLUX_CASES": os.path.join(hostile, "cases.json")})
+if p:
+    print("\n".join(l for l in p.stdout.splitlines() if l.startswith(("ok ", "FAIL ", "refusals"))))
+check(p is not None and p.returncode == 0 and "SCRIPT ERROR" not in p.stderr,
+      "the importer's refusals of hostile maps\n" + (p.stderr[-2000:] if p else "timed out"))
 
 finish("godot")

@@ -163,6 +163,16 @@ double render_work(const Scene& scene, Rect view, int frames);
 // Work beyond this many steps (minutes or more on one core) is refused by
 // isolux-cli unless --allow-huge, and asked about by the app before it runs.
 constexpr double huge_trace_steps = 4e9;
+// The memory a lit render holds a view pixel at its peak: the sprites, the
+// obstacle map, the light textures as traced and blurred, the final picture
+// and its PNG (isolux-cli's peak resident memory over a 128x128 seeded map's
+// 137-megapixel view is 19 bytes a pixel; docs/reliability.md).
+inline constexpr double view_pixel_bytes = 20;
+double render_memory(Rect view);
+// A render whose memory is estimated beyond this (a 1 GiB view: 54
+// megapixels, a 128x128 map whole) is refused by isolux-cli unless
+// --allow-huge and by the C API unless isolux_world_allow_huge.
+constexpr double huge_render_bytes = double(1 << 30);
 // The largest view a render makes (256 megapixels: 1 GiB of RGBA), in
 // isolux-cli and in the app's screenshots alike.
 constexpr long long max_render_pixels = 1LL << 28;

@@ -22,7 +22,18 @@ struct TiledExport {
     // the chunks cover the map's cells exactly and Tiled draws it as the
     // finite map. 0: a finite map.
     int chunk = 0;
+    // Run even when export_memory is beyond huge_render_bytes (isolux-cli's
+    // --allow-huge); otherwise such an export is refused before any file.
+    bool allow_huge = false;
 };
+
+// The memory an export holds at its peak, estimated from the map's pixels:
+// the obstacle map built over the whole map, and its polygons as XML objects
+// (export_pixel_bytes a pixel: isolux-cli's peak over a 128x128 seeded map's
+// 137 megapixels is 1.47 GB), and with `images` a lit frame of it
+// (render_memory).
+inline constexpr double export_pixel_bytes = 11;
+double export_memory(const World& world, const TiledExport& options);
 
 // Writes `tmx` (DIR/NAME.tmx) for the scene's level: floors as a tile layer
 // (diamond: an isometric map; staggered: a staggered one; paper: floors as

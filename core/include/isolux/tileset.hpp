@@ -44,6 +44,9 @@ struct FootprintSpec {
 // sprite's top-left, pixels, in manifests and TMX alike: as far as the
 // largest image isolux reads is wide.
 inline constexpr int max_sprite_offset = 65536;
+// The solids all of a tileset's shapes may hold together: tracing against
+// shapes and the 3D reference test each one at every placed sprite.
+inline constexpr std::size_t max_tileset_solids = 1000;
 
 struct Sprite {
     std::string name;
@@ -75,7 +78,9 @@ struct Tileset {
 };
 
 // Checks the rules a tileset must meet to build maps (at least one floor
-// sprite, non-empty sprites, sane tile size); throws Error naming the entry.
+// sprite, non-empty sprites, sane tile size, an object's height within its
+// image, at most max_tileset_solids solids in all); throws Error naming the
+// entry.
 void validate(const Tileset& t);
 
 }  // namespace isolux

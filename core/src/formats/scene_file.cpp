@@ -160,6 +160,10 @@ Scene scene_from_json(std::string_view text, std::string_view source, std::vecto
     if (f.has("layout")) s.layout = parse_layout(f.text("layout"), src + ": layout");
     if (f.has("tileset")) s.tileset = f.text("tileset");
     if (f.has("map")) s.map = f.text("map");
+    // A Tiled map has its own edge: one meaning for every reader (the CLI,
+    // the editor and the C API), so the contradiction is refused here.
+    if (s.endless && !s.map.empty())
+        f.fail("map", "names a Tiled map, which has its own size, while width and height say \"endless\": drop one of them");
     if (f.has("preset")) {
         const json& p = j["preset"];
         if (p.is_string()) {

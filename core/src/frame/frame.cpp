@@ -50,6 +50,8 @@ double render_work(const Scene& scene, Rect view, int frames) {
     return trace_work(scene, view) * traces + double(view.w) * double(view.h) * view_pixel_steps * n;
 }
 
+double render_memory(Rect view) { return double(view.w) * double(view.h) * view_pixel_bytes; }
+
 Rect camera_view(const Camera& c, const World& w) {
     const double x = std::clamp(std::floor(c.x), -1e9, 1e9), y = std::clamp(std::floor(c.y), -1e9, 1e9);
     // No size: the whole map's frame, wherever the camera was (as isolux-cli

@@ -172,6 +172,11 @@ int endless_reach(const Scene& scene, const Tileset& tileset) {
 }
 
 ChunkRange endless_chunks(const Tileset& tileset, Layout layout, WorldRect view, int reach, std::string_view source) {
+    // The same cap as a bounded map's view: an endless view is no cheaper a pixel.
+    if ((long long)view.w * view.h > max_render_pixels)
+        throw Error(std::string(source) + ": a view of " + std::to_string(view.w) + "x" + std::to_string(view.h) +
+                    " pixels is over the " + std::to_string(max_render_pixels >> 20) +
+                    "-megapixel limit: show a smaller part of the endless world");
     const int tw = tileset.tile_width, th = tileset.tile_height;
     double c0 = 1e300, c1 = -1e300, r0 = 1e300, r1 = -1e300;
     const double x0 = double(view.x) - reach, x1 = double(view.x) + view.w + reach;

@@ -27,10 +27,24 @@ void validate(const Tileset& t) {
         throw Error(src + ": tile: width and height must be in [2, 4096], got " +
                     std::to_string(t.tile_width) + "x" + std::to_string(t.tile_height));
     bool has_floor = false;
+    std::size_t solids = 0;
     for (const Sprite& s : t.sprites) {
         if (s.image.width <= 0 || s.image.height <= 0)
             throw Error(src + ": sprite \"" + s.name + "\": zero-size sprite");
         has_floor = has_floor || s.kind == SpriteKind::floor;
+        // The work a sprite's solid asks for grows with its height: a solid
+        // stands within its picture, so its height is bounded by the image's.
+        if (s.footprint.object_height > s.image.height)
+            throw Error(src + ": sprite \"" + s.name + "\": object: height " + std::to_string(s.footprint.object_height) +
+                        " is taller than its " + std::to_string(s.image.width) + "x" + std::to_string(s.image.height) +
+                        " image (a solid stands within its picture)");
+        // Tracing and the 3D reference test every solid of every placed
+        // sprite: the shapes' solids are a budget of the whole tileset.
+        solids += s.shape.size();
+        if (solids > max_tileset_solids)
+            throw Error(src + ": sprite \"" + s.name + "\": shape: brings the tileset's solids to " +
+                        std::to_string(solids) + ", over the " + std::to_string(max_tileset_solids) +
+                        " a tileset may hold in all");
     }
     if (!has_floor) throw Error(src + ": sprites: no sprite of kind \"floor\"; a map needs one");
 }

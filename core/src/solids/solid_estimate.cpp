@@ -16,6 +16,13 @@ constexpr double sqrt2 = 1.4142135623730951;
 // How many columns an axis whose foot moved off the footprint may move
 // sideways: the rounding of a footprint's centre on an equator's lines.
 constexpr int axis_shift = 2;
+// The foot search's budget, in disc-row tests: it fits a solid at each row
+// below the footprint in up to 1 + 2 * axis_shift columns, each fit a disc
+// per pixel of height, each disc 16 bisections over its rows. An object
+// whose search would cost more (a sprite a thousand pixels tall) keeps the
+// footprint's foot: the search is a refinement, and its cost grows with the
+// fourth power of the object's size.
+constexpr double foot_search_budget = 2e10;
 
 // Per row of the object's mask: the opaque run through column `c`, as the
 // first and last column (first > last: column c is transparent there).
@@ -349,6 +356,14 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     // `axis_shift` columns, where that covers more.
     const ObjectPixels pixels(object);
     const FootCandidate at_footprint = fit_at(pixels, o, runs, o.center_x, o.center_y, top, widest, height);
+    const double rows = object.height;
+    if (rows * (1 + 2 * axis_shift) * rows * 16 * (widest / sqrt2) > foot_search_budget) {
+        if (at_footprint.object.radius.empty()) return {};
+        EstimatedObject kept = at_footprint.object;
+        stand_on_hidden_stem(object, kept);
+        widen_across_view(object, kept);
+        return {kept};
+    }
     FootCandidate best = lowest_best_foot(pixels, o, c, 0, top, widest, height, at_footprint);
     // A pixel row's worth of gain is an outline's rounding, not a better foot.
     const long rounding = object.count() / 50;

@@ -9,10 +9,14 @@
  *   var bytes = lighting.render(x, y, w, h, frame, "light")  # RGBA8, rows top to bottom
  *
  * Paths are file-system paths (globalize res:// ones). Every method returns
- * false, -1 or an empty array on failure, and last_error() says why. */
+ * false, -1 or an empty array on failure, and last_error() says why: an
+ * integer outside what the C API takes (GDScript's are 64-bit) or an unknown
+ * layer is refused by name, never narrowed or guessed. */
 #include <gdnative_api_struct.gen.h>
 #include <isolux.h>
 
+#include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 static const godot_gdnative_core_api_struct* api = NULL;
@@ -20,6 +24,7 @@ static const godot_gdnative_ext_nativescript_api_struct* nativescript = NULL;
 
 typedef struct Lighting {
     isolux_world* world;
+    char error[1024]; /* last_error(): this instance's last refusal, its own or the library's */
 } Lighting;
 
 /* --- Variant helpers */
@@ -56,7 +61,37 @@ static godot_variant string_result(const char* text) {
     return v;
 }
 
-static int enough(int argc, int wanted) { return argc >= wanted; }
+/* The library's answer: on failure its message becomes last_error(). */
+static int library_ok(Lighting* l, isolux_status status) {
+    if (status != ISOLUX_OK) snprintf(l->error, sizeof l->error, "%s", isolux_last_error());
+    return status == ISOLUX_OK;
+}
+
+/* GDScript's integers are 64-bit: argument i must lie in [lo, hi] before it
+ * is narrowed, or the call is refused naming it (never used wrapped). */
+static int int_arg(Lighting* l, const char* method, godot_variant** args, int i, const char* name, int64_t lo,
+                   int64_t hi, int64_t* out) {
+    const int64_t v = api->godot_variant_as_int(args[i]);
+    if (v < lo || v > hi) {
+        snprintf(l->error, sizeof l->error, "IsoluxLighting.%s: %s = %lld is outside [%lld, %lld]", method, name,
+                 (long long)v, (long long)lo, (long long)hi);
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+static int enough(Lighting* l, const char* method, int argc, int wanted) {
+    if (!l->world && strcmp(method, "open_scene") != 0 && strcmp(method, "open_tmx") != 0) {
+        snprintf(l->error, sizeof l->error, "IsoluxLighting.%s: no level is open (open_scene or open_tmx first)", method);
+        return 0;
+    }
+    if (argc < wanted) {
+        snprintf(l->error, sizeof l->error, "IsoluxLighting.%s: takes %d arguments, got %d", method, wanted, argc);
+        return 0;
+    }
+    return 1;
+}
 
 /* --- The instance */
 
@@ -64,6 +99,7 @@ static void* lighting_new(godot_object* owner, void* method_data) {
     (void)owner, (void)method_data;
     Lighting* l = api->godot_alloc(sizeof(Lighting));
     l->world = NULL;
+    l->error[0] = '\0';
     return l;
 }
 
@@ -82,65 +118,68 @@ static godot_variant open_with(Lighting* l, int tmx, godot_variant** args) {
     char path[4096];
     utf8_arg(args, 0, path, sizeof path);
     isolux_world* w = NULL;
-    if ((tmx ? isolux_world_open_tmx(path, &w) : isolux_world_open_scene(path, &w)) != ISOLUX_OK)
-        return bool_result(0);
+    if (!library_ok(l, tmx ? isolux_world_open_tmx(path, &w) : isolux_world_open_scene(path, &w))) return bool_result(0);
     isolux_world_free(l->world);
     l->world = w;
     return bool_result(1);
 }
 
-METHOD(open_scene) { UNUSED; return enough(argc, 1) ? open_with(data, 0, args) : bool_result(0); }
-METHOD(open_tmx) { UNUSED; return enough(argc, 1) ? open_with(data, 1, args) : bool_result(0); }
+METHOD(open_scene) { UNUSED; return enough(data, "open_scene", argc, 1) ? open_with(data, 0, args) : bool_result(0); }
+METHOD(open_tmx) { UNUSED; return enough(data, "open_tmx", argc, 1) ? open_with(data, 1, args) : bool_result(0); }
 
 METHOD(load_preset) {
     UNUSED;
     Lighting* l = data;
-    if (!l->world || !enough(argc, 1)) return bool_result(0);
+    if (!enough(l, "load_preset", argc, 1)) return bool_result(0);
     char name[4096];
     utf8_arg(args, 0, name, sizeof name);
-    return bool_result(isolux_world_load_preset(l->world, name) == ISOLUX_OK);
+    return bool_result(library_ok(l, isolux_world_load_preset(l->world, name)));
 }
 
 METHOD(set_param) {
     UNUSED;
     Lighting* l = data;
-    if (!l->world || !enough(argc, 2)) return bool_result(0);
+    if (!enough(l, "set_param", argc, 2)) return bool_result(0);
     char name[256], value[256];
     utf8_arg(args, 0, name, sizeof name);
     utf8_arg(args, 1, value, sizeof value);
-    return bool_result(isolux_world_set_param(l->world, name, value) == ISOLUX_OK);
+    return bool_result(library_ok(l, isolux_world_set_param(l->world, name, value)));
 }
 
 /* add_light(x, y, rgb = 0xffffff, height = -1 (the preset's)) -> id or -1 */
 METHOD(add_light) {
     UNUSED;
     Lighting* l = data;
-    if (!l->world || !enough(argc, 2)) return int_result(-1);
+    if (!enough(l, "add_light", argc, 2)) return int_result(-1);
     isolux_light light;
     isolux_light_init(&light, api->godot_variant_as_real(args[0]), api->godot_variant_as_real(args[1]));
     if (argc > 2) {
-        const int64_t rgb = api->godot_variant_as_int(args[2]);
+        int64_t rgb = 0;
+        if (!int_arg(l, "add_light", args, 2, "rgb", 0, 0xffffff, &rgb)) return int_result(-1);
         light.r = (uint8_t)(rgb >> 16), light.g = (uint8_t)(rgb >> 8), light.b = (uint8_t)rgb;
     }
     if (argc > 3) light.height = api->godot_variant_as_real(args[3]);
     int id = -1;
-    return int_result(isolux_world_add_light(l->world, &light, &id) == ISOLUX_OK ? id : -1);
+    return int_result(library_ok(l, isolux_world_add_light(l->world, &light, &id)) ? id : -1);
 }
 
 METHOD(move_light) {
     UNUSED;
     Lighting* l = data;
-    if (!l->world || !enough(argc, 3)) return bool_result(0);
-    return bool_result(isolux_world_move_light(l->world, (int)api->godot_variant_as_int(args[0]),
-                                               api->godot_variant_as_real(args[1]),
-                                               api->godot_variant_as_real(args[2])) == ISOLUX_OK);
+    int64_t id = 0;
+    if (!enough(l, "move_light", argc, 3) || !int_arg(l, "move_light", args, 0, "id", 0, INT32_MAX, &id))
+        return bool_result(0);
+    return bool_result(library_ok(l, isolux_world_move_light(l->world, (int)id, api->godot_variant_as_real(args[1]),
+                                                             api->godot_variant_as_real(args[2]))));
 }
 
 METHOD(remove_light) {
     UNUSED;
     Lighting* l = data;
-    if (!l->world || !enough(argc, 1)) return bool_result(0);
-    return bool_result(isolux_world_remove_light(l->world, (int)api->godot_variant_as_int(args[0])) == ISOLUX_OK);
+    int64_t id = 0;
+    if (!enough(l, "remove_light", argc, 1) || !int_arg(l, "remove_light", args, 0, "id", 0, INT32_MAX, &id))
+        return bool_result(0);
+    return bool_result(library_ok(l, isolux_world_remove_light(l->world, (int)id)));
 }
 
 /* default_view() -> Rect2: what isolux-cli renders with no --view. */
@@ -148,7 +187,7 @@ METHOD(default_view) {
     UNUSED, (void)argc, (void)args;
     Lighting* l = data;
     isolux_rect r = {0, 0, 0, 0};
-    if (l->world) isolux_world_default_view(l->world, &r);
+    if (l->world) library_ok(l, isolux_world_default_view(l->world, &r));
     godot_rect2 rect;
     godot_variant v;
     api->godot_rect2_new(&rect, (godot_real)r.x, (godot_real)r.y, (godot_real)r.width, (godot_real)r.height);
@@ -163,22 +202,30 @@ METHOD(render) {
     Lighting* l = data;
     godot_pool_byte_array bytes;
     api->godot_pool_byte_array_new(&bytes);
-    if (l->world && enough(argc, 6)) {
-        const isolux_rect view = {(int32_t)api->godot_variant_as_int(args[0]), (int32_t)api->godot_variant_as_int(args[1]),
-                                  (int32_t)api->godot_variant_as_int(args[2]), (int32_t)api->godot_variant_as_int(args[3])};
-        char layer[16];
+    int64_t x = 0, y = 0, w = 0, h = 0, frame = 0;
+    char layer[16] = "";
+    if (enough(l, "render", argc, 6) && int_arg(l, "render", args, 0, "x", -1000000000, 1000000000, &x) &&
+        int_arg(l, "render", args, 1, "y", -1000000000, 1000000000, &y) &&
+        int_arg(l, "render", args, 2, "w", 1, 65536, &w) && int_arg(l, "render", args, 3, "h", 1, 65536, &h) &&
+        int_arg(l, "render", args, 4, "frame", 0, INT32_MAX, &frame)) {
         utf8_arg(args, 5, layer, sizeof layer);
         const int light = strcmp(layer, "light") == 0;
-        if (view.width > 0 && view.height > 0 && (int64_t)view.width * view.height <= (1 << 26)) {
-            const size_t size = (size_t)view.width * (size_t)view.height * 4;
+        if (!light && strcmp(layer, "final") != 0) {
+            snprintf(l->error, sizeof l->error, "IsoluxLighting.render: layer \"%s\" is unknown (final, light)", layer);
+        } else if (w * h > (1 << 26)) {
+            snprintf(l->error, sizeof l->error,
+                     "IsoluxLighting.render: a view of %lldx%lld pixels is over the 64 megapixels a PoolByteArray of "
+                     "RGBA holds here", (long long)w, (long long)h);
+        } else {
+            const isolux_rect view = {(int32_t)x, (int32_t)y, (int32_t)w, (int32_t)h};
+            const size_t size = (size_t)w * (size_t)h * 4;
             api->godot_pool_byte_array_resize(&bytes, (godot_int)size);
-            godot_pool_byte_array_write_access* w = api->godot_pool_byte_array_write(&bytes);
-            uint8_t* p = api->godot_pool_byte_array_write_access_ptr(w);
-            const isolux_status st = isolux_world_render(l->world, view, (int)api->godot_variant_as_int(args[4]),
-                                                         light ? NULL : p, light ? 0 : size, light ? p : NULL,
-                                                         light ? size : 0);
-            api->godot_pool_byte_array_write_access_destroy(w);
-            if (st != ISOLUX_OK) api->godot_pool_byte_array_resize(&bytes, 0);
+            godot_pool_byte_array_write_access* wa = api->godot_pool_byte_array_write(&bytes);
+            uint8_t* p = api->godot_pool_byte_array_write_access_ptr(wa);
+            const isolux_status st = isolux_world_render(l->world, view, (int)frame, light ? NULL : p, light ? 0 : size,
+                                                         light ? p : NULL, light ? size : 0);
+            api->godot_pool_byte_array_write_access_destroy(wa);
+            if (!library_ok(l, st)) api->godot_pool_byte_array_resize(&bytes, 0);
         }
     }
     godot_variant v;
@@ -188,8 +235,8 @@ METHOD(render) {
 }
 
 METHOD(last_error) {
-    UNUSED, (void)data, (void)argc, (void)args;
-    return string_result(isolux_last_error());
+    UNUSED, (void)argc, (void)args;
+    return string_result(((Lighting*)data)->error);
 }
 
 METHOD(api_version) {

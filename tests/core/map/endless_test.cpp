@@ -117,6 +117,15 @@ TEST(Endless, chunksAreWholeAndTheWorldEndsAtItsBound) {
     }
     // A finite map's builder refuses an endless scene by name.
     EXPECT_THROW(make_world(ts, s, "level.json"), Error);
+    // A view has a bounded map's megapixel cap, checked before any chunk is made.
+    try {
+        endless_chunks(ts, Layout::diamond, WorldRect{0, 0, 20000, 13500}, 0, "wide.json");
+        FAIL() << "a 270-megapixel view was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("wide.json"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("megapixel"), std::string::npos) << e.what();
+    }
+    EXPECT_NO_THROW(endless_chunks(ts, Layout::diamond, WorldRect{0, 0, 16384, 16384}, 0, "t"));
 }
 
 TEST(Endless, editsApplyWhereverTheyAreAndScenesSayEndless) {
@@ -136,6 +145,13 @@ TEST(Endless, editsApplyWhereverTheyAreAndScenesSayEndless) {
     const Scene back = scene_from_json(scene_to_json(s), "round trip");
     EXPECT_TRUE(back.endless);
     EXPECT_THROW(scene_from_json(R"({"width": "endless", "height": 12})", "half.json"), Error);
+    // A Tiled map has its own edge: a scene naming one cannot also be endless.
+    try {
+        scene_from_json(R"({"width": "endless", "height": "endless", "map": "level.tmx"})", "both.json");
+        FAIL() << "a scene with a map and an endless size was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("both.json: map"), std::string::npos) << e.what();
+    }
 }
 
 TEST(Endless, aWalkKeepsItsWindowAChunkAtATimeAndEveryFrameIsTheSame) {

@@ -175,6 +175,17 @@ void read_chunk_bounds(const fs::path& tmx, const pugi::xml_node& m, Grid& g) {
     g.map_h = g.h;
     g.x0 = int(x0), g.y0 = int(y0);
     g.w = int(x1 - x0), g.h = int(y1 - y0);
+    // The cells' screen pixels must fit the sprites' int coordinates: the
+    // corners' pixels within 1e8 (as an isolux_origin), checked in doubles.
+    for (int cx : {0, g.w})
+        for (int cy : {0, g.h}) {
+            double sx = 0, sy = 0;
+            g.cell_bottom_left(cx, cy, sx, sy);
+            if (!(std::abs(sx) <= 1e8 && std::abs(sy) <= 1e8))
+                fail(tmx, m, "is an infinite map whose chunks at tiles (" + std::to_string(x0) + ", " + std::to_string(y0) +
+                                 ") to (" + std::to_string(x1) + ", " + std::to_string(y1) +
+                                 ") lie beyond 1e8 pixels of Tiled's origin");
+        }
 }
 
 // The map element: orientation, size and tile size as a Grid.

@@ -234,9 +234,21 @@ std::vector<std::uint32_t> chunked_layer_gids(const fs::path& file, const pugi::
     const pugi::xml_node data = layer.child("data");
     if (!data) fail(file, layer, "has no <data>");
     std::vector<std::uint32_t> gids(std::size_t(w) * h, 0);
+    // Each cell is held by one chunk at most (Tiled never writes two over one
+    // cell), checked before a chunk is decoded: so a layer decodes at most
+    // its w x h cells, however many chunks its file repeats.
+    std::vector<bool> held(std::size_t(w) * h, false);
     for (pugi::xml_node ch : data.children("chunk")) {
         const int cx = int_attr(file, ch, "x", -1000000000, 1000000000), cy = int_attr(file, ch, "y", -1000000000, 1000000000);
         const int cw = int_attr(file, ch, "width", 1, max_tiled_side), chh = int_attr(file, ch, "height", 1, max_tiled_side);
+        for (int y = 0; y < chh; ++y)
+            for (int x = 0; x < cw; ++x) {
+                const std::size_t at = std::size_t(cy + y - y0) * std::size_t(w) + std::size_t(cx + x - x0);
+                if (held[at])
+                    fail(file, ch, "overlaps an earlier chunk of its layer at tile (" + std::to_string(cx + x) + ", " +
+                                       std::to_string(cy + y) + ")");
+                held[at] = true;
+            }
         const std::vector<std::uint32_t> part =
             decode_gids(file, data, ch, std::size_t(cw) * chh, "the chunk is " + std::to_string(cw) + "x" + std::to_string(chh));
         // Every chunk lies inside the bounds read_chunk_bounds took of them all.

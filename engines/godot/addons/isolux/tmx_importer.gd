@@ -9,6 +9,13 @@
 #
 #   var level = preload("res://addons/isolux/tmx_importer.gd").new().import_tmx("/abs/level.tmx")
 #   if level == null: push_error(importer.error)
+#
+# It keeps the limits of isolux's own TMX reader (core/src/formats/tiled/),
+# with its messages: a map of at most 4096 tiles a side and 1,048,576 in all,
+# integers and gids checked before use, a layer's CSV exactly its width x
+# height gids, a sheet cut only where it has pixels, and a file that is
+# malformed or ends early refused; every refusal returns null with `error`
+# naming the file and the element.
 tool
 extends Reference
 
@@ -22,6 +29,11 @@ var _overlays := []       # [{gid, x, y, w, h}]
 var _lights := []         # [{name, x, y, props}]
 var _obstacles := []      # [{x, y, points}]
 var _light_texture: ImageTexture = null
+
+const MAX_SIDE := 4096          # max_tiled_side
+const MAX_TILES := 1048576      # a map's cells, as isolux's own maps
+const MAX_AREA := 4096          # max_area: a light's a and b
+const MAX_COORD := 1e9          # object coordinates
 
 
 func import_tmx(path: String) -> Node2D:
@@ -39,6 +51,48 @@ func _fail(where: String, what: String) -> bool:
 	return false
 
 
+# Null (a refusal of _int_attr, _real_attr or _points), without comparing an
+# int to null, which GDScript 3 refuses.
+func _nil(v) -> bool:
+	return typeof(v) == TYPE_NIL
+
+
+# "FILE: <layer id="3" name="trees">", as isolux's reader names an element.
+func _where(path: String, element: String, attrs: Dictionary) -> String:
+	var w = path + ": <" + element
+	if attrs.has("id"):
+		w += " id=\"%s\"" % attrs["id"]
+	if attrs.has("name"):
+		w += " name=\"%s\"" % attrs["name"]
+	return w + ">"
+
+
+# An integer attribute in [lo, hi] (`fallback` when absent; null, with
+# `error` set, when it is not one): checked as text, so a 64-bit or longer
+# number is refused, never wrapped.
+func _int_attr(path: String, element: String, attrs: Dictionary, name: String, lo: int, hi: int, fallback = null):
+	if not attrs.has(name):
+		if typeof(fallback) == TYPE_NIL:
+			_fail(_where(path, element, attrs), "lacks " + name)
+		return fallback
+	var text: String = attrs[name]
+	if not text.is_valid_integer() or text.length() > 11 or int(text) < lo or int(text) > hi:
+		_fail(_where(path, element, attrs), "%s=\"%s\" is not an integer in [%d, %d]" % [name, text, lo, hi])
+		return null
+	return int(text)
+
+
+# A number attribute within [-1e9, 1e9] (`fallback` when absent).
+func _real_attr(path: String, element: String, attrs: Dictionary, name: String, fallback: float):
+	if not attrs.has(name):
+		return fallback
+	var text: String = attrs[name]
+	if not text.is_valid_float() or abs(float(text)) > MAX_COORD:
+		_fail(_where(path, element, attrs), "%s=\"%s\" is not a number in [-1e9, 1e9]" % [name, text])
+		return null
+	return float(text)
+
+
 func _read_map(path: String) -> bool:
 	var p = XMLParser.new()
 	if p.open(path) != OK:
@@ -47,12 +101,15 @@ func _read_map(path: String) -> bool:
 	var group = ""
 	var object = null
 	var data_encoding = ""
-	while p.read() == OK:
+	var layer_where = ""
+	var read = p.read()
+	while read == OK:
 		var kind = p.get_node_type()
 		if kind == XMLParser.NODE_ELEMENT:
 			var name = p.get_node_name()
 			var attrs = _attributes(p)
 			var parent: String = stack.back() if stack.size() > 0 else ""
+			var where = _where(path, name, attrs)
 			match name:
 				"map":
 					_map = attrs
@@ -60,23 +117,46 @@ func _read_map(path: String) -> bool:
 						return _fail(path, "orientation \"%s\": the importer reads isometric maps" % attrs.get("orientation", ""))
 					if attrs.get("infinite", "0") == "1":
 						return _fail(path, "infinite maps are not read by this importer")
+					var w = _int_attr(path, name, attrs, "width", 1, MAX_SIDE)
+					var h = _int_attr(path, name, attrs, "height", 1, MAX_SIDE)
+					if _nil(w) or _nil(h) or _nil(_int_attr(path, name, attrs, "tilewidth", 2, 4096)) \
+							or _nil(_int_attr(path, name, attrs, "tileheight", 2, 4096)):
+						return false
+					if w * h > MAX_TILES:
+						return _fail(where, "is %dx%d tiles: a map holds at most %d tiles" % [w, h, MAX_TILES])
 				"tileset":
 					if not _read_tileset(path, attrs, p):
 						return false
-					continue  # _read_tileset consumed an embedded tileset whole
 				"layer":
-					_floors = [int(attrs.get("width", "0")), int(attrs.get("height", "0")), []]
+					if _map.empty():
+						return _fail(where, "comes before the <map>")
+					var lw = _int_attr(path, name, attrs, "width", 1, MAX_SIDE, int(_map["width"]))
+					var lh = _int_attr(path, name, attrs, "height", 1, MAX_SIDE, int(_map["height"]))
+					if _nil(lw) or _nil(lh):
+						return false
+					if lw != int(_map["width"]) or lh != int(_map["height"]):
+						return _fail(where, "is %dx%d, the map %sx%s" % [lw, lh, _map["width"], _map["height"]])
+					_floors = [lw, lh, []]
+					layer_where = where
 				"data":
+					if parent != "layer":
+						return _fail(where, "lies outside a <layer>")
 					data_encoding = attrs.get("encoding", "")
 					if data_encoding != "csv":
 						return _fail(path, "layer data encoding \"%s\": the importer reads csv (isolux's export)" % data_encoding)
 				"objectgroup":
 					group = attrs.get("name", "")
 				"object":
-					object = {"attrs": attrs, "props": {}, "points": null, "group": group}
+					object = {"attrs": attrs, "props": {}, "points": null, "group": group, "where": where}
+					if _nil(_real_attr(path, name, attrs, "x", 0.0)) or _nil(_real_attr(path, name, attrs, "y", 0.0)):
+						return false
+					if attrs.has("gid") and _nil(_int_attr(path, name, attrs, "gid", 0, 4294967295)):
+						return false
 				"polygon":
 					if object != null:
 						object["points"] = _points(attrs.get("points", ""))
+						if _nil(object["points"]):
+							return _fail(object["where"], "points=\"%s\" are not numbers within 1e9" % attrs.get("points", ""))
 				"property":
 					if parent == "properties" and stack.size() >= 2:
 						var owner: String = stack[stack.size() - 2]
@@ -84,35 +164,62 @@ func _read_map(path: String) -> bool:
 							_props[attrs.get("name", "")] = attrs.get("value", "")
 						elif owner == "object" and object != null:
 							object["props"][attrs.get("name", "")] = attrs.get("value", "")
-			if p.is_empty():
+			if name == "tileset":
+				pass  # _read_tileset consumed an embedded tileset whole, to its end
+			elif p.is_empty():
+				if name == "object" and not _object_done(object):
+					return false
 				if name == "object":
-					_object_done(object)
 					object = null
+				if name == "data" and not _data_done(layer_where):
+					return false
 			else:
 				stack.push_back(name)
 		elif kind == XMLParser.NODE_TEXT:
 			if stack.size() > 0 and stack.back() == "data" and data_encoding == "csv":
+				var limit = _floors[0] * _floors[1]
 				for cell in p.get_node_data().split(",", false):
 					var t = cell.strip_edges()
-					if t != "":
-						_floors[2].push_back(int(t))
+					if t == "":
+						continue
+					if not t.is_valid_integer() or t.length() > 10 or int(t) < 0 or int(t) > 4294967295:
+						return _fail(layer_where, "CSV data holds a value that is not a gid")
+					_floors[2].push_back(int(t))
+					if _floors[2].size() > limit:
+						return _fail(layer_where, "holds more than %d tiles, the layer is %dx%d" % [limit, _floors[0], _floors[1]])
 		elif kind == XMLParser.NODE_ELEMENT_END:
 			var name = p.get_node_name()
 			if stack.size() > 0:
 				stack.pop_back()
 			if name == "object":
-				_object_done(object)
+				if not _object_done(object):
+					return false
 				object = null
 			elif name == "objectgroup":
 				group = ""
+			elif name == "data" and not _data_done(layer_where):
+				return false
+		read = p.read()
+	if read != ERR_FILE_EOF:
+		return _fail(path, "is not well-formed XML")
+	if stack.size() > 0:
+		return _fail(path, "ends inside <%s> (a truncated file?)" % stack.back())
 	if _map.empty():
 		return _fail(path, "no map element")
 	return true
 
 
-func _object_done(object) -> void:
+# A layer's data read whole: exactly its width x height gids.
+func _data_done(layer_where: String) -> bool:
+	var want = _floors[0] * _floors[1]
+	if _floors[2].size() != want:
+		return _fail(layer_where, "holds %d tiles, the layer is %dx%d" % [_floors[2].size(), _floors[0], _floors[1]])
+	return true
+
+
+func _object_done(object) -> bool:
 	if object == null:
-		return
+		return true
 	var a: Dictionary = object["attrs"]
 	var o = {"x": float(a.get("x", "0")), "y": float(a.get("y", "0")), "name": a.get("name", ""),
 		"props": object["props"], "type": a.get("type", a.get("class", ""))}
@@ -122,10 +229,16 @@ func _object_done(object) -> void:
 		o["h"] = float(a.get("height", "0"))
 		_overlays.push_back(o)
 	elif object["group"] == "lights" or o["type"] == "light":
+		# a and b as isolux reads them: numbers in [0, 4096] (0 lights nothing).
+		for k in ["a", "b"]:
+			var v = object["props"].get(k, null)
+			if not _nil(v) and (not String(v).is_valid_float() or float(v) < 0 or float(v) > MAX_AREA):
+				return _fail(object["where"], "property %s=\"%s\" is not a number in [0, %d]" % [k, v, MAX_AREA])
 		_lights.push_back(o)
 	elif object["points"] != null and (object["group"] == "obstacles" or o["type"] == "occluder"):
 		o["points"] = object["points"]
 		_obstacles.push_back(o)
+	return true
 
 
 func _attributes(p: XMLParser) -> Dictionary:
@@ -135,18 +248,22 @@ func _attributes(p: XMLParser) -> Dictionary:
 	return d
 
 
-func _points(text: String) -> PoolVector2Array:
+func _points(text: String):
 	var out = PoolVector2Array()
 	for pair in text.split(" ", false):
 		var xy = pair.split(",")
-		if xy.size() == 2:
-			out.push_back(Vector2(float(xy[0]), float(xy[1])))
+		if xy.size() != 2 or not xy[0].is_valid_float() or not xy[1].is_valid_float() \
+				or abs(float(xy[0])) > MAX_COORD or abs(float(xy[1])) > MAX_COORD:
+			return null
+		out.push_back(Vector2(float(xy[0]), float(xy[1])))
 	return out
 
 
 # A tileset: external (source=) or embedded; image collections and sheets.
 func _read_tileset(map_path: String, attrs: Dictionary, map_parser: XMLParser) -> bool:
-	var first = int(attrs.get("firstgid", "1"))
+	var first = _int_attr(map_path, "tileset", attrs, "firstgid", 1, 1 << 28, 1)
+	if _nil(first):
+		return false
 	var p = map_parser
 	var where = map_path
 	var base_dir = map_path.get_base_dir()
@@ -160,12 +277,9 @@ func _read_tileset(map_path: String, attrs: Dictionary, map_parser: XMLParser) -
 	elif map_parser.is_empty():
 		return true
 	var offset = Vector2.ZERO
-	var align = ""
-	var tile_size = Vector2(float(attrs.get("tilewidth", "0")), float(attrs.get("tileheight", "0")))
-	var columns = int(attrs.get("columns", "0"))
-	var spacing = int(attrs.get("spacing", "0"))
-	var margin = int(attrs.get("margin", "0"))
-	align = attrs.get("objectalignment", "")
+	var cut = _sheet_cut(where, attrs) if not attrs.empty() else {}
+	if _nil(cut):
+		return false
 	var tile_id = -1
 	var sheet: Texture = null
 	var depth = 0
@@ -176,15 +290,19 @@ func _read_tileset(map_path: String, attrs: Dictionary, map_parser: XMLParser) -
 			var a = _attributes(p)
 			match name:
 				"tileset":
-					tile_size = Vector2(float(a.get("tilewidth", "0")), float(a.get("tileheight", "0")))
-					columns = int(a.get("columns", "0"))
-					spacing = int(a.get("spacing", "0"))
-					margin = int(a.get("margin", "0"))
-					align = a.get("objectalignment", "")
+					cut = _sheet_cut(where, a)
+					if _nil(cut):
+						return false
 				"tileoffset":
-					offset = Vector2(float(a.get("x", "0")), float(a.get("y", "0")))
+					var ox = _int_attr(where, name, a, "x", -65536, 65536, 0)
+					var oy = _int_attr(where, name, a, "y", -65536, 65536, 0)
+					if _nil(ox) or _nil(oy):
+						return false
+					offset = Vector2(ox, oy)
 				"tile":
-					tile_id = int(a.get("id", "0"))
+					tile_id = _int_attr(where, name, a, "id", 0, 1 << 28)
+					if _nil(tile_id):
+						return false
 				"image":
 					var tex = _texture(base_dir.plus_file(a.get("source", "")))
 					if tex == null:
@@ -204,17 +322,39 @@ func _read_tileset(map_path: String, attrs: Dictionary, map_parser: XMLParser) -
 			if name == "tileset":
 				break
 			depth -= 1
-	if sheet != null and columns > 0:
-		var count = int((sheet.get_height() - 2 * margin + spacing) / (tile_size.y + spacing)) * columns
-		for i in range(count):
-			var r = Rect2(margin + (i % columns) * (tile_size.x + spacing), margin + (i / columns) * (tile_size.y + spacing),
-				tile_size.x, tile_size.y)
+	if sheet != null and not cut.empty():
+		# Tiles cut row by row while they lie on the sheet, as isolux's reader
+		# does: a tileset declaring millions of columns cuts what the sheet has.
+		var size: Vector2 = cut["size"]
+		var i = 0
+		while i < cut["count"]:
+			var r = Rect2(cut["margin"] + (i % cut["columns"]) * (size.x + cut["spacing"]),
+				cut["margin"] + (i / cut["columns"]) * (size.y + cut["spacing"]), size.x, size.y)
+			if r.end.x > sheet.get_width() or r.end.y > sheet.get_height():
+				break
 			_tiles[first + i] = {"texture": sheet, "region": r}
+			i += 1
 	for gid in _tiles.keys():
 		if gid >= first and not _tiles[gid].has("offset"):
 			_tiles[gid]["offset"] = offset
-			_tiles[gid]["align"] = align
+			_tiles[gid]["align"] = cut.get("align", "")
 	return true
+
+
+# A tileset element's tile size and sheet layout, each in isolux's reader's
+# range (null, with `error` set, when one is not).
+func _sheet_cut(path: String, a: Dictionary):
+	var tw = _int_attr(path, "tileset", a, "tilewidth", 1, 65536)
+	var th = _int_attr(path, "tileset", a, "tileheight", 1, 65536)
+	var columns = _int_attr(path, "tileset", a, "columns", 0, 65536, 0)
+	var spacing = _int_attr(path, "tileset", a, "spacing", 0, 65536, 0)
+	var margin = _int_attr(path, "tileset", a, "margin", 0, 65536, 0)
+	var count = _int_attr(path, "tileset", a, "tilecount", 0, 1 << 20, 1 << 20)
+	for v in [tw, th, columns, spacing, margin, count]:
+		if _nil(v):
+			return null
+	return {"size": Vector2(tw, th), "columns": max(1, columns), "spacing": spacing, "margin": margin,
+		"count": count, "align": a.get("objectalignment", "")}
 
 
 # Loaded straight from the file, unfiltered: Godot draws isolux's pixels.
@@ -368,8 +508,14 @@ func _build_light(l: Dictionary) -> Light2D:
 	var a = float(props.get("a", _props.get("area_a", "128")))
 	var b = float(props.get("b", _props.get("area_b", "128")))
 	light.texture = _round_light()
-	light.texture_scale = 2.0 * max(a, b) / 256.0
-	light.scale = Vector2(a / max(a, b), b / max(a, b))
+	if min(a, b) <= 0:
+		# An area of 0 lights nothing in isolux: kept, switched off, unscaled
+		# (a scale of 0 would leave Godot a transform without an inverse).
+		light.enabled = false
+		light.texture_scale = 1.0
+	else:
+		light.texture_scale = 2.0 * max(a, b) / 256.0
+		light.scale = Vector2(a / max(a, b), b / max(a, b))
 	light.color = _colour(props.get("color", ""), Color(1, 1, 1))
 	light.energy = float(props.get("intensity", "1"))
 	light.range_height = float(props.get("height", _props.get("light_height", "0")))
