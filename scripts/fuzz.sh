@@ -20,12 +20,24 @@ export ASAN_OPTIONS="fast_unwind_on_malloc=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # Absolute paths: fuzz_cli works in a folder of its own (it chdirs there).
 root=$PWD
-for t in preset scene tileset sprite tiled cli capi; do
+targets="preset scene tileset sprite tiled cli capi"
+# As many targets at once as there are cores; each one's log read afterwards.
+running=0
+for t in $targets; do
   work=$root/build/fuzz/corpus_$t
   mkdir -p "$work"
   echo "fuzz: $t for ${seconds}s"
   ./build/fuzz/tests/fuzz/fuzz_$t -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
-    -artifact_prefix="$root/build/fuzz/crashes/$t-" -print_final_stats=1 "$work" "$root/tests/fuzz/corpus/$t" >build/fuzz/log_$t 2>&1 || true
+    -artifact_prefix="$root/build/fuzz/crashes/$t-" -print_final_stats=1 "$work" "$root/tests/fuzz/corpus/$t" >build/fuzz/log_$t 2>&1 &
+  running=$((running + 1))
+  if [ "$running" -ge "$(nproc)" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
+done
+wait || true
+for t in $targets; do
+  echo "fuzz: $t"
   grep -E "number_of_executed_units|new_units_added|ERROR|SUMMARY|runtime error" build/fuzz/log_$t || true
   # The core library must be instrumented too: its parsers' branches show as
   # hundreds of edges (the fuzz targets alone give a few dozen).

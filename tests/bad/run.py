@@ -4,8 +4,9 @@ each with its expected exit code and a fragment of the expected one-line
 message. Every case must end in a clean refusal (exit 2, one line naming the
 file or field) or a correct result (exit 0), within 10 s and 1 GB, and never
 crash, hang or print a sanitizer report.
-Usage: run.py PATH/TO/isolux-cli SOURCE_DIR [--instrumented] [--only TEXT] [--times]
-(--only: the cases whose names hold TEXT; --times: each case's seconds and peak memory)"""
+Usage: run.py PATH/TO/isolux-cli SOURCE_DIR [--instrumented] [--only TEXT] [--times] [--jobs N]
+(--only: the cases whose names hold TEXT; --times: each case's seconds and peak memory;
+--jobs: N cases at once)"""
 import json, os, resource, shutil, struct, subprocess, sys, tempfile, time, zlib
 
 cli, src = sys.argv[1], sys.argv[2]
@@ -502,9 +503,11 @@ if "--only" in sys.argv[3:]:
     cases = [c for c in cases if only in c[0]]
     must_not_exist = []
 times = "--times" in sys.argv[3:]
-failures = []
-worst_s = worst_mb = 0.0
-for name, args, want, fragment, max_lines, cwd in cases:
+jobs = int(sys.argv[sys.argv.index("--jobs") + 1]) if "--jobs" in sys.argv[3:] else 1
+
+
+def run_case(name, args, want, fragment, max_lines, cwd):
+    """One case: its problems (empty when handled), seconds and the peak memory of any case so far."""
     start = time.monotonic()
     proc = subprocess.Popen([cli, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, cwd=cwd)
     try:
@@ -512,14 +515,9 @@ for name, args, want, fragment, max_lines, cwd in cases:
     except subprocess.TimeoutExpired:
         proc.kill()
         proc.communicate()
-        failures.append(f"{name}: hung (killed after {LIMIT_S * 3:.0f} s)")
-        continue
+        return [f"hung (killed after {LIMIT_S * 3:.0f} s)"], "", LIMIT_S * 3, 0.0
     seconds = time.monotonic() - start
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    mb = usage.ru_maxrss / 1024
-    worst_s, worst_mb = max(worst_s, seconds), max(worst_mb, mb)
-    if times:
-        print(f"{seconds:6.2f} s {mb:6.0f} MB (peak so far)  {name}")
+    mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
     err = err.decode("utf-8", "replace")
     lines = [l for l in err.splitlines() if l.strip()]
     problems = []
@@ -537,6 +535,19 @@ for name, args, want, fragment, max_lines, cwd in cases:
         problems.append(f"{len(lines)} lines of message, want at most {max_lines}")
     if seconds > LIMIT_S:
         problems.append(f"took {seconds:.1f} s")
+    return problems, err, seconds, mb
+
+
+# --jobs N: N cases at once (each case's budget holds under that load too).
+from concurrent.futures import ThreadPoolExecutor  # noqa: E402
+failures = []
+worst_s = worst_mb = 0.0
+with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+    results = list(pool.map(lambda c: run_case(*c), cases))
+for (name, *_), (problems, err, seconds, mb) in zip(cases, results):
+    worst_s, worst_mb = max(worst_s, seconds), max(worst_mb, mb)
+    if times:
+        print(f"{seconds:6.2f} s {mb:6.0f} MB (peak so far)  {name}")
     if problems:
         failures.append(f"{name}: {'; '.join(problems)}: {err.strip()[:300]}")
 for path, is_kind in keep_special:
