@@ -23,14 +23,16 @@ struct Grid {
     // The bottom-left of cell (x, y)'s box: where Tiled draws its image from.
     void cell_bottom_left(int x, int y, double& sx, double& sy) const {
         x += x0, y += y0;
+        // In doubles: an infinite map's far chunks (x0 near 1e9) overflow an int's products.
+        const double dx = x, dy = y;
         if (isometric) {
             const double origin_x = projection_h() * tw / 2;
-            sx = (x - y) * tw / 2.0 + origin_x - tw / 2.0;
-            sy = (x + y) * th / 2.0 + th;
+            sx = (dx - dy) * tw / 2.0 + origin_x - tw / 2.0;
+            sy = (dx + dy) * th / 2.0 + th;
         } else {
             const bool shifted = ((y & 1) != 0) != stagger_even;
-            sx = double(x) * tw + (shifted ? tw / 2.0 : 0.0);
-            sy = double(y) * (th / 2) + th;
+            sx = dx * tw + (shifted ? tw / 2.0 : 0.0);
+            sy = dy * (th / 2) + th;
         }
     }
     // An object's pixel coordinates to screen pixels, and back.
