@@ -110,7 +110,12 @@ int isolux_cli_main(int argc, char** argv) {
 
     std::string tileset_out;
     double tileset_scale = 1.0;
-    CLI::App* tileset = app.add_subcommand("tileset", "Regenerate the default tileset (deterministic)");
+    std::string tileset_name = "default";
+    CLI::App* tileset = app.add_subcommand("tileset", "Regenerate a built-in tileset (deterministic)");
+    tileset->add_option("--name", tileset_name,
+                        "default (trees, bushes, rocks: assets/default) or town (walls, houses, a town, rocks, a "
+                        "mountain, a grove, a tall tree, in another look: assets/town)")
+        ->check(CLI::IsMember({"default", "town"}));
     tileset->add_option("--out", tileset_out, "Folder to write tileset.json, sprites and height maps")->required();
     tileset->add_option("--scale", tileset_scale, "Sprite scale: 1 gives 128x128 sprites")
         ->check(CLI::Range(0.25, 4.0));
@@ -175,7 +180,8 @@ int isolux_cli_main(int argc, char** argv) {
             return 0;
         }
         if (*tileset) {
-            save_generated_tileset(tileset_out, generate_default_tileset(tileset_scale));
+            save_generated_tileset(tileset_out, tileset_name == "town" ? generate_town_tileset(tileset_scale)
+                                                                        : generate_default_tileset(tileset_scale));
             std::cout << "wrote " << tileset_out << "/tileset.json\n";
             return 0;
         }

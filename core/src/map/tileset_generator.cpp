@@ -131,7 +131,17 @@ struct Model {
     std::vector<Material> materials;
     std::vector<Prim> prims;
     double shadow_rx = 0, shadow_ry = 0;  // soft ground shadow ellipse (screen pixels), 0: none
+    double shadow_dx = 0;                 // the shadow's centre, screen pixels right of the anchor
     bool floor = false;
+};
+
+// How a tileset is lit and inked: the sun its shading bakes in, and whether
+// its overlays carry dark outlines (at their silhouette and where the
+// surface jumps in depth), as much hand-drawn game art does.
+struct Look {
+    V3 sun;
+    double ambient = 0.38;   // the light a face turned from the sun keeps
+    bool outlines = false;
 };
 
 Hit cast(const Model& m, V3 o) {
@@ -172,14 +182,44 @@ double pattern_value(const Material& mat, V3 x, std::uint64_t seed) {
     }
 }
 
-const V3 kSun = unit({0.35, 0.6, 1.0});  // from the upper left of the screen
+const Look kDefaultLook{unit({0.35, 0.6, 1.0}), 0.38, false};  // the sun from the upper left of the screen
+// The town's sun from the upper right, lower, with more contrast; dark outlines.
+const Look kTownLook{unit({0.8, -0.25, 0.7}), 0.3, true};
+// Outlines: an opaque pixel beside a transparent one, or beside one whose
+// visible height differs by more than this many pixels (a roof's step, a
+// crown before a trunk), is inked.
+constexpr int outline_depth = 8;
+constexpr double outline_shade = 0.3;
 
 struct Rendered {
     Image image;
     std::vector<std::uint16_t> height;
 };
 
-Rendered render_model(const Model& m, int w, int h, double ax, double ay, double scale, std::uint64_t seed) {
+// Darkens the pixels of an object's outline (Look::outlines): opaque (alpha
+// at least half) with a 4-neighbour that is not, or whose height differs
+// by more than outline_depth. Decided before any pixel is inked, so the ink
+// does not spread.
+void ink_outlines(Rendered& r, int w, int h) {
+    auto solid = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && r.image.at(x, y)[3] >= 128; };
+    auto height = [&](int x, int y) { return int(r.height[std::size_t(y) * w + x]); };
+    std::vector<std::uint8_t> ink(std::size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!solid(x, y)) continue;
+            const int n[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+            for (const auto& q : n)
+                if (!solid(q[0], q[1]) || std::abs(height(q[0], q[1]) - height(x, y)) > outline_depth)
+                    ink[std::size_t(y) * w + x] = 1;
+        }
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (ink[std::size_t(y) * w + x])
+                for (int k = 0; k < 3; ++k) r.image.at(x, y)[k] = std::uint8_t(r.image.at(x, y)[k] * outline_shade + 0.5);
+}
+
+Rendered render_model(const Model& m, const Look& look, int w, int h, double ax, double ay, double scale,
+                      std::uint64_t seed) {
     Rendered out{Image(w, h), std::vector<std::uint16_t>(std::size_t(w) * h, 0)};
     const double zstart = 1000;
     for (int py = 0; py < h; ++py) {
@@ -194,15 +234,15 @@ Rendered render_model(const Model& m, int w, int h, double ax, double ay, double
                 Hit hit = cast(m, o);
                 if (hit.material < 0) {
                     if (m.shadow_rx > 0) {
-                        double ex = sx / m.shadow_rx, ey = sy / m.shadow_ry, d = ex * ex + ey * ey;
+                        double ex = (sx - m.shadow_dx) / m.shadow_rx, ey = sy / m.shadow_ry, d = ex * ex + ey * ey;
                         if (d < 1) shadow += (1 - d) * 0.45;
                     }
                     continue;
                 }
                 V3 x = o + D * hit.t;
                 const Material& mat = m.materials[hit.material];
-                double lambert = std::max(0.0, dot(hit.n, kSun));
-                double light = 0.38 + 0.62 * lambert;
+                double lambert = std::max(0.0, dot(hit.n, look.sun));
+                double light = look.ambient + (1 - look.ambient) * lambert;
                 if (!m.floor) light *= 0.72 + 0.28 * std::min(1.0, std::max(0.0, x.z) / 18.0);  // grounding
                 double var = 1 + mat.grain * 2 * pattern_value(mat, x, seed + std::uint64_t(hit.material));
                 const double c[3] = {mat.albedo.x, mat.albedo.y, mat.albedo.z};
@@ -223,6 +263,7 @@ Rendered render_model(const Model& m, int w, int h, double ax, double ay, double
             }
         }
     }
+    if (look.outlines && !m.floor) ink_outlines(out, w, h);
     return out;
 }
 
@@ -245,9 +286,12 @@ struct Def {
     SpriteKind kind;
     std::string tag;
     Model model;
+    // The sprite's size and anchor row at scale 1 (0: the tile's 128 x 128,
+    // anchored 108 rows down for an overlay); wider than a tile for a mountain.
+    int width = 0, height = 0, anchor_y = 0;
 };
 
-std::vector<Def> definitions() {
+std::vector<Def> default_definitions() {
     const Material bark{{0.42, 0.29, 0.18}, 0.18, 0.5};
     const Material earth{{0.45, 0.32, 0.2}, 0.12, 0.3};
     std::vector<Def> d;
@@ -328,6 +372,128 @@ std::vector<Def> definitions() {
     return d;
 }
 
+// The town: what real games draw beside trees (walls, houses, a town in one
+// tile, rocks, a mountain wider than a tile, a tower, a fence, a grove whose
+// crowns merge, a tall thin tree), in another palette under kTownLook.
+std::vector<Def> town_definitions() {
+    const Material plaster{{0.88, 0.83, 0.72}, 0.08, 0.4};
+    const Material stone{{0.58, 0.52, 0.46}, 0.2, 0.4, 1};
+    const Material tiles{{0.74, 0.31, 0.2}, 0.18, 0.3, 3};
+    const Material slate{{0.33, 0.37, 0.47}, 0.15, 0.35, 3};
+    const Material bark{{0.3, 0.2, 0.16}, 0.18, 0.5};
+    const Material granite{{0.55, 0.52, 0.58}, 0.25, 0.3};
+    const Material wood{{0.5, 0.33, 0.18}, 0.15, 0.5};
+    const std::vector<Material> crowns = {{{0.85, 0.47, 0.14}, 0.3, 0.35, 4},
+                                          {{0.72, 0.24, 0.12}, 0.3, 0.35, 4},
+                                          {{0.86, 0.7, 0.2}, 0.3, 0.35, 4}};
+    const Material earth{{0.5, 0.34, 0.26}, 0.12, 0.3};
+    std::vector<Def> d;
+    d.push_back({"grass", SpriteKind::floor, "grass", floor_block({{0.55, 0.58, 0.3}, 0.16, 0.3, 4}, earth)});
+    d.push_back({"dirt", SpriteKind::floor, "dirt", floor_block({{0.6, 0.38, 0.28}, 0.14, 0.35}, earth)});
+    d.push_back({"sand", SpriteKind::floor, "sand", floor_block({{0.9, 0.84, 0.68}, 0.07, 0.5}, earth)});
+    d.push_back({"paving", SpriteKind::floor, "stone", floor_block({{0.7, 0.64, 0.56}, 0.2, 0.3, 2}, earth)});
+    d.push_back({"water", SpriteKind::floor, "water",
+                 floor_block({{0.2, 0.52, 0.58}, 0.18, 0.12, 3}, {{0.14, 0.34, 0.4}, 0.1, 0.2}, -4)});
+    {
+        Model m;
+        m.materials = {stone};
+        m.prims = {box({-31, -5, 0}, {31, 5, 30}, 0)};
+        for (int i = 0; i < 6; ++i) m.prims.push_back(box({-31 + 11.0 * i, -6, 30}, {-25 + 11.0 * i, 6, 36}, 0));
+        d.push_back({"long_wall", SpriteKind::overlay, "wall", m});
+    }
+    {
+        Model m;
+        m.materials = {plaster, tiles};
+        m.prims = {box({-20, -14, 0}, {20, 14, 24}, 0), box({-22, -16, 24}, {22, 16, 29}, 1),
+                   box({-22, -10, 29}, {22, 10, 34}, 1), box({-22, -4, 34}, {22, 4, 39}, 1)};
+        m.shadow_rx = 34, m.shadow_ry = 13, m.shadow_dx = -12;
+        d.push_back({"house", SpriteKind::overlay, "wall", m});
+    }
+    {
+        Model m;
+        m.materials = {plaster, slate};
+        m.prims = {cylinder({0, 0, 0}, 14, 20, 0), cone({0, 0, 20}, 18, 18, 1)};
+        m.shadow_rx = 26, m.shadow_ry = 10, m.shadow_dx = -10;
+        d.push_back({"round_hut", SpriteKind::overlay, "wall", m});
+    }
+    {
+        Model m;
+        m.materials = {stone, slate};
+        m.prims = {cylinder({0, 0, 0}, 11, 64, 0), cone({0, 0, 64}, 14, 22, 1)};
+        m.shadow_rx = 20, m.shadow_ry = 8, m.shadow_dx = -10;
+        d.push_back({"tower", SpriteKind::overlay, "wall", m});
+    }
+    {
+        Model m;
+        m.materials = {wood};
+        for (int i = -1; i <= 1; ++i) m.prims.push_back(box({i * 26.0 - 2, -2, 0}, {i * 26.0 + 2, 2, 22}, 0));
+        m.prims.push_back(box({-30, -1.5, 14}, {30, 1.5, 17}, 0));
+        m.prims.push_back(box({-30, -1.5, 5}, {30, 1.5, 8}, 0));
+        d.push_back({"fence", SpriteKind::overlay, "wall", m});
+    }
+    {
+        Model m;
+        m.materials = {crowns[2]};
+        m.prims = {box({-24, -6, 0}, {24, 6, 12}, 0)};
+        m.shadow_rx = 30, m.shadow_ry = 10, m.shadow_dx = -8;
+        d.push_back({"hedge", SpriteKind::overlay, "bush", m});
+    }
+    {
+        Model m;
+        m.materials = {granite};
+        m.prims = {ellipsoid({-12, 6, 0}, {9, 8, 6}, 0), ellipsoid({8, -4, 0}, {11, 9, 8}, 0),
+                   ellipsoid({2, 14, 0}, {6, 6, 4}, 0)};
+        m.shadow_rx = 24, m.shadow_ry = 9, m.shadow_dx = -6;
+        d.push_back({"low_rocks", SpriteKind::overlay, "rock", m});
+    }
+    {
+        Model m;
+        m.materials = {granite};
+        m.prims = {ellipsoid({-8, 4, 8}, {14, 13, 12}, 0), ellipsoid({10, -6, 7}, {12, 11, 10}, 0),
+                   ellipsoid({2, 2, 22}, {10, 10, 9}, 0), ellipsoid({-14, -12, 4}, {7, 7, 6}, 0)};
+        m.shadow_rx = 30, m.shadow_ry = 11, m.shadow_dx = -8;
+        d.push_back({"boulder_pile", SpriteKind::overlay, "rock", m});
+    }
+    {
+        Model m;
+        m.materials = {bark, crowns[0], crowns[1], crowns[2]};
+        const double trees[6][3] = {{-16, -14, 36}, {6, -20, 40}, {20, 2, 34}, {-4, 4, 42}, {-20, 12, 38}, {10, 18, 35}};
+        for (const auto& t : trees) m.prims.push_back(cylinder({t[0], t[1], 0}, 2.5, t[2] - 6, 0));
+        for (int i = 0; i < 6; ++i)
+            m.prims.push_back(ellipsoid({trees[i][0], trees[i][1], trees[i][2]}, {12, 12, 11}, 1 + i % 3));
+        m.shadow_rx = 40, m.shadow_ry = 16, m.shadow_dx = -10;
+        d.push_back({"grove", SpriteKind::overlay, "tree", m});
+    }
+    {
+        Model m;
+        m.materials = {bark, crowns[2]};
+        m.prims = {cylinder({0, 0, 0}, 2.5, 74, 0), ellipsoid({0, 0, 86}, {11, 11, 16}, 1),
+                   ellipsoid({4, -3, 73}, {7, 7, 6}, 1)};
+        m.shadow_rx = 14, m.shadow_ry = 6, m.shadow_dx = -8;
+        d.push_back({"tall_tree", SpriteKind::overlay, "tree", m});
+    }
+    {
+        Model m;
+        m.materials = {plaster, tiles, slate, stone};
+        m.prims = {box({-28, -28, 0}, {-8, -10, 18}, 0), box({-29, -29, 18}, {-7, -9, 22}, 1),
+                   box({4, -28, 0}, {28, -8, 14}, 3),   box({3, -29, 14}, {29, -7, 18}, 2),
+                   box({-26, 4, 0}, {-6, 26, 22}, 0),   box({-27, 3, 22}, {-5, 27, 26}, 1),
+                   box({-27, 9, 26}, {-5, 21, 30}, 1),  box({2, 2, 0}, {10, 10, 10}, 0),
+                   box({1, 1, 10}, {11, 11, 13}, 2),    cylinder({16, 16, 0}, 7, 30, 3),
+                   cone({16, 16, 30}, 9, 12, 2)};
+        d.push_back({"town", SpriteKind::overlay, "wall", m});
+    }
+    {
+        Model m;
+        m.materials = {{{0.5, 0.44, 0.4}, 0.22, 0.3}, {{0.93, 0.94, 0.97}, 0.05, 0.3}};
+        m.prims = {cone({0, 0, 0}, 58, 72, 0), ellipsoid({-30, 20, 0}, {30, 26, 30}, 0),
+                   ellipsoid({28, -18, 0}, {28, 24, 26}, 0), cone({0, 0, 49.5}, 18.5, 23, 1)};
+        m.shadow_rx = 90, m.shadow_ry = 34, m.shadow_dx = -14;
+        d.push_back({"mountain", SpriteKind::overlay, "rock", m, 256, 160, 112});
+    }
+    return d;
+}
+
 // The primitive as the manifest's solid, in sprite pixels (the scale applied).
 Solid to_solid(const Prim& p, double scale) {
     auto v = [&](V3 a) { return Vec3{a.x * scale, a.y * scale, a.z * scale}; };
@@ -340,26 +506,26 @@ Solid to_solid(const Prim& p, double scale) {
     return {};
 }
 
-}  // namespace
-
-GeneratedTileset generate_default_tileset(double scale) {
+GeneratedTileset generate_tileset(const std::vector<Def>& defs, const Look& look, std::string_view seed_text,
+                                  double scale) {
     GeneratedTileset g;
     const int size = int(128 * scale + 0.5);
     g.tileset.tile_width = size;
     g.tileset.tile_height = size / 2;
-    const std::uint64_t seed = hash_seed("isolux default tileset");
+    const std::uint64_t seed = hash_seed(seed_text);
     std::uint64_t i = 0;
-    for (const Def& def : definitions()) {
+    for (const Def& def : defs) {
         Sprite s;
         s.name = def.name;
         s.kind = def.kind;
         s.tags = {def.tag};
-        s.anchor_x = size / 2;
+        const int w = def.width ? int(def.width * scale + 0.5) : size, h = def.height ? int(def.height * scale + 0.5) : size;
+        s.anchor_x = w / 2;
         // Floors: the diamond's centre with the diamond at the top of the
         // sprite, the block's sides below. Overlays: the ground point low in
         // the sprite, leaving 108/128 of it for height.
-        s.anchor_y = def.kind == SpriteKind::floor ? size / 4 : int(108 * scale + 0.5);
-        Rendered r = render_model(def.model, size, size, s.anchor_x, s.anchor_y, scale, mix64(seed + ++i));
+        s.anchor_y = def.kind == SpriteKind::floor ? size / 4 : int((def.anchor_y ? def.anchor_y : 108) * scale + 0.5);
+        Rendered r = render_model(def.model, look, w, h, s.anchor_x, s.anchor_y, scale, mix64(seed + ++i));
         s.image = std::move(r.image);
         for (const Prim& p : def.model.prims) s.shape.push_back(to_solid(p, scale));
         g.tileset.sprites.push_back(std::move(s));
@@ -367,6 +533,16 @@ GeneratedTileset generate_default_tileset(double scale) {
         g.image_files.push_back(def.name + ".png");
     }
     return g;
+}
+
+}  // namespace
+
+GeneratedTileset generate_default_tileset(double scale) {
+    return generate_tileset(default_definitions(), kDefaultLook, "isolux default tileset", scale);
+}
+
+GeneratedTileset generate_town_tileset(double scale) {
+    return generate_tileset(town_definitions(), kTownLook, "isolux town tileset", scale);
 }
 
 Sprite generate_character_sprite(double scale) {
@@ -385,7 +561,7 @@ Sprite generate_character_sprite(double scale) {
     const int w = int(48 * scale + 0.5), h = int(80 * scale + 0.5);
     s.anchor_x = w / 2;
     s.anchor_y = int(72 * scale + 0.5);
-    s.image = render_model(m, w, h, s.anchor_x, s.anchor_y, scale, hash_seed("isolux character")).image;
+    s.image = render_model(m, kDefaultLook, w, h, s.anchor_x, s.anchor_y, scale, hash_seed("isolux character")).image;
     return s;
 }
 
