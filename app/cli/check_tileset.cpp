@@ -57,7 +57,8 @@ int run_check_tileset(const CheckArgs& a) {
         for (const EstimatedObject& o : objects)
             e["objects"].push_back({{"center", {std::round(o.center_x * 10) / 10, std::round(o.center_y * 10) / 10}},
                                     {"rect", {o.rect.x, o.rect.y, o.rect.w, o.rect.h}},
-                                    {"height", o.height()}});
+                                    {"height", o.height()},
+                                    {"model", std::string(to_string(o.model))}});
         e["solid_overlap"] = s.shape.empty() ? nlohmann::json(nullptr)
                                              : nlohmann::json(std::round(volume_overlap(objects, s.anchor_x, s.anchor_y,
                                                                                         s.shape) * 1000) / 1000);

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "common/model_colours.hpp"
 #include "isolux/error.hpp"
 
 namespace isolux::app {
@@ -29,15 +30,17 @@ Image contact_sheet(const std::vector<SheetSprite>& drawn) {
                 std::uint8_t* d = sheet.at(ox + x, oy + y);
                 for (int c = 0; c < 3; ++c) d[c] = std::uint8_t((src[c] * src[3] + 40 * (255 - src[3])) / 255);
             }
-        static constexpr std::uint8_t red[4] = {255, 40, 40, 255}, cyan[4] = {0, 255, 255, 255},
-                                      yellow[4] = {255, 220, 0, 255};
-        // The estimated solid's outline (yellow): where its drawn discs end.
-        const Mask solid = solid_silhouette(drawn[k].objects, s.image.width, s.image.height);
-        for (int y = 0; y < solid.height; ++y)
-            for (int x = 0; x < solid.width; ++x)
-                if (solid.get(x, y) && (!solid.get(x - 1, y) || !solid.get(x + 1, y) || !solid.get(x, y - 1) ||
-                                        !solid.get(x, y + 1)))
-                    std::copy_n(yellow, 4, sheet.at(ox + x, oy + y));
+        static constexpr std::uint8_t red[4] = {255, 40, 40, 255}, cyan[4] = {0, 255, 255, 255};
+        // Each estimated solid's outline, in its model's colour (model_colours.hpp).
+        for (const EstimatedObject& o : drawn[k].objects) {
+            const Mask solid = solid_silhouette({o}, s.image.width, s.image.height);
+            const auto colour = model_colour(o.model);
+            for (int y = 0; y < solid.height; ++y)
+                for (int x = 0; x < solid.width; ++x)
+                    if (solid.get(x, y) && (!solid.get(x - 1, y) || !solid.get(x + 1, y) || !solid.get(x, y - 1) ||
+                                            !solid.get(x, y + 1)))
+                        std::copy_n(colour.data(), 4, sheet.at(ox + x, oy + y));
+        }
         paint_mask(sheet, Rect{-ox, -oy, sheet.width, sheet.height}, drawn[k].footprint, 0, 0, red);
         // Each object's footprint (orange outline): a grove has one per tree.
         static constexpr std::uint8_t orange[4] = {255, 140, 0, 255};

@@ -102,8 +102,9 @@ int isolux_cli_main(int argc, char** argv) {
     check->add_option("manifest", ca.manifest, "Tileset manifest")->required();
     check->add_flag("--json", ca.json, "Print one JSON object: {\"sprites\": [{\"name\", \"obstacle_center\", ...}]}");
     check->add_option("--sheet", ca.sheet,
-                      "Write a contact sheet: every sprite with its obstacle (red), its estimated solid's outline "
-                      "(yellow) and anchor (cyan)");
+                      "Write a contact sheet: every sprite with its obstacle (red), each estimated solid's outline "
+                      "in its model's colour (revolution yellow, prism magenta, mound green), each solid's footprint "
+                      "box (orange) and the anchor (cyan)");
     cli::add_param_flags(*check, ca.params);
 
     CLI::App* params = app.add_subcommand("params", "List the parameters: field, flag, type, range, default, what a change re-runs");

@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "gui/app.hpp"
+#include "common/model_colours.hpp"
 #include "gui/inspector.hpp"
 #include "isolux/footprint.hpp"
 #include "isolux/solid_estimate.hpp"
@@ -48,14 +50,18 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
     for (int y = 0; y < obstacle.height; ++y)
         for (int x = 0; x < obstacle.width; ++x)
             if (obstacle.bits[std::size_t(y) * obstacle.width + x]) px(obstacle.x0 + x, obstacle.y0 + y, IM_COL32(255, 50, 50, 200));
-    // The solid estimated from the alpha alone: its outline in yellow (beyond the paper).
+    // The solids estimated from the alpha alone (beyond the paper): each
+    // outlined in its model's colour (model_colours.hpp).
     const std::vector<EstimatedObject> objects = estimate_objects(r.estimate, obstacle, &spec, &s.image, r.whole_base);
-    const Mask solid = solid_silhouette(objects, s.image.width, s.image.height);
-    for (int y = 0; y < solid.height; ++y)
-        for (int x = 0; x < solid.width; ++x)
-            if (solid.get(x, y) &&
-                (!solid.get(x - 1, y) || !solid.get(x + 1, y) || !solid.get(x, y - 1) || !solid.get(x, y + 1)))
-                px(x, y, IM_COL32(255, 220, 0, 255));
+    for (const EstimatedObject& ob : objects) {
+        const Mask solid = solid_silhouette({ob}, s.image.width, s.image.height);
+        const auto c = app::model_colour(ob.model);
+        for (int y = 0; y < solid.height; ++y)
+            for (int x = 0; x < solid.width; ++x)
+                if (solid.get(x, y) &&
+                    (!solid.get(x - 1, y) || !solid.get(x + 1, y) || !solid.get(x, y - 1) || !solid.get(x, y + 1)))
+                    px(x, y, IM_COL32(c[0], c[1], c[2], c[3]));
+    }
     // Each object's footprint (a grove has one per tree), outlined in orange.
     for (const EstimatedObject& ob : objects)
         dl->AddRect(ImVec2(o.x + ob.rect.x * z, o.y + ob.rect.y * z),
@@ -85,8 +91,21 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
     else
         ImGui::TextUnformatted("no obstacle: light passes through this sprite");
     for (const EstimatedObject& ob : objects)
-        ImGui::Text("estimated solid (yellow outline): %.0f px high, its axis at (%.1f, %.1f)%s", ob.height(),
-                    ob.center_x, ob.center_y, spec.object_foot || spec.object_height ? ", as corrected" : "");
+        ImGui::TextWrapped("estimated solid: a %s (outlined in %s), %.0f px high, its foot at (%.1f, %.1f)%s",
+                           std::string(to_string(ob.model)).c_str(),
+                           ob.model == ObjectModel::prism ? "magenta" : ob.model == ObjectModel::mound ? "green" : "yellow",
+                           ob.height(), ob.center_x, ob.center_y,
+                           spec.object_foot || spec.object_height || spec.object_model ? ", as corrected" : "");
+    // The user's choice of model (saved in the manifest's `object` field).
+    {
+        static constexpr const char* names[] = {"estimated (best fit)", "revolution", "prism", "mound"};
+        int current = spec.object_model ? 1 + int(*spec.object_model) : 0;
+        if (ImGui::Combo("solid model", &current, names, 4)) {
+            if (current == 0) spec.object_model.reset();
+            else spec.object_model = ObjectModel(current - 1);
+            changed = true;
+        }
+    }
     // The user's correction of the solid: where it stands and how tall it is.
     bool fix = spec.object_foot.has_value() || spec.object_height > 0;
     if (ImGui::Checkbox("correct the solid", &fix)) {

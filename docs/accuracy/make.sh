@@ -12,7 +12,7 @@ sweeps_done=0
 sweep() {
   local said
   sweeps_done=$((sweeps_done + 1))
-  echo "make.sh: sweep $sweeps_done of 16: ${*: -1}" >&2
+  echo "make.sh: sweep $sweeps_done of 17: ${*: -1}" >&2
   said=$("$cli" sweep "$@" 2>&1 >/dev/null) || { echo "$said" >&2; return 1; }
 }
 for scene in default forest; do
@@ -38,6 +38,9 @@ for scene in default forest; do
   sweep --scene "$s" --param area_a=64,128,254 --param rays=border,every_pixel --reference 3d,every_pixel --allow-huge \
     --frames 8 --repeats 3 --out $out/${scene}_area.csv --chart docs/images/accuracy_${scene}_area.svg
 done
+# Beyond the paper: what stops the rays, on the town tileset (walls, houses, rocks, a mountain, a grove).
+sweep --scene assets/scenes/town.json --param occluders=footprints,solids,shapes --param light_height=4,16,32,64 \
+  --reference 3d --frames 8 --repeats 1 --out $out/town_occluders.csv
 # The CPU the times come from, for the page.
 lscpu | sed -n 's/^Model name: *//p' | head -1 > $out/machine.txt
 # What the truth costs: the 3D reference of the default scene, and a 48-setting sweep against it.

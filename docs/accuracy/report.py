@@ -160,7 +160,12 @@ out("## Beyond the paper: solids with height (occluders)", "",
     "may be below zero where the estimate's errors offset the tracer's).",
     "Lit mismatch against 3D inside the lights' areas, and the app's CPU time (obstacle map, trace and opacity",
     "correction or sprite points) per frame:", "")
-for scene in SCENES:
+out("**town** (`assets/scenes/town.json`) is measured here only: the town tileset (`isolux-cli tileset --name town`:",
+    "walls, houses, a town in one tile, rocks, a boulder pile, a mountain wider than a tile, a tower, a fence, a",
+    "hedge, a grove of six trees whose crowns merge and a tall thin tree, drawn from shapes under another sun, with",
+    "dark outlines and another palette), 10x10 tiles, four lights among them, the whole map in view. `check-tileset",
+    "--json` names each object's model (docs/beyond.md).", "")
+for scene in list(SCENES) + ["town"]:
     rs = rows(f"{scene}_occluders")
     out(f"**{scene}**:", "", "| light height | ground: footprints | ground: solids | ground: shapes | sprites: footprints | "
         "sprites: solids | sprites: shapes | app CPU ms: footprints | solids | shapes |", "|---|---|---|---|---|---|---|---|---|---|")
@@ -179,6 +184,17 @@ for scene in SCENES:
                 f"{part} at {h} px" + ("" if float(so[key]) <= float(f[key]) / 2 else f" ({pct(so[key])} against {pct(f[key])})"))
     out(f"At most half the paper's error with `solids`: {len(met)} of 8 ({', '.join(met) if met else 'none'})."
         + (f" Not yet: {', '.join(missed)}." if missed else ""), "")
+    # Never worse than footprints, and within 1.5 times what the true shapes give (the estimate's own share).
+    worse, far = [], []
+    for h in ["4", "16", "32", "64"]:
+        f, so, sh = (one(rs, light_height=h, occluders=o) for o in ("footprints", "solids", "shapes"))
+        for part, key in (("ground", "floor_lit_mismatch"), ("sprites", "sprite_lit_mismatch")):
+            if float(so[key]) > float(f[key]):
+                worse.append(f"{part} at {h} px")
+            if float(so[key]) > 1.5 * float(sh[key]):
+                far.append(f"{part} at {h} px ({pct(so[key])} against {pct(sh[key])})")
+    out(f"`solids` worse than footprints: {', '.join(worse) if worse else 'nowhere'}. Over 1.5 times `shapes`: "
+        f"{', '.join(far) if far else 'nowhere'}.", "")
 
 out("## Beyond the paper: rays over low obstacles", "",
     "`rays_over_obstacles` (off by default): each obstacle pixel carries the estimated height of its sprite (its",

@@ -14,6 +14,7 @@
 // silhouette shows at its height: its depth stays the disc's radius, which
 // the silhouette cannot tell (docs/beyond.md).
 #pragma once
+#include <optional>
 #include <vector>
 
 #include "isolux/image.hpp"
@@ -26,6 +27,13 @@ namespace isolux {
 struct EstimatedObject {
     double center_x = 0, center_y = 0;  // the footprint's centre, sprite pixels (as check-tileset's obstacle_center)
     Rect rect;                          // the footprint's bounding box, sprite pixels
+    // Which solid this is. revolution and mound: the ellipse cross-sections
+    // below. prism: the rectangle |x| <= half_x, |y| <= half_y of the ground
+    // frame (its sides along the tiles' edges) at every height below
+    // height(); its radius[z] is then the rectangle's circumscribed circle,
+    // so code that bounds a cross-section by its ellipse stays a superset.
+    ObjectModel model = ObjectModel::revolution;
+    double half_x = 0, half_y = 0;
     // The cross-section from height z to z + 1, an ellipse about the axis,
     // ground pixels: radius[z] its semi-axis in depth (ground direction
     // (1, 1), along screen y; 0: none), across[z] its semi-axis across the
@@ -73,6 +81,24 @@ bool hidden_below_widest(const Mask& object, const EstimatedObject& o);
 std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint,
                                               const FootprintSpec* correction = nullptr, const Image* image = nullptr,
                                               bool whole_base = false);
+
+// How well objects' silhouette fits an object's pixels: |both| / |either|
+// (the silhouette as solid_silhouette draws it). 0 when both are empty.
+double silhouette_fit(const std::vector<EstimatedObject>& objects, const Mask& object);
+
+// The prism (a footprint rectangle along the tiles' edges, extruded to one
+// height) whose projection fits the object's pixels: the rectangle's front
+// corners from the object's lowest pixels (a V of slopes +-1/2, fitted
+// robustly so that eaves and gaps between posts do not move it), its back
+// corner mirrored through the rectangle's centre, its height the median of
+// the columns' rise from the back edges to the object's top. None where no
+// such V holds (a rounded base, a trunk).
+std::optional<EstimatedObject> fit_prism(const Mask& object);
+
+// The mound (a half ellipsoid on the ground) whose projection fits the
+// object's pixels: its base from the widest row and the lowest row, its
+// height from the top row. None when the top does not stand above the base.
+std::optional<EstimatedObject> fit_mound(const Mask& object);
 
 // The objects of tileset sprite `s` under preset `p`: its footprint as the
 // obstacle map stamps it (tileset_footprint) and the estimate's pixels.

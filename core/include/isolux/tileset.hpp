@@ -24,6 +24,17 @@ enum class FootprintMode {
 };
 std::string_view to_string(FootprintMode m);
 
+// Beyond the paper: the kind of solid an object estimated from a sprite's
+// alpha is (solid_estimate.hpp, docs/beyond.md).
+enum class ObjectModel {
+    revolution,  // a stack of cross-sections about a vertical axis: trees, towers, bushes
+    prism,       // a footprint rectangle extruded upward: walls, fences, houses, town blocks
+    mound,       // a half ellipsoid resting on its base: rocks, hills, mountains
+};
+std::string_view to_string(ObjectModel m);
+// The model a name spells ("revolution", "prism", "mound"), none for another name.
+std::optional<ObjectModel> object_model_named(std::string_view name);
+
 // A sprite's footprint settings (the manifest's "footprint" and thresholds).
 struct FootprintSpec {
     std::optional<FootprintMode> mode;              // unset: the preset's `footprint`
@@ -37,6 +48,7 @@ struct FootprintSpec {
     // its solid above the ground (0: the estimate's own).
     std::optional<std::pair<int, int>> object_foot;
     int object_height = 0;
+    std::optional<ObjectModel> object_model;  // unset: the model that fits the silhouette best
     friend bool operator==(const FootprintSpec&, const FootprintSpec&) = default;
 };
 

@@ -95,7 +95,7 @@ FootprintSpec footprint_from(const json& j, const std::string& where) {
         if (!spec.mode) spec.mode = FootprintMode::polygon;
     }
     if (f.has("object")) {
-        // {"foot": [x, y], "height": h}: the user's correction of the estimated solid.
+        // {"foot": [x, y], "height": h, "model": m}: the user's correction of the estimated solid.
         const json& o = j["object"];
         check_object(o, where + ": object");
         Fields of{o, where + ": object"};
@@ -105,6 +105,11 @@ FootprintSpec footprint_from(const json& j, const std::string& where) {
             spec.object_foot = std::pair{coord(ft[0], "object"), coord(ft[1], "object")};
         }
         if (of.has("height")) spec.object_height = int(of.integer("height", 1, max_sprite_offset));
+        if (of.has("model")) {
+            const std::string m = of.text("model");
+            spec.object_model = object_model_named(m);
+            if (!spec.object_model) of.fail("model", "\"" + m + "\" is not one of revolution, prism, mound");
+        }
     }
     if (spec.mode == FootprintMode::run && spec.run_length < 1) f.fail("run", "is required for mode run");
     if (spec.mode == FootprintMode::polygon && spec.polygon.empty()) f.fail("polygon", "is required for mode polygon");
@@ -123,10 +128,11 @@ json footprint_json(const FootprintSpec& f) {
     if (f.shadow_alpha != defaults.shadow_alpha) j["shadow_alpha"] = f.shadow_alpha;
     if (f.shadow_luminance != defaults.shadow_luminance) j["shadow_luminance"] = f.shadow_luminance;
     if (f.ground_tolerance != defaults.ground_tolerance) j["ground_tolerance"] = f.ground_tolerance;
-    if (f.object_foot || f.object_height > 0) {
+    if (f.object_foot || f.object_height > 0 || f.object_model) {
         json o = json::object();
         if (f.object_foot) o["foot"] = {f.object_foot->first, f.object_foot->second};
         if (f.object_height > 0) o["height"] = f.object_height;
+        if (f.object_model) o["model"] = std::string(to_string(*f.object_model));
         j["object"] = o;
     }
     return j;

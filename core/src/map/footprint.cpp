@@ -174,6 +174,21 @@ std::string_view to_string(FootprintMode m) {
     return "auto";
 }
 
+std::string_view to_string(ObjectModel m) {
+    switch (m) {
+        case ObjectModel::revolution: return "revolution";
+        case ObjectModel::prism: return "prism";
+        case ObjectModel::mound: return "mound";
+    }
+    return "revolution";
+}
+
+std::optional<ObjectModel> object_model_named(std::string_view name) {
+    for (ObjectModel m : {ObjectModel::revolution, ObjectModel::prism, ObjectModel::mound})
+        if (to_string(m) == name) return m;
+    return std::nullopt;
+}
+
 Mask sprite_footprint(const Image& sprite, const Mask& opacity, int ax, int ay, int tw, int th, int delta_y,
                       FootprintMode mode, const FootprintSpec& spec, FootprintReport* report) {
     FootprintReport local;

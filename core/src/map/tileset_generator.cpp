@@ -142,6 +142,9 @@ struct Look {
     V3 sun;
     double ambient = 0.38;   // the light a face turned from the sun keeps
     bool outlines = false;
+    // Whether the ground hides what lies below it (a rock's buried half):
+    // the view ray only descends, so a hit below z = 0 is behind the ground.
+    bool ground_hides = false;
 };
 
 Hit cast(const Model& m, V3 o) {
@@ -182,9 +185,9 @@ double pattern_value(const Material& mat, V3 x, std::uint64_t seed) {
     }
 }
 
-const Look kDefaultLook{unit({0.35, 0.6, 1.0}), 0.38, false};  // the sun from the upper left of the screen
+const Look kDefaultLook{unit({0.35, 0.6, 1.0}), 0.38, false, false};  // the sun from the upper left of the screen
 // The town's sun from the upper right, lower, with more contrast; dark outlines.
-const Look kTownLook{unit({0.8, -0.25, 0.7}), 0.3, true};
+const Look kTownLook{unit({0.8, -0.25, 0.7}), 0.3, true, true};
 // Outlines: an opaque pixel beside a transparent one, or beside one whose
 // visible height differs by more than this many pixels (a roof's step, a
 // crown before a trunk), is inked.
@@ -232,6 +235,7 @@ Rendered render_model(const Model& m, const Look& look, int w, int h, double ax,
                 double sy = (py + 0.25 + 0.5 * (s >> 1) - ay) / scale;
                 V3 o{(2 * (sy + zstart) + sx) / 2, (2 * (sy + zstart) - sx) / 2, zstart};
                 Hit hit = cast(m, o);
+                if (look.ground_hides && !m.floor && hit.material >= 0 && (o + D * hit.t).z < 0) hit = Hit{};
                 if (hit.material < 0) {
                     if (m.shadow_rx > 0) {
                         double ex = (sx - m.shadow_dx) / m.shadow_rx, ey = sy / m.shadow_ry, d = ex * ex + ey * ey;

@@ -23,6 +23,18 @@ constexpr int axis_shift = 2;
 // footprint's foot: the search is a refinement, and its cost grows with the
 // fourth power of the object's size.
 constexpr double foot_search_budget = 2e10;
+// How much better (in silhouette_fit) a prism or a mound must fit an object
+// than its solid of revolution to replace it.
+constexpr double model_fit_margin = 0.03;
+// The V of a prism's front corners: the share of the columns below which a
+// column's ground line may lie (eaves and rails stand above the ground; none
+// stands below it), and the distance, pixels, within which a column is on it.
+constexpr double prism_ground_quantile = 0.75;
+constexpr double prism_on_ground = 1.5;
+// How far above a mound's base centre, pixels, the middle of its widest
+// rows may lie (a dome's widest rows straddle its base's centre; a crown's
+// its equator, above the ground).
+constexpr double mound_equator_rise = 3;
 
 // Per row of the object's mask: the opaque run through column `c`, as the
 // first and last column (first > last: column c is transparent there).
@@ -72,6 +84,7 @@ bool disc_fits(const RunsThrough& runs, double fx, double yc, double r) {
 bool EstimatedObject::holds(std::size_t z, double x, double y) const {
     const double d = radius[z], a = across_at(z);
     if (d <= 0) return false;
+    if (model == ObjectModel::prism) return std::abs(x) <= half_x && std::abs(y) <= half_y;
     const double u = (x - y) / sqrt2, v = (x + y) / sqrt2;  // across the view, in depth
     return (u * u) / (a * a) + (v * v) / (d * d) <= 1;
 }
@@ -310,8 +323,10 @@ bool hidden_below_widest(const Mask& object, const EstimatedObject& o) {
     return true;
 }
 
-std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction,
-                                              const Image* image, bool whole_base) {
+namespace {
+
+std::vector<EstimatedObject> revolution_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction,
+                                                const Image* image, bool whole_base) {
     EstimatedObject o;
     const bool has_footprint = mask_centre(footprint, o.center_x, o.center_y, o.rect);
     const bool corrected = correction && correction->object_foot;
@@ -382,10 +397,242 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     return {moved};
 }
 
+// The user's foot and height applied to a prism or a mound: the solid
+// moved so its base's centre stands on the foot, its height replaced.
+void apply_correction(EstimatedObject& o, const FootprintSpec& c) {
+    if (c.object_foot) {
+        const double dx = c.object_foot->first + 0.5 - o.center_x, dy = c.object_foot->second + 0.5 - o.center_y;
+        o.center_x += dx, o.center_y += dy;
+        o.rect.x += int(std::lround(dx)), o.rect.y += int(std::lround(dy));
+    }
+    if (c.object_height > 0 && !o.radius.empty()) {
+        const std::size_t n = std::size_t(c.object_height);
+        if (o.model == ObjectModel::prism) {
+            o.radius.assign(n, o.radius[0]);
+        } else {  // a mound keeps its profile, stretched to the new height
+            std::vector<double> r(n), a(n);
+            for (std::size_t z = 0; z < n; ++z) {
+                const std::size_t k = std::min(o.radius.size() - 1, z * o.radius.size() / n);
+                r[z] = o.radius[k], a[z] = o.across_at(k);
+            }
+            o.radius = std::move(r), o.across = std::move(a);
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction,
+                                              const Image* image, bool whole_base) {
+    // The user's model, where they chose one (a pointer: GCC 12 misreads an optional's use here).
+    const ObjectModel* chosen = correction && correction->object_model ? &*correction->object_model : nullptr;
+    std::vector<EstimatedObject> revolution;
+    if (!chosen || *chosen == ObjectModel::revolution)
+        revolution = revolution_objects(object, footprint, correction, image, whole_base);
+    if (chosen && *chosen == ObjectModel::revolution) return revolution;
+    // A foot or a height without a model corrects the solid of revolution,
+    // as it did before there were models: manifests keep their solids.
+    if (!chosen && correction && (correction->object_foot || correction->object_height > 0)) return revolution;
+    // A grove (several trunks) stays trees of revolution: the models fit one object.
+    if (!chosen && revolution.size() != 1) return revolution;
+    std::optional<EstimatedObject> prism, mound;
+    if (!chosen || *chosen == ObjectModel::prism) prism = fit_prism(object);
+    if (!chosen || *chosen == ObjectModel::mound) mound = fit_mound(object);
+    if (chosen) {  // the user's model; where it finds no fit, the estimate's own
+        std::optional<EstimatedObject>& o = *chosen == ObjectModel::prism ? prism : mound;
+        if (!o) return revolution_objects(object, footprint, correction, image, whole_base);
+        apply_correction(*o, *correction);
+        return {*o};
+    }
+    // The model whose silhouette fits the object's pixels best; revolution
+    // keeps ties (within model_fit_margin): it was measured first, and both
+    // other models fill a bush's or a boulder's outline about as well as it
+    // does, where it measured closer to 3D (docs/beyond.md).
+    double best = silhouette_fit(revolution, object) + model_fit_margin;
+    std::vector<EstimatedObject> out = std::move(revolution);
+    for (std::optional<EstimatedObject>* m : {&prism, &mound}) {
+        if (!*m) continue;
+        const double fit = silhouette_fit({**m}, object);
+        if (fit > best) best = fit, out = {**m};
+    }
+    return out;
+}
+
+namespace {
+
+// Per column of an object's mask that holds a pixel: its centre, the screen
+// row under its lowest pixel (where a solid standing there meets the
+// ground) and the row over its highest.
+struct ColumnExtent {
+    double x, ground, top;
+};
+
+std::vector<ColumnExtent> column_extents(const Mask& object) {
+    std::vector<ColumnExtent> cols;
+    for (int i = 0; i < object.width; ++i) {
+        int first = -1, last = -1;
+        for (int j = 0; j < object.height; ++j)
+            if (object.bits[std::size_t(j) * object.width + i]) {
+                if (first < 0) first = j;
+                last = j;
+            }
+        if (first >= 0) cols.push_back({object.x0 + i + 0.5, double(object.y0 + last + 1), double(object.y0 + first)});
+    }
+    return cols;
+}
+
+double quantile(std::vector<double> v, double q) {
+    const std::size_t k = std::min(v.size() - 1, std::size_t(q * double(v.size())));
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+    return v[k];
+}
+
+}  // namespace
+
+std::optional<EstimatedObject> fit_prism(const Mask& object) {
+    const std::vector<ColumnExtent> cols = column_extents(object);
+    if (cols.size() < 6) return std::nullopt;
+    // The front corner (xf, yf): each column's ground line lifted by the V's
+    // slope from xf lies at yf. The corner is the one whose lifted lines
+    // agree best (their errors capped, so eaves and the gaps between a
+    // fence's posts count once), yf a high quantile of them.
+    constexpr double cap = 6;
+    double best = 1e300, xf = 0, yf = 0;
+    std::vector<double> lifted(cols.size());
+    for (double cand = cols.front().x; cand <= cols.back().x; cand += 0.5) {
+        for (std::size_t k = 0; k < cols.size(); ++k) lifted[k] = cols[k].ground + std::abs(cols[k].x - cand) / 2;
+        const double y = quantile(lifted, prism_ground_quantile);
+        double cost = 0;
+        for (double l : lifted) cost += std::min(std::abs(l - y), cap);
+        if (cost < best) best = cost, xf = cand, yf = y;
+    }
+    // The left and right corners: the outermost columns on the V.
+    double xl = 1e300, xr = -1e300;
+    for (const ColumnExtent& c : cols)
+        if (std::abs(c.ground + std::abs(c.x - xf) / 2 - yf) <= prism_on_ground)
+            xl = std::min(xl, c.x - 0.5), xr = std::max(xr, c.x + 0.5);
+    if (!(xl < xf && xf < xr)) return std::nullopt;
+    // The rectangle in the ground frame (ground_frame at z = 0, sprite pixels).
+    const double X1 = yf + xf / 2, Y1 = yf - xf / 2;  // the front corner
+    const double X0 = std::min(xl + Y1, X1 - 1), Y0 = std::min(X1 - xr, Y1 - 1);
+    // The height: each column's rise from the back edges to its top.
+    const double xb = X0 - Y0, yb = (X0 + Y0) / 2;  // the back corner on screen
+    std::vector<double> rises;
+    for (const ColumnExtent& c : cols)
+        if (c.x > xl && c.x < xr) rises.push_back(yb + std::abs(c.x - xb) / 2 - c.top);
+    if (rises.empty()) return std::nullopt;
+    const double height = quantile(rises, 0.5);
+    if (height < 1) return std::nullopt;
+    EstimatedObject o;
+    o.model = ObjectModel::prism;
+    o.half_x = (X1 - X0) / 2, o.half_y = (Y1 - Y0) / 2;
+    const double Xc = (X0 + X1) / 2, Yc = (Y0 + Y1) / 2;
+    o.center_x = Xc - Yc, o.center_y = (Xc + Yc) / 2;
+    o.radius.assign(std::size_t(std::lround(height)), std::hypot(o.half_x, o.half_y));
+    const int left = int(std::floor(xl)), back = int(std::floor(yb));
+    o.rect = Rect{left, back, int(std::ceil(xr)) - left, int(std::ceil(yf)) - back};
+    return o;
+}
+
+std::optional<EstimatedObject> fit_mound(const Mask& object) {
+    // The base, taken round: its width from the widest row, its front from
+    // the object's lowest row, so its centre's row lies half its depth on
+    // screen above that. The top row sets the height.
+    int widest = 0, widest_row = -1, top = -1, bottom = -1;
+    std::vector<std::pair<int, int>> runs(std::size_t(object.height), {1, 0});
+    for (int j = 0; j < object.height; ++j) {
+        int a = -1, b = -1;
+        for (int i = 0; i < object.width; ++i)
+            if (object.bits[std::size_t(j) * object.width + i]) {
+                if (a < 0) a = i;
+                b = i;
+            }
+        if (a < 0) continue;
+        runs[std::size_t(j)] = {a, b};
+        if (top < 0) top = j;
+        bottom = j;
+        widest = std::max(widest, b - a + 1);
+    }
+    if (top < 0) return std::nullopt;
+    int first_wide = -1;  // the band of rows within 3 % of the widest: its middle
+    for (int j = top; j <= bottom; ++j)
+        if (runs[std::size_t(j)].second - runs[std::size_t(j)].first + 1 >= 0.97 * widest) {
+            if (first_wide < 0) first_wide = j;
+            widest_row = j;
+        }
+    const double wide_middle = (first_wide + widest_row) / 2.0;
+    const double across = widest / 2.0 / sqrt2, front = object.y0 + bottom + 1.0, fy = front - across / sqrt2;
+    // The widest rows of a mound are its base's middle; where they stand
+    // well above it, they are an equator above the ground (a bush's crown).
+    if (object.y0 + wide_middle + 0.5 < fy - mound_equator_rise) return std::nullopt;
+    const double above = fy - (object.y0 + top);
+    // The silhouette's top lies sqrt(H^2 + depth^2 / 2) above the base's centre.
+    const double h2 = above * above - across * across / 2;
+    if (h2 < 1) return std::nullopt;
+    const double height = std::sqrt(h2);
+    int a = object.width, b = -1;  // the base's columns: the widest run's
+    for (int j = top; j <= bottom; ++j)
+        if (runs[std::size_t(j)].second - runs[std::size_t(j)].first + 1 == widest) a = runs[std::size_t(j)].first, b = runs[std::size_t(j)].second;
+    EstimatedObject o;
+    o.model = ObjectModel::mound;
+    o.center_x = object.x0 + (a + b + 1) / 2.0, o.center_y = fy;
+    const std::size_t n = std::size_t(std::lround(height));
+    o.radius.resize(n), o.across.resize(n);
+    for (std::size_t z = 0; z < n; ++z) {
+        const double k = std::sqrt(std::max(0.0, 1 - std::pow((double(z) + 0.5) / height, 2)));
+        o.radius[z] = o.across[z] = across * k;
+    }
+    o.rect = Rect{object.x0 + a, int(std::floor(fy - across / sqrt2)), b - a + 1, int(std::ceil(2 * across / sqrt2)) + 1};
+    return o;
+}
+
 std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite& s, const Params& p) {
     FootprintReport report;
     const Mask footprint = tileset_footprint(tileset, s, p, &report);
     return estimate_objects(report.estimate, footprint, &s.footprint, &s.image, report.whole_base);
+}
+
+namespace {
+
+// A prism's silhouette: the pixels whose view line meets its rectangle at
+// a height in [0, height). On the view line through (sx, sy) from the foot
+// the point z high is (t + sx / 2, t - sx / 2) with t = sy + z, so the
+// pixel is drawn when the three ranges of t (the rectangle's two sides and
+// the heights) meet.
+void draw_prism(const EstimatedObject& o, Mask& m) {
+    const double reach = o.half_x + o.half_y, top = o.height();
+    const int x0 = std::max(int(std::floor(o.center_x - reach)), 0), x1 = std::min(int(std::ceil(o.center_x + reach)), m.width - 1);
+    const int y0 = std::max(int(std::floor(o.center_y - reach / 2 - top)), 0),
+              y1 = std::min(int(std::ceil(o.center_y + reach / 2)), m.height - 1);
+    for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+            const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y;
+            const double lo = std::max({-o.half_x - sx / 2, -o.half_y + sx / 2, sy});
+            const double hi = std::min({o.half_x - sx / 2, o.half_y + sx / 2, sy + top});
+            if (lo <= hi) m.set(x, y);
+        }
+}
+
+}  // namespace
+
+double silhouette_fit(const std::vector<EstimatedObject>& objects, const Mask& object) {
+    const int w = object.x0 + object.width, h = object.y0 + object.height;
+    if (w <= 0 || h <= 0) return 0;
+    // Past the object's rectangle the silhouette only adds to |either|: drawn on a margin around it.
+    double margin = 0;
+    for (const EstimatedObject& o : objects) {
+        double reach = o.half_x + o.half_y;
+        for (std::size_t z = 0; z < o.radius.size(); ++z) reach = std::max(reach, o.across_at(z) * sqrt2);
+        margin = std::max(margin, 2 * reach + 2);
+    }
+    const Mask drawn = solid_silhouette(objects, w + int(margin), h + int(margin));
+    long both = 0, either = 0;
+    for (int y = 0; y < drawn.height; ++y)
+        for (int x = 0; x < drawn.width; ++x) {
+            const bool a = drawn.get(x, y), b = object.get(x, y);
+            both += a && b, either += a || b;
+        }
+    return either ? double(both) / double(either) : 0;
 }
 
 Mask solid_silhouette(const std::vector<EstimatedObject>& objects, int w, int h) {
@@ -395,6 +642,10 @@ Mask solid_silhouette(const std::vector<EstimatedObject>& objects, int w, int h)
     // pass over the rows a cross-section spans, not over its pixels).
     std::vector<double> widest(std::size_t(std::max(h, 0)));
     for (const EstimatedObject& o : objects) {
+        if (o.model == ObjectModel::prism) {
+            draw_prism(o, m);
+            continue;
+        }
         std::fill(widest.begin(), widest.end(), -1.0);
         for (std::size_t z = 0; z < o.radius.size(); ++z) {
             const double r = o.radius[z], a = o.across_at(z) * sqrt2, b = r / sqrt2, yc = o.center_y - (double(z) + 0.5);

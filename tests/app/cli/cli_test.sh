@@ -134,13 +134,27 @@ for s in d["sprites"]:
     # Each object's footprint is the obstacle's (its centre and box), and its solid stands above the ground.
     assert len(s["objects"]) == (0 if s["obstacle_center"] is None else 1), s
     for o in s["objects"]:
-        assert set(o) == {"center", "rect", "height"}, o
-        assert o["center"] == s["obstacle_center"] and o["rect"] == s["obstacle_rect"], s
+        assert set(o) == {"center", "rect", "height", "model"}, o
+        assert o["model"] in ("revolution", "prism", "mound"), o
+        # A solid of revolution stands on the footprint's centre (a prism or a mound on its own base).
+        if o["model"] == "revolution":
+            assert o["center"] == s["obstacle_center"] and o["rect"] == s["obstacle_rect"], s
         assert o["height"] > 0, s
     assert s["solid_overlap"] is None, s  # this tileset has no shapes
 PY
 then pass=$((pass + 1)); else echo "FAIL check-tileset --json is not the documented shape"; fail=$((fail + 1)); fi
 [ -s "$tmp/sheet.png" ] && pass=$((pass + 1)) || { echo "FAIL no contact sheet"; fail=$((fail + 1)); }
+# The town tileset: walls and houses are prisms, the tall tree a solid of revolution, and the contact sheet draws them.
+check check_tileset_town 0 "" -- check-tileset "$src/assets/town/tileset.json" --json --occluders solids --sheet "$tmp/town_sheet.png"
+if python3 - "$tmp/out" <<'PY'
+import json, sys
+models = {s["name"]: [o["model"] for o in s["objects"]] for s in json.load(open(sys.argv[1]))["sprites"]}
+for name in ("long_wall", "house", "hedge"):
+    assert models[name] == ["prism"], (name, models[name])
+assert models["tall_tree"] == ["revolution"], models["tall_tree"]
+PY
+then pass=$((pass + 1)); else echo "FAIL check-tileset --json: the town's models"; fail=$((fail + 1)); fi
+[ -s "$tmp/town_sheet.png" ] && pass=$((pass + 1)) || { echo "FAIL no town contact sheet"; fail=$((fail + 1)); }
 check check_tileset_bad 2 "tileset.json" -- check-tileset "$tmp/nowhere/tileset.json"
 
 # Bad paths and hostile files: a clear refusal naming the file, never a crash or a hang.

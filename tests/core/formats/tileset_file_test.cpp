@@ -241,4 +241,13 @@ TEST(Tileset, anObjectCorrectionIsReadAndSavedBack) {
     t.sprites[1].footprint.object_height = 0;
     save_manifest_footprints(m, t);
     EXPECT_EQ(load_tileset(m).sprites[1].footprint, FootprintSpec{});
+    // The solid's model: read, written back, and a name that is none refused naming the field.
+    t.sprites[1].footprint.object_model = ObjectModel::prism;
+    EXPECT_EQ(footprint_to_json(t.sprites[1].footprint), R"({"object":{"model":"prism"}})");
+    save_manifest_footprints(m, t);
+    EXPECT_EQ(load_tileset(m).sprites[1].footprint.object_model, ObjectModel::prism);
+    const fs::path bad = d.write("bad.json", manifest_with(
+        R"({"name": "post", "image": "floor.png", "kind": "overlay", "footprint": {"object": {"model": "cube"}}})"));
+    const std::string said = error_of([&] { load_tileset(bad); });
+    for (const char* word : {"bad.json", "object", "model", "\"cube\"", "revolution, prism, mound"}) EXPECT_MENTIONS(said, word);
 }

@@ -3,11 +3,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 #include <glm/geometric.hpp>
 
 #include "isolux/footprint.hpp"
 #include "isolux/solid_estimate.hpp"
+#include "isolux/tileset_file.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -282,4 +287,135 @@ TEST(SolidEstimate, theSolidsSilhouetteCoversTheSpriteAndEachCrossSectionFitsIts
             EXPECT_TRUE(object.get(x, y)) << "cross-section " << z << " draws " << x << "," << y << " outside the sprite";
     }
     EXPECT_GT(widened, 0) << "the canopy's underside reaches wider across than its discs";
+}
+
+// The models (docs/beyond.md): on the town tileset, drawn from true shapes
+// in another look, the walls, the house and the hedge fit prisms, which
+// share far more of their true volume than the solids of revolution a user
+// could force; the trees and the tower stay solids of revolution.
+TEST(SolidModels, wallsAndHousesArePrismsAndShareMoreOfTheirTrueVolume) {
+    const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
+    const Params p;
+    auto sprite = [&](const std::string& name) -> const Sprite& {
+        for (const Sprite& s : town.sprites)
+            if (s.name == name) return s;
+        throw std::runtime_error("no sprite " + name);
+    };
+    for (const char* name : {"long_wall", "house", "hedge"}) {
+        const Sprite& s = sprite(name);
+        const auto objects = sprite_objects(town, s, p);
+        ASSERT_EQ(objects.size(), 1u) << name;
+        EXPECT_EQ(objects[0].model, ObjectModel::prism) << name;
+        const double overlap = volume_overlap(objects, s.anchor_x, s.anchor_y, s.shape);
+        Sprite forced = s;
+        forced.footprint.object_model = ObjectModel::revolution;
+        const auto revolution = sprite_objects(town, forced, p);
+        ASSERT_EQ(revolution.size(), 1u) << name;
+        EXPECT_EQ(revolution[0].model, ObjectModel::revolution) << name;
+        const double forced_overlap = volume_overlap(revolution, s.anchor_x, s.anchor_y, s.shape);
+        std::printf("%s: a prism shares %.3f of the true volume, a solid of revolution %.3f\n", name, overlap, forced_overlap);
+        EXPECT_GT(overlap, 0.8) << name;
+        EXPECT_GT(overlap, 1.6 * forced_overlap) << name;
+    }
+    for (const char* name : {"tall_tree", "tower", "round_hut"})
+        for (const EstimatedObject& o : sprite_objects(town, sprite(name), p))
+            EXPECT_EQ(o.model, ObjectModel::revolution) << name;
+    const Tileset def = test::default_tileset();
+    for (const Sprite& s : def.sprites) {
+        if (std::find(s.tags.begin(), s.tags.end(), "tree") == s.tags.end()) continue;
+        for (const EstimatedObject& o : sprite_objects(def, s, p)) EXPECT_EQ(o.model, ObjectModel::revolution) << s.name;
+    }
+}
+
+// A box drawn from its true shape: the prism's rectangle and height are the
+// box's within a pixel or two, and its solid holds the box's inside and not
+// its outside.
+TEST(SolidModels, aBoxFitsThePrismOfItsRectangleAndHeight) {
+    const int w = 160, h = 140, ax = 80, ay = 110;
+    const Solid box{SolidKind::box, {-30, -12, 0}, {30, 12, 36}};
+    const Mask object = drawn({box}, w, h, ax, ay);
+    const std::optional<EstimatedObject> o = fit_prism(object);
+    ASSERT_TRUE(o.has_value());
+    EXPECT_EQ(o->model, ObjectModel::prism);
+    EXPECT_NEAR(o->half_x, 30, 1.5);
+    EXPECT_NEAR(o->half_y, 12, 1.5);
+    EXPECT_NEAR(o->height(), 36, 2);
+    // Its foot: the box's centre on the ground, on screen.
+    EXPECT_NEAR(o->center_x, ax + 0.0, 1.5);
+    EXPECT_NEAR(o->center_y, ay + 0.0, 1.5);
+    EXPECT_TRUE(o->contains({0, 0, 20}));
+    EXPECT_TRUE(o->contains({27, 10, 33}));
+    EXPECT_FALSE(o->contains({0, 16, 10}));
+    EXPECT_FALSE(o->contains({0, 0, 40}));
+    EXPECT_GT(volume_overlap({*o}, ax, ay, {box}), 0.85);
+    EXPECT_GT(silhouette_fit({*o}, object), 0.95);
+    // A cylinder's round base is no V: its prism fits worse than its solid of revolution.
+    const Mask round = drawn({Solid{SolidKind::cylinder, {0, 0, 0}, {20, 20, 50}}}, w, h, ax, ay);
+    const auto estimated = estimate_objects(round, foot(w, h, ax, ay));
+    ASSERT_EQ(estimated.size(), 1u);
+    EXPECT_EQ(estimated[0].model, ObjectModel::revolution);
+}
+
+// A half ellipsoid on the ground: the mound's base and height are its own,
+// where the largest solid of revolution stands far taller. (Its outline is
+// filled about as well by that solid, which keeps such ties: a user picks
+// the mound in the inspector.)
+TEST(SolidModels, aLowDomeFitsAMoundOfItsHeight) {
+    const int w = 160, h = 120, ax = 80, ay = 90;
+    const Solid dome{SolidKind::ellipsoid, {0, 0, 0}, {26, 26, 12}};
+    Mask object(Rect{0, 0, w, h});  // its half above the ground: the ground hides the rest
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (surface_height({dome}, x + 0.5 - ax, y + 0.5 - ay) >= 0) object.set(x, y);
+    const std::optional<EstimatedObject> o = fit_mound(object);
+    ASSERT_TRUE(o.has_value());
+    EXPECT_EQ(o->model, ObjectModel::mound);
+    EXPECT_NEAR(o->height(), 12, 3);
+    EXPECT_NEAR(o->center_x, ax, 1.5);
+    EXPECT_NEAR(o->center_y, ay, 2);
+    FootprintSpec c;
+    c.object_model = ObjectModel::mound;
+    const auto chosen = estimate_objects(object, foot(w, h, ax, ay), &c);
+    ASSERT_EQ(chosen.size(), 1u);
+    EXPECT_EQ(chosen[0].model, ObjectModel::mound);
+    c.object_model = ObjectModel::revolution;
+    const auto round = estimate_objects(object, foot(w, h, ax, ay), &c);
+    ASSERT_EQ(round.size(), 1u);
+    const double mound_overlap = volume_overlap(chosen, ax, ay, {dome}), round_overlap = volume_overlap(round, ax, ay, {dome});
+    std::printf("a dome: the mound shares %.3f of its volume, the solid of revolution %.3f (%.0f px high)\n",
+                mound_overlap, round_overlap, round[0].height());
+    EXPECT_GT(mound_overlap, 0.4);  // of the whole ellipsoid, half of which lies below the ground
+    EXPECT_GT(mound_overlap, round_overlap);
+    EXPECT_GT(round[0].height(), 1.5 * o->height());
+    // A crown above the ground (a bush's equator high over its lowest rows) is no mound.
+    const Mask floating = drawn({Solid{SolidKind::ellipsoid, {0, 0, 16}, {20, 20, 14}}}, w, h, ax, ay);
+    EXPECT_FALSE(fit_mound(floating).has_value());
+}
+
+// The user's model (the manifest's object.model) is the one used, with
+// their foot; a model that finds no fit falls back to the estimate's own.
+TEST(SolidModels, theUsersModelAndFootAreKept) {
+    const int w = 160, h = 140, ax = 80, ay = 110;
+    const Mask object = drawn({Solid{SolidKind::box, {-30, -12, 0}, {30, 12, 36}}}, w, h, ax, ay);
+    FootprintSpec c;
+    c.object_model = ObjectModel::revolution;
+    auto objects = estimate_objects(object, foot(w, h, ax, ay), &c);
+    ASSERT_EQ(objects.size(), 1u);
+    EXPECT_EQ(objects[0].model, ObjectModel::revolution);
+    c.object_model = ObjectModel::prism;
+    c.object_foot = std::pair{ax + 4, ay - 2};
+    c.object_height = 20;
+    objects = estimate_objects(object, foot(w, h, ax, ay), &c);
+    ASSERT_EQ(objects.size(), 1u);
+    EXPECT_EQ(objects[0].model, ObjectModel::prism);
+    EXPECT_DOUBLE_EQ(objects[0].center_x, ax + 4.5);
+    EXPECT_DOUBLE_EQ(objects[0].center_y, ay - 1.5);
+    EXPECT_EQ(objects[0].height(), 20);
+    // A trunk's round base holds no V: a prism asked of it is its solid of revolution.
+    const Mask round = drawn({Solid{SolidKind::cylinder, {0, 0, 0}, {3, 3, 50}}}, w, h, ax, ay);
+    FootprintSpec p;
+    p.object_model = ObjectModel::prism;
+    const auto kept = estimate_objects(round, foot(w, h, ax, ay), &p);
+    ASSERT_EQ(kept.size(), 1u);
+    EXPECT_TRUE(kept[0].model == ObjectModel::revolution || kept[0].model == ObjectModel::prism);
 }

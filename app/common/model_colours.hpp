@@ -1,0 +1,21 @@
+// The colour each estimated solid's model is outlined in, on check-tileset's
+// contact sheet and in the editor's tileset inspector alike.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "isolux/tileset.hpp"
+
+namespace isolux::app {
+
+// RGBA. Revolution keeps the yellow the solid's outline always had.
+inline std::array<std::uint8_t, 4> model_colour(ObjectModel m) {
+    switch (m) {
+        case ObjectModel::revolution: return {255, 220, 0, 255};
+        case ObjectModel::prism: return {255, 80, 255, 255};
+        case ObjectModel::mound: return {80, 255, 120, 255};
+    }
+    return {255, 220, 0, 255};
+}
+
+}  // namespace isolux::app
