@@ -2,6 +2,8 @@
 // named, odd PNGs loaded, shapes, height maps and footprints read and saved.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <OpenImageIO/imageio.h>
 
 #include <fstream>
@@ -118,17 +120,37 @@ TEST(Tileset, defaultTilesetHasEveryFloorAndOverlayKind) {
     }
 }
 
-TEST(Tileset, committedAssetsAreTheGeneratorsOutput) {
-    GeneratedTileset g = generate_default_tileset();
-    Tileset committed = test::default_tileset();
+namespace {
+
+// Every committed sprite is the generator's, pixel for pixel (`remake`: the command that remakes them).
+void expect_generators_output(const GeneratedTileset& g, const Tileset& committed, const char* remake) {
     ASSERT_EQ(g.tileset.sprites.size(), committed.sprites.size());
     for (std::size_t i = 0; i < committed.sprites.size(); ++i) {
         const Sprite &a = g.tileset.sprites[i], &b = committed.sprites[i];
         EXPECT_EQ(a.name, b.name);
         EXPECT_EQ(a.anchor_x, b.anchor_x);
         EXPECT_EQ(a.anchor_y, b.anchor_y);
-        EXPECT_EQ(a.image.rgba, b.image.rgba) << a.name << ": run isolux-cli tileset --out assets/default";
+        EXPECT_EQ(a.shape.size(), b.shape.size()) << a.name;
+        EXPECT_EQ(a.image.rgba, b.image.rgba) << a.name << ": run " << remake;
     }
+}
+
+}  // namespace
+
+TEST(Tileset, committedAssetsAreTheGeneratorsOutput) {
+    expect_generators_output(generate_default_tileset(), test::default_tileset(), "isolux-cli tileset --out assets/default");
+}
+
+TEST(Tileset, committedTownAssetsAreTheGeneratorsOutput) {
+    const Tileset committed = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
+    expect_generators_output(generate_town_tileset(), committed, "isolux-cli tileset --name town --out assets/town");
+    // A mountain wider than a tile, and every object kind the town holds.
+    for (const char* name : {"long_wall", "house", "town", "low_rocks", "boulder_pile", "grove", "mountain", "tower",
+                             "fence", "tall_tree"})
+        EXPECT_TRUE(std::any_of(committed.sprites.begin(), committed.sprites.end(),
+                                [&](const Sprite& s) { return s.name == name; })) << name;
+    for (const Sprite& s : committed.sprites)
+        if (s.name == "mountain") EXPECT_GT(s.image.width, committed.tile_width) << "wider than a tile";
 }
 
 TEST(Tileset, generatorWritesHeightMapsThatMatchTheShapes) {
