@@ -249,7 +249,9 @@ TEST(RealArt, hiddenStemRatioIsTheRealTreesMedian) {
                 if (s.name != entry["name"].get<std::string>()) continue;
                 FootprintReport report;
                 tileset_footprint(l.tileset, s, Params{}, &report);
-                const std::vector<EstimatedObject> objects = sprite_objects(l.tileset, s, Params{});
+                Sprite round = s;  // the ratio is the solid of revolution's, whatever model fits the tree best
+                round.footprint.object_model = ObjectModel::revolution;
+                const std::vector<EstimatedObject> objects = sprite_objects(l.tileset, round, Params{});
                 if (objects.size() != 1 || hidden_below_widest(report.estimate, objects[0])) continue;
                 const std::vector<double>& r = objects[0].radius;
                 const double widest = *std::max_element(r.begin(), r.end());

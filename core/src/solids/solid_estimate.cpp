@@ -433,8 +433,11 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     // A foot or a height without a model corrects the solid of revolution,
     // as it did before there were models: manifests keep their solids.
     if (!chosen && correction && (correction->object_foot || correction->object_height > 0)) return revolution;
-    // A grove (several trunks) stays trees of revolution: the models fit one object.
-    if (!chosen && revolution.size() != 1) return revolution;
+    // A grove (several trunks) stays trees of revolution: the models fit one
+    // object. So does a whole base (a tile-filling mountain or city on real
+    // art, RealArt.freecivMountainsAndCitiesStandOnTheirWholeBase), where
+    // the fits were not measured to help.
+    if (!chosen && (revolution.size() != 1 || whole_base)) return revolution;
     std::optional<EstimatedObject> prism, mound;
     if (!chosen || *chosen == ObjectModel::prism) prism = fit_prism(object);
     if (!chosen || *chosen == ObjectModel::mound) mound = fit_mound(object);

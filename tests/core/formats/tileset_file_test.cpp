@@ -150,7 +150,9 @@ TEST(Tileset, committedTownAssetsAreTheGeneratorsOutput) {
         EXPECT_TRUE(std::any_of(committed.sprites.begin(), committed.sprites.end(),
                                 [&](const Sprite& s) { return s.name == name; })) << name;
     for (const Sprite& s : committed.sprites)
-        if (s.name == "mountain") EXPECT_GT(s.image.width, committed.tile_width) << "wider than a tile";
+        if (s.name == "mountain") {
+            EXPECT_GT(s.image.width, committed.tile_width) << "wider than a tile";
+        }
 }
 
 TEST(Tileset, generatorWritesHeightMapsThatMatchTheShapes) {
