@@ -34,7 +34,7 @@ Image contact_sheet(const std::vector<SheetSprite>& drawn) {
         // Each estimated solid's outline, in its model's colour (model_colours.hpp).
         for (const EstimatedObject& o : drawn[k].objects) {
             const Mask solid = solid_silhouette({o}, s.image.width, s.image.height);
-            const auto colour = model_colour(o.model);
+            const auto colour = model_colour(o.model).rgba;
             for (int y = 0; y < solid.height; ++y)
                 for (int x = 0; x < solid.width; ++x)
                     if (solid.get(x, y) && (!solid.get(x - 1, y) || !solid.get(x + 1, y) || !solid.get(x, y - 1) ||

@@ -8,14 +8,19 @@
 
 namespace isolux::app {
 
-// RGBA. Revolution keeps the yellow the solid's outline always had.
-inline std::array<std::uint8_t, 4> model_colour(ObjectModel m) {
+struct ModelColour {
+    std::array<std::uint8_t, 4> rgba;
+    const char* name;  // as the inspector and the docs say it
+};
+
+// Revolution keeps the yellow the solid's outline always had.
+inline ModelColour model_colour(ObjectModel m) {
     switch (m) {
-        case ObjectModel::revolution: return {255, 220, 0, 255};
-        case ObjectModel::prism: return {255, 80, 255, 255};
-        case ObjectModel::mound: return {80, 255, 120, 255};
+        case ObjectModel::revolution: return {{255, 220, 0, 255}, "yellow"};
+        case ObjectModel::prism: return {{255, 80, 255, 255}, "magenta"};
+        case ObjectModel::mound: return {{80, 255, 120, 255}, "green"};
     }
-    return {255, 220, 0, 255};
+    return {{255, 220, 0, 255}, "yellow"};
 }
 
 }  // namespace isolux::app

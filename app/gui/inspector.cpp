@@ -55,7 +55,7 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
     const std::vector<EstimatedObject> objects = estimate_objects(r.estimate, obstacle, &spec, &s.image, r.whole_base);
     for (const EstimatedObject& ob : objects) {
         const Mask solid = solid_silhouette({ob}, s.image.width, s.image.height);
-        const auto c = app::model_colour(ob.model);
+        const auto c = app::model_colour(ob.model).rgba;
         for (int y = 0; y < solid.height; ++y)
             for (int x = 0; x < solid.width; ++x)
                 if (solid.get(x, y) &&
@@ -92,8 +92,7 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
         ImGui::TextUnformatted("no obstacle: light passes through this sprite");
     for (const EstimatedObject& ob : objects)
         ImGui::TextWrapped("estimated solid: a %s (outlined in %s), %.0f px high, its foot at (%.1f, %.1f)%s",
-                           std::string(to_string(ob.model)).c_str(),
-                           ob.model == ObjectModel::prism ? "magenta" : ob.model == ObjectModel::mound ? "green" : "yellow",
+                           std::string(to_string(ob.model)).c_str(), app::model_colour(ob.model).name,
                            ob.height(), ob.center_x, ob.center_y,
                            spec.object_foot || spec.object_height || spec.object_model ? ", as corrected" : "");
     // The user's choice of model (saved in the manifest's `object` field).

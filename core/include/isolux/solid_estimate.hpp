@@ -92,8 +92,9 @@ double silhouette_fit(const std::vector<EstimatedObject>& objects, const Mask& o
 // robustly so that eaves and gaps between posts do not move it), its back
 // corner mirrored through the rectangle's centre, its height the median of
 // the columns' rise from the back edges to the object's top. None where no
-// such V holds (a rounded base, a trunk).
-std::optional<EstimatedObject> fit_prism(const Mask& object);
+// such V holds (a rounded base, a trunk). `v_share`, when given, receives
+// the share of the object's columns whose lowest pixel lies on the V.
+std::optional<EstimatedObject> fit_prism(const Mask& object, double* v_share = nullptr);
 
 // The mound (a half ellipsoid on the ground) whose projection fits the
 // object's pixels: its base from the widest row and the lowest row, its

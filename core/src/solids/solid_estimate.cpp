@@ -31,6 +31,11 @@ constexpr double model_fit_margin = 0.03;
 // stands below it), and the distance, pixels, within which a column is on it.
 constexpr double prism_ground_quantile = 0.75;
 constexpr double prism_on_ground = 1.5;
+// The share of an object's columns whose lowest pixel must lie on a prism's
+// V for the rule to pick it: a box's lie on it in most columns; a tree's
+// are its crown's rounded underside, with only a trunk's or a conifer's
+// lowest boughs' columns on any V (RealArt.otherGamesTreesStaySolidsOfRevolution).
+constexpr double prism_v_share = 0.75;
 // How far above a mound's base centre, pixels, the middle of its widest
 // rows may lie (a dome's widest rows straddle its base's centre; a crown's
 // its equator, above the ground).
@@ -439,7 +444,13 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     // the fits were not measured to help.
     if (!chosen && (revolution.size() != 1 || whole_base)) return revolution;
     std::optional<EstimatedObject> prism, mound;
-    if (!chosen || *chosen == ObjectModel::prism) prism = fit_prism(object);
+    if (!chosen || *chosen == ObjectModel::prism) {
+        double share = 0;
+        prism = fit_prism(object, &share);
+        // The rule takes a prism only where most columns stand on its V; a
+        // user may ask one of a fence whose rails hide the ground between posts.
+        if (!chosen && share < prism_v_share) prism.reset();
+    }
     if (!chosen || *chosen == ObjectModel::mound) mound = fit_mound(object);
     if (chosen) {  // the user's model; where it finds no fit, the estimate's own
         std::optional<EstimatedObject>& o = *chosen == ObjectModel::prism ? prism : mound;
@@ -470,15 +481,22 @@ struct ColumnExtent {
     double x, ground, top;
 };
 
+// The first and last of n mask bits from `start`, `step` apart, that are
+// set, as indices 0..n-1 ({-1, -1}: none): a column's or a row's extent.
+std::pair<int, int> set_extent(const Mask& m, std::size_t start, std::size_t step, int n) {
+    int first = -1, last = -1;
+    for (int k = 0; k < n; ++k)
+        if (m.bits[start + std::size_t(k) * step]) {
+            if (first < 0) first = k;
+            last = k;
+        }
+    return {first, last};
+}
+
 std::vector<ColumnExtent> column_extents(const Mask& object) {
     std::vector<ColumnExtent> cols;
     for (int i = 0; i < object.width; ++i) {
-        int first = -1, last = -1;
-        for (int j = 0; j < object.height; ++j)
-            if (object.bits[std::size_t(j) * object.width + i]) {
-                if (first < 0) first = j;
-                last = j;
-            }
+        const auto [first, last] = set_extent(object, std::size_t(i), std::size_t(object.width), object.height);
         if (first >= 0) cols.push_back({object.x0 + i + 0.5, double(object.y0 + last + 1), double(object.y0 + first)});
     }
     return cols;
@@ -492,7 +510,7 @@ double quantile(std::vector<double> v, double q) {
 
 }  // namespace
 
-std::optional<EstimatedObject> fit_prism(const Mask& object) {
+std::optional<EstimatedObject> fit_prism(const Mask& object, double* v_share) {
     const std::vector<ColumnExtent> cols = column_extents(object);
     if (cols.size() < 6) return std::nullopt;
     // The front corner (xf, yf): each column's ground line lifted by the V's
@@ -511,10 +529,12 @@ std::optional<EstimatedObject> fit_prism(const Mask& object) {
     }
     // The left and right corners: the outermost columns on the V.
     double xl = 1e300, xr = -1e300;
+    std::size_t on_v = 0;
     for (const ColumnExtent& c : cols)
         if (std::abs(c.ground + std::abs(c.x - xf) / 2 - yf) <= prism_on_ground)
-            xl = std::min(xl, c.x - 0.5), xr = std::max(xr, c.x + 0.5);
+            xl = std::min(xl, c.x - 0.5), xr = std::max(xr, c.x + 0.5), ++on_v;
     if (!(xl < xf && xf < xr)) return std::nullopt;
+    if (v_share) *v_share = double(on_v) / double(cols.size());
     // The rectangle in the ground frame (ground_frame at z = 0, sprite pixels).
     const double X1 = yf + xf / 2, Y1 = yf - xf / 2;  // the front corner
     const double X0 = std::min(xl + Y1, X1 - 1), Y0 = std::min(X1 - xr, Y1 - 1);
@@ -544,12 +564,7 @@ std::optional<EstimatedObject> fit_mound(const Mask& object) {
     int widest = 0, widest_row = -1, top = -1, bottom = -1;
     std::vector<std::pair<int, int>> runs(std::size_t(object.height), {1, 0});
     for (int j = 0; j < object.height; ++j) {
-        int a = -1, b = -1;
-        for (int i = 0; i < object.width; ++i)
-            if (object.bits[std::size_t(j) * object.width + i]) {
-                if (a < 0) a = i;
-                b = i;
-            }
+        const auto [a, b] = set_extent(object, std::size_t(j) * std::size_t(object.width), 1, object.width);
         if (a < 0) continue;
         runs[std::size_t(j)] = {a, b};
         if (top < 0) top = j;
