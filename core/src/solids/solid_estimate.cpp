@@ -562,6 +562,7 @@ std::optional<EstimatedObject> fit_mound(const Mask& object) {
     // the object's lowest row, so its centre's row lies half its depth on
     // screen above that. The top row sets the height.
     int widest = 0, widest_row = -1, top = -1, bottom = -1;
+    std::pair<int, int> base{0, -1};  // the base's columns: the lowest of the widest runs
     std::vector<std::pair<int, int>> runs(std::size_t(object.height), {1, 0});
     for (int j = 0; j < object.height; ++j) {
         const auto [a, b] = set_extent(object, std::size_t(j) * std::size_t(object.width), 1, object.width);
@@ -569,7 +570,7 @@ std::optional<EstimatedObject> fit_mound(const Mask& object) {
         runs[std::size_t(j)] = {a, b};
         if (top < 0) top = j;
         bottom = j;
-        widest = std::max(widest, b - a + 1);
+        if (b - a + 1 >= widest) widest = b - a + 1, base = {a, b};
     }
     if (top < 0) return std::nullopt;
     int first_wide = -1;  // the band of rows within 3 % of the widest: its middle
@@ -588,9 +589,7 @@ std::optional<EstimatedObject> fit_mound(const Mask& object) {
     const double h2 = above * above - across * across / 2;
     if (h2 < 1) return std::nullopt;
     const double height = std::sqrt(h2);
-    int a = object.width, b = -1;  // the base's columns: the widest run's
-    for (int j = top; j <= bottom; ++j)
-        if (runs[std::size_t(j)].second - runs[std::size_t(j)].first + 1 == widest) a = runs[std::size_t(j)].first, b = runs[std::size_t(j)].second;
+    const auto [a, b] = base;
     EstimatedObject o;
     o.model = ObjectModel::mound;
     o.center_x = object.x0 + (a + b + 1) / 2.0, o.center_y = fy;
