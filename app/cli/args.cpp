@@ -21,9 +21,8 @@ void check_work(double steps, bool allow, const std::string& what, double bytes)
                     " ray steps (minutes or more): use a smaller area or view, border rays or fewer frames, or --allow-huge");
     }
     if (bytes > huge_render_bytes) {
-        std::snprintf(buf, sizeof buf, "%.1f", bytes / double(1 << 30));
-        throw Error(what + " would hold about " + std::string(buf) +
-                    " GiB at once (its view's pixels): render part of it with --view X,Y,W,H, or --allow-huge");
+        throw Error(what + " would hold " + about_gib(bytes) +
+                    " at once (its view's pixels): render part of it with --view X,Y,W,H, or --allow-huge");
     }
 }
 

@@ -482,10 +482,8 @@ isolux_status isolux_world_render(isolux_world* w, isolux_rect view, int frame, 
     }
     const double memory = render_memory(Rect{view.x, view.y, view.width, view.height});
     if (memory > huge_render_bytes && !w->allow_huge) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.1f", memory / double(1 << 30));
-        last_error = std::string("isolux_world_render: this frame would hold about ") + text +
-                     " GiB at once (its view's pixels): render a smaller view, or isolux_world_allow_huge(world, 1)";
+        last_error = "isolux_world_render: this frame would hold " + about_gib(memory) +
+                     " at once (its view's pixels): render a smaller view, or isolux_world_allow_huge(world, 1)";
         return ISOLUX_ERROR_TOO_MUCH_WORK;
     }
     return guarded("isolux_world_render", [&] {

@@ -3,6 +3,7 @@
 // composite. Each stage runs only when its inputs changed; the report says
 // which ran and what each cost.
 #pragma once
+#include <string>
 #include <array>
 #include <chrono>
 #include <functional>
@@ -173,6 +174,9 @@ double render_memory(Rect view);
 // megapixels, a 128x128 map whole) is refused by isolux-cli unless
 // --allow-huge and by the C API unless isolux_world_allow_huge.
 constexpr double huge_render_bytes = double(1 << 30);
+// "about 1.3 GiB": how the refusals beyond huge_render_bytes say a size
+// (isolux-cli's render and export-tiled, the C API alike).
+std::string about_gib(double bytes);
 // The largest view a render makes (256 megapixels: 1 GiB of RGBA), in
 // isolux-cli and in the app's screenshots alike.
 constexpr long long max_render_pixels = 1LL << 28;

@@ -2,6 +2,7 @@
 #include "isolux/frame.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <atomic>
 #include <cassert>
 #include <cmath>
@@ -51,6 +52,12 @@ double render_work(const Scene& scene, Rect view, int frames) {
 }
 
 double render_memory(Rect view) { return double(view.w) * double(view.h) * view_pixel_bytes; }
+
+std::string about_gib(double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "about %.1f GiB", bytes / double(1 << 30));
+    return text;
+}
 
 Rect camera_view(const Camera& c, const World& w) {
     const double x = std::clamp(std::floor(c.x), -1e9, 1e9), y = std::clamp(std::floor(c.y), -1e9, 1e9);

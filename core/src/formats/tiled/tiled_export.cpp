@@ -529,13 +529,11 @@ double export_memory(const World& world, const TiledExport& options) {
 std::pair<int, int> export_tiled(const World& world, const Scene& scene, const fs::path& tmx, const TiledExport& options) {
     if (tmx.extension() != ".tmx") throw Error(tmx.string() + ": the map must be a .tmx file");
     if (const double bytes = export_memory(world, options); bytes > huge_render_bytes && !options.allow_huge) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.1f", bytes / double(1 << 30));
         const Rect b = world.placed.bounds;
         throw Error(tmx.string() + ": exporting this " + std::to_string(world.map.width) + "x" +
                     std::to_string(world.map.height) + "-tile map (" + std::to_string(b.w) + "x" + std::to_string(b.h) +
-                    " pixels) would hold about " + std::string(text) +
-                    " GiB at once: export a smaller map or region, or allow it (--allow-huge)");
+                    " pixels) would hold " + about_gib(bytes) +
+                    " at once: export a smaller map or region, or allow it (--allow-huge)");
     }
     // A FIFO, a device or a missing folder is refused before any image or
     // TSX is written, as every other output is (the images' own folder is
