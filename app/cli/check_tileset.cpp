@@ -52,7 +52,7 @@ int run_check_tileset(const CheckArgs& a) {
         }
         // Beyond the paper: each object's solid, estimated from the alpha alone,
         // and how much of the manifest's shape it shares, where there is one.
-        const std::vector<EstimatedObject> objects = estimate_objects(fr.estimate, fp, &s.footprint, &s.image, fr.whole_base);
+        const std::vector<EstimatedObject> objects = estimate_objects(fr, fp, &s.footprint);
         e["objects"] = nlohmann::json::array();
         for (const EstimatedObject& o : objects)
             e["objects"].push_back({{"center", {std::round(o.center_x * 10) / 10, std::round(o.center_y * 10) / 10}},

@@ -52,7 +52,7 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
             if (obstacle.bits[std::size_t(y) * obstacle.width + x]) px(obstacle.x0 + x, obstacle.y0 + y, IM_COL32(255, 50, 50, 200));
     // The solids estimated from the alpha alone (beyond the paper): each
     // outlined in its model's colour (model_colours.hpp).
-    const std::vector<EstimatedObject> objects = estimate_objects(r.estimate, obstacle, &spec, &s.image, r.whole_base);
+    const std::vector<EstimatedObject> objects = estimate_objects(r, obstacle, &spec);
     for (const EstimatedObject& ob : objects) {
         const Mask solid = solid_silhouette({ob}, s.image.width, s.image.height);
         const auto c = app::model_colour(ob.model).rgba;

@@ -17,6 +17,25 @@
 
 namespace isolux {
 
+// A tree's foot: the bottom row of its trunk and the mean column of the
+// trunk's lowest three rows.
+struct TrunkFoot {
+    double x = 0;  // pixel column (its centre is x + 0.5)
+    int y = 0;     // pixel row
+};
+// The trunks a sprite's colours show (bark-coloured, taller than wide),
+// in row-major order of their first pixel (footprint.cpp says how).
+std::vector<TrunkFoot> find_trunks(const Image& image);
+// Of those, the trees' feet on the floor diamond of a tw x th tile anchored
+// at (ax, ay), pieces of one trunk merged (footprint.cpp says how), by column.
+std::vector<TrunkFoot> trunks_on_tile(const std::vector<TrunkFoot>& found, int ax, int ay, int tw, int th);
+
+// A part of an object that stands apart on its tile (a rock of a scatter,
+// a hut of a hamlet): its pixels, and Algorithm 1's footprint of them.
+struct ObjectPart {
+    Mask object, footprint;
+};
+
 // What the estimate saw, for check-tileset and the inspector.
 struct FootprintReport {
     bool baked_ground = false;  // the tile's floor diamond around the anchor was mostly opaque ground
@@ -29,17 +48,17 @@ struct FootprintReport {
 
     Mask estimate;              // the object's pixels: what Algorithm 1 read, and the opacity map the correction uses
     SpriteObstacleTrace trace;  // Algorithm 1's lines and run
+    // The trunks (find_trunks) whose feet stand on the tile's floor diamond:
+    // a tree grows from its tile's ground; bark higher up is a branch
+    // (FreedroidRPG's trees show a dozen).
+    std::vector<TrunkFoot> trunks;
+    // The object's parts standing apart on the tile: its 8-connected
+    // components of 2 % of its pixels or more whose lowest pixel lies on the
+    // floor diamond, when there are two or more (else none). Not for a
+    // whole base, nor where the manifest draws the footprint.
+    std::vector<ObjectPart> parts;
 };
 
-// A tree's foot: the bottom row of its trunk and the mean column of the
-// trunk's lowest three rows.
-struct TrunkFoot {
-    double x = 0;  // pixel column (its centre is x + 0.5)
-    int y = 0;     // pixel row
-};
-// The trunks a sprite's colours show (bark-coloured, taller than wide),
-// in row-major order of their first pixel (footprint.cpp says how).
-std::vector<TrunkFoot> find_trunks(const Image& image);
 
 // The footprint of a sprite whose opacity map is `opacity`, anchored at
 // (anchor_x, anchor_y) on a tile_w x tile_h floor diamond, by `mode`, as an

@@ -17,6 +17,7 @@
 #include <optional>
 #include <vector>
 
+#include "isolux/footprint.hpp"
 #include "isolux/image.hpp"
 #include "isolux/params.hpp"
 #include "isolux/solid.hpp"
@@ -74,13 +75,22 @@ bool hidden_below_widest(const Mask& object, const EstimatedObject& o);
 // or the object is empty. `correction` (a sprite's footprint spec) may fix
 // where the axis meets the ground (`object_foot`, the centre of that pixel)
 // and the solid's height (`object_height`), as a user set them in the
-// tileset inspector. With the sprite's `image`, a grove (two or more trunks
-// the colours show, each a tree's foot) gives one object per tree. With
+// tileset inspector. With the sprite's `trunks` (FootprintReport::trunks),
+// a grove (two or more trunks standing on the tile, each a tree's foot)
+// gives one object per tree. With
 // `whole_base` (FootprintReport::whole_base: the footprint is the object's
 // whole base), one object stands on its base's centre.
 std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint,
-                                              const FootprintSpec* correction = nullptr, const Image* image = nullptr,
+                                              const FootprintSpec* correction = nullptr,
+                                              const std::vector<TrunkFoot>* trunks = nullptr,
                                               bool whole_base = false);
+// The objects of a sprite whose footprint estimate saw `report` and whose
+// footprint is `footprint`: where the sprite holds parts standing apart on
+// its tile (FootprintReport::parts), no grove of trunks and no correction
+// of the user's, each part's own; else estimate_objects over the whole.
+std::vector<EstimatedObject> estimate_objects(const FootprintReport& report, const Mask& footprint,
+                                              const FootprintSpec* correction = nullptr);
+
 
 // How well objects' silhouette fits an object's pixels: |both| / |either|
 // (the silhouette as solid_silhouette draws it). 0 when both are empty.

@@ -117,17 +117,23 @@ bool find_whole_base(const Mask& est, int tw, int th, std::vector<std::pair<int,
 // trees apart only by colour: their canopies merge into one silhouette, and
 // Algorithm 1 finds one run under it. A trunk is bark: an opaque pixel redder
 // than it is green (r > g + 6, r >= b, r < 200; foliage and grass are
-// greener, sand and stone greyer or brighter), in an 8-connected component at
+// greener, sand and stone greyer or brighter) and brown rather than orange
+// (bark_saturation), in an 8-connected component at
 // least 6 pixels tall, taller than wide, of 15 pixels or more (a berry, a
 // flower or a speck of soil is smaller or wider). Components are found in
 // row-major order, so the list is the same on every machine.
+// Bark's saturation (max - min) / max, percent: LinCity-NG's bark is 41-56,
+// the town tileset's 46; autumn crowns and tiled roofs, as red, are 72-84.
+constexpr int bark_saturation = 65;
+
 std::vector<TrunkFoot> find_trunks(const Image& image) {
     const int w = image.width, h = image.height;
     std::vector<std::uint8_t> bark(std::size_t(w) * h, 0);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const std::uint8_t* p = image.at(x, y);
-            bark[std::size_t(y) * w + x] = p[3] >= 128 && p[0] > p[1] + 6 && p[0] >= p[2] && p[0] < 200;
+            bark[std::size_t(y) * w + x] = p[3] >= 128 && p[0] > p[1] + 6 && p[0] >= p[2] && p[0] < 200 &&
+                                            (p[0] - std::min(p[1], p[2])) * 100 <= bark_saturation * p[0];
         }
     std::vector<TrunkFoot> feet;
     std::vector<int> stack, component;
@@ -163,6 +169,41 @@ std::vector<TrunkFoot> find_trunks(const Image& image) {
     return feet;
 }
 
+// A tree grows from its tile's ground: a foot off the floor diamond is a
+// branch's (FreedroidRPG's trees show a dozen in their crowns). One trunk
+// shaded in bands, or crossed by a bough, shows as pieces: feet closer on
+// the ground (x / 2 + y and y - x / 2 apart) than an eighth of a tile's
+// width, or in columns closer than a sixteenth, directly or through others,
+// are one trunk standing on the lowest (a grove's trees stand further
+// apart: LinCity's by 36 px or more on 128-px tiles; FreedroidRPG's pieces
+// lie 14 px apart at most, Widelands' aspen's one column apart).
+std::vector<TrunkFoot> trunks_on_tile(const std::vector<TrunkFoot>& found, int ax, int ay, int tw, int th) {
+    std::vector<TrunkFoot> feet;
+    for (const TrunkFoot& f : found)
+        if (in_diamond(int(std::floor(f.x)), f.y, ax, ay, tw, th)) feet.push_back(f);
+    std::vector<std::size_t> tree(feet.size());
+    for (std::size_t k = 0; k < feet.size(); ++k) tree[k] = k;
+    auto root = [&](std::size_t k) {
+        while (tree[k] != k) k = tree[k];
+        return k;
+    };
+    for (std::size_t i = 0; i < feet.size(); ++i)
+        for (std::size_t j = i + 1; j < feet.size(); ++j) {
+            const double dx = feet[j].x - feet[i].x, dy = feet[j].y - feet[i].y;
+            if (std::hypot(dy + dx / 2, dy - dx / 2) < tw / 8.0 || std::abs(dx) < tw / 16.0) tree[root(j)] = root(i);
+        }
+    std::vector<TrunkFoot> trunks;
+    for (std::size_t k = 0; k < feet.size(); ++k) {
+        if (root(k) != k) continue;
+        TrunkFoot lowest = feet[k];
+        for (std::size_t j = 0; j < feet.size(); ++j)
+            if (root(j) == k && feet[j].y > lowest.y) lowest = feet[j];
+        trunks.push_back(lowest);
+    }
+    std::stable_sort(trunks.begin(), trunks.end(), [](const TrunkFoot& p, const TrunkFoot& q) { return p.x < q.x; });
+    return trunks;
+}
+
 std::string_view to_string(FootprintMode m) {
     switch (m) {
         case FootprintMode::automatic: return "auto";
@@ -189,11 +230,68 @@ std::optional<ObjectModel> object_model_named(std::string_view name) {
     return std::nullopt;
 }
 
+namespace {
+
+// The object's parts that stand apart on the tile (footprint.hpp): its
+// 8-connected components of at least part_share of its pixels (and 16),
+// whose lowest pixel lies on the floor diamond; none unless two or more.
+constexpr double part_share = 0.02;
+
+std::vector<ObjectPart> standing_parts(const Mask& est, int ax, int ay, int tw, int th, int delta_y) {
+    const long total = est.count(), least = std::max(16L, long(std::ceil(part_share * double(total))));
+    Mask seen(est.rect());
+    std::vector<ObjectPart> parts;
+    std::vector<std::pair<int, int>> stack;
+    for (int y0 = est.y0; y0 < est.y0 + est.height; ++y0)
+        for (int x0 = est.x0; x0 < est.x0 + est.width; ++x0) {
+            if (!est.get(x0, y0) || seen.get(x0, y0)) continue;
+            Mask part(est.rect());
+            long n = 0;
+            int lowest_x = x0, lowest_y = y0;
+            seen.set(x0, y0);
+            stack.assign(1, {x0, y0});
+            while (!stack.empty()) {
+                const auto [x, y] = stack.back();
+                stack.pop_back();
+                part.set(x, y), ++n;
+                if (y > lowest_y || (y == lowest_y && x < lowest_x)) lowest_x = x, lowest_y = y;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx)
+                        if (est.get(x + dx, y + dy) && !seen.get(x + dx, y + dy)) {
+                            seen.set(x + dx, y + dy);
+                            stack.push_back({x + dx, y + dy});
+                        }
+            }
+            if (n < least || !in_diamond(lowest_x, lowest_y, ax, ay, tw, th)) continue;
+            Mask foot = sprite_obstacle(part, delta_y);
+            parts.push_back({std::move(part), std::move(foot)});
+        }
+    if (parts.size() < 2) parts.clear();
+    return parts;
+}
+
+Mask footprint_by_mode(const Image& sprite, const Mask& opacity, int ax, int ay, int tw, int th, int delta_y,
+                       FootprintMode mode, const FootprintSpec& spec, FootprintReport& rep);
+
+}  // namespace
+
 Mask sprite_footprint(const Image& sprite, const Mask& opacity, int ax, int ay, int tw, int th, int delta_y,
                       FootprintMode mode, const FootprintSpec& spec, FootprintReport* report) {
     FootprintReport local;
     FootprintReport& rep = report ? *report : local;
     rep = FootprintReport{};
+    Mask footprint = footprint_by_mode(sprite, opacity, ax, ay, tw, th, delta_y, mode, spec, rep);
+    rep.trunks = trunks_on_tile(find_trunks(sprite), ax, ay, tw, th);
+    // A footprint the manifest draws, or a whole base, is the object's own.
+    if ((mode == FootprintMode::automatic || mode == FootprintMode::paper) && !rep.whole_base)
+        rep.parts = standing_parts(rep.estimate, ax, ay, tw, th, delta_y);
+    return footprint;
+}
+
+namespace {
+
+Mask footprint_by_mode(const Image& sprite, const Mask& opacity, int ax, int ay, int tw, int th, int delta_y,
+                       FootprintMode mode, const FootprintSpec& spec, FootprintReport& rep) {
     const int w = opacity.width, h = opacity.height;
     switch (mode) {
         case FootprintMode::none: rep.estimate = opacity; return Mask(Rect{0, 0, w, h});
@@ -328,6 +426,8 @@ Mask sprite_footprint(const Image& sprite, const Mask& opacity, int ax, int ay, 
     const int lines = std::max(1, int(std::lround(delta_y * tw / 128.0)));
     return sprite_obstacle(est, lines, &rep.trace);
 }
+
+}  // namespace
 
 Mask tileset_footprint(const Tileset& ts, const Sprite& s, const Params& p, FootprintReport* report) {
     const Mask op = opacity_map(s.image, sprite_threshold(s, p.opacity_threshold));

@@ -331,7 +331,7 @@ bool hidden_below_widest(const Mask& object, const EstimatedObject& o) {
 namespace {
 
 std::vector<EstimatedObject> revolution_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction,
-                                                const Image* image, bool whole_base) {
+                                                const std::vector<TrunkFoot>* trunks, bool whole_base) {
     EstimatedObject o;
     const bool has_footprint = mask_centre(footprint, o.center_x, o.center_y, o.rect);
     const bool corrected = correction && correction->object_foot;
@@ -346,8 +346,8 @@ std::vector<EstimatedObject> revolution_objects(const Mask& object, const Mask& 
     }
     // A grove: one object per trunk the colours show (two or more). Not on a
     // whole base: a building's beams and a mountain's earth are bark-coloured.
-    if (image && !corrected && !whole_base) {
-        const std::vector<TrunkFoot> feet = find_trunks(*image);
+    if (trunks && !corrected && !whole_base) {
+        const std::vector<TrunkFoot>& feet = *trunks;
         if (feet.size() >= 2) {
             std::vector<EstimatedObject> grove = grove_objects(object, feet);
             if (grove.size() >= 2) return grove;
@@ -428,12 +428,12 @@ void apply_correction(EstimatedObject& o, const FootprintSpec& c) {
 }  // namespace
 
 std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction,
-                                              const Image* image, bool whole_base) {
+                                              const std::vector<TrunkFoot>* trunks, bool whole_base) {
     // The user's model, where they chose one (a pointer: GCC 12 misreads an optional's use here).
     const ObjectModel* chosen = correction && correction->object_model ? &*correction->object_model : nullptr;
     std::vector<EstimatedObject> revolution;
     if (!chosen || *chosen == ObjectModel::revolution)
-        revolution = revolution_objects(object, footprint, correction, image, whole_base);
+        revolution = revolution_objects(object, footprint, correction, trunks, whole_base);
     if (chosen && *chosen == ObjectModel::revolution) return revolution;
     // A foot or a height without a model corrects the solid of revolution,
     // as it did before there were models: manifests keep their solids.
@@ -454,7 +454,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     if (!chosen || *chosen == ObjectModel::mound) mound = fit_mound(object);
     if (chosen) {  // the user's model; where it finds no fit, the estimate's own
         std::optional<EstimatedObject>& o = *chosen == ObjectModel::prism ? prism : mound;
-        if (!o) return revolution_objects(object, footprint, correction, image, whole_base);
+        if (!o) return revolution_objects(object, footprint, correction, trunks, whole_base);
         apply_correction(*o, *correction);
         return {*o};
     }
@@ -603,10 +603,22 @@ std::optional<EstimatedObject> fit_mound(const Mask& object) {
     return o;
 }
 
+std::vector<EstimatedObject> estimate_objects(const FootprintReport& report, const Mask& footprint,
+                                              const FootprintSpec* correction) {
+    const bool corrected =
+        correction && (correction->object_foot || correction->object_height > 0 || correction->object_model);
+    if (report.parts.empty() || corrected || report.trunks.size() >= 2)
+        return estimate_objects(report.estimate, footprint, correction, &report.trunks, report.whole_base);
+    std::vector<EstimatedObject> out;
+    for (const ObjectPart& part : report.parts)
+        for (EstimatedObject& o : estimate_objects(part.object, part.footprint)) out.push_back(std::move(o));
+    return out;
+}
+
 std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite& s, const Params& p) {
     FootprintReport report;
     const Mask footprint = tileset_footprint(tileset, s, p, &report);
-    return estimate_objects(report.estimate, footprint, &s.footprint, &s.image, report.whole_base);
+    return estimate_objects(report, footprint, &s.footprint);
 }
 
 namespace {

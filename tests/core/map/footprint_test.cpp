@@ -6,6 +6,7 @@
 #include "isolux/footprint.hpp"
 #include "isolux/image_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include "isolux/obstacle_map.hpp"
@@ -161,4 +162,84 @@ TEST(Footprint, theMaskBudgetCoversAlgorithm1AndRuns) {
         EXPECT_LE(std::int64_t(mask.width) * mask.height, footprint_pixels(64, 6, spec)) << int(m);
         EXPECT_GT(mask.count(), 0) << int(m);
     }
+}
+
+// Trees' feet (trunks_on_tile): a foot off the floor diamond is a branch's;
+// pieces of one trunk (side by side on the ground, or one above another in
+// a column) are one trunk standing on the lowest; a grove's trees stay apart.
+TEST(Footprint, trunksAreFeetOnTheTileWithTheirPiecesMerged) {
+    // A 128 x 64 tile anchored at (64, 100): its diamond spans rows 68..132.
+    const std::vector<TrunkFoot> found = {
+        {40, 30},                  // a branch high in a crown
+        {30, 104}, {40, 110},      // one trunk in two pieces, 10 + 5 ground px apart
+        {90, 96},  {91, 84},       // one trunk crossed by a bough: one column, 12 rows apart
+        {64, 120}};                // a third tree
+    const std::vector<TrunkFoot> trunks = trunks_on_tile(found, 64, 100, 128, 64);
+    ASSERT_EQ(trunks.size(), 3u);
+    EXPECT_EQ(trunks[0].x, 40);  // the lowest piece, trunks by column
+    EXPECT_EQ(trunks[0].y, 110);
+    EXPECT_EQ(trunks[1].x, 64);
+    EXPECT_EQ(trunks[2].x, 90);
+    EXPECT_EQ(trunks[2].y, 96);
+    // Two trees 20 px apart on the ground stay two.
+    EXPECT_EQ(trunks_on_tile({{50, 100}, {70, 110}}, 64, 100, 128, 64).size(), 2u);
+}
+
+// Bark is brown: a trunk under an orange crown of the same hue is found
+// (the crown, as red as bark but saturated, is not bark).
+TEST(Footprint, aTrunkUnderAnOrangeCrownIsFound) {
+    Image im(64, 64);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            std::uint8_t* p = im.at(x, y);
+            if (std::hypot(x + 0.5 - 32, y + 0.5 - 20) <= 14) p[0] = 190, p[1] = 100, p[2] = 30, p[3] = 255;
+            if (x >= 30 && x < 34 && y > 30 && y < 56) p[0] = 80, p[1] = 54, p[2] = 42, p[3] = 255;
+        }
+    const std::vector<TrunkFoot> feet = find_trunks(im);
+    ASSERT_EQ(feet.size(), 1u);
+    EXPECT_NEAR(feet[0].x, 31.5, 0.01);
+    EXPECT_EQ(feet[0].y, 55);
+}
+
+// A scatter of things on one tile (rocks): each part standing on the floor
+// diamond is an object's own, with Algorithm 1's footprint under it; a
+// blob floating above the diamond (a crown's leaf) and a speck are not.
+TEST(Footprint, partsStandingApartOnTheTileAreTheirOwn) {
+    Image im(128, 128);
+    auto disc = [&](double cx, double cy, double r) {
+        for (int y = 0; y < 128; ++y)
+            for (int x = 0; x < 128; ++x)
+                if (std::hypot(x + 0.5 - cx, (y + 0.5 - cy) * 1.5) <= r) {
+                    std::uint8_t* p = im.at(x, y);
+                    p[0] = 120, p[1] = 120, p[2] = 130, p[3] = 255;
+                }
+    };
+    disc(40, 100, 12);  // a rock, bottom at row 108
+    disc(84, 94, 9);    // another, further back
+    disc(64, 20, 10);   // a floating blob: its bottom far above the diamond (rows 68..132)
+    disc(100, 110, 1.2);  // a speck
+    const Mask op = opacity_map(im, 0.5);
+    FootprintReport r;
+    sprite_footprint(im, op, 64, 100, 128, 64, 25, FootprintMode::automatic, FootprintSpec{}, &r);
+    ASSERT_EQ(r.parts.size(), 2u);
+    std::vector<double> centres;
+    for (const ObjectPart& part : r.parts) {
+        double cx = 0, cy = 0, fx = 0, fy = 0;
+        Rect box, fbox;
+        ASSERT_TRUE(mask_centre(part.object, cx, cy, box));
+        ASSERT_TRUE(mask_centre(part.footprint, fx, fy, fbox));
+        EXPECT_NEAR(fx, cx, 1.5);  // the footprint is under its own part
+        EXPECT_GT(fy, cy);
+        centres.push_back(cx);
+    }
+    std::sort(centres.begin(), centres.end());
+    EXPECT_NEAR(centres[0], 40, 1);
+    EXPECT_NEAR(centres[1], 84, 1);
+    // One part alone is the whole object: no parts.
+    Image one(128, 128);
+    for (int y = 80; y < 100; ++y)
+        for (int x = 50; x < 70; ++x) one.at(x, y)[3] = 255;
+    FootprintReport single;
+    sprite_footprint(one, opacity_map(one, 0.5), 64, 100, 128, 64, 25, FootprintMode::automatic, FootprintSpec{}, &single);
+    EXPECT_TRUE(single.parts.empty());
 }

@@ -437,3 +437,28 @@ TEST(SolidModels, theUsersModelAndFootAreKept) {
     ASSERT_EQ(kept.size(), 1u);
     EXPECT_TRUE(kept[0].model == ObjectModel::revolution || kept[0].model == ObjectModel::prism);
 }
+
+// Several things on one tile (docs/beyond.md, "Several objects in a
+// sprite"): on the town tileset the low rocks, apart on the ground, are an
+// object each, and the grove's trunks under its autumn crowns (as red as
+// bark) a tree each; both share far more of their true volume than one
+// solid for the whole sprite does.
+TEST(SolidModels, rocksApartAndTreesOfAGroveAreObjectsOfTheirOwn) {
+    const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
+    for (const std::string name : {"low_rocks", "grove"}) {
+        const Sprite* s = nullptr;
+        for (const Sprite& c : town.sprites)
+            if (c.name == name) s = &c;
+        ASSERT_NE(s, nullptr) << name;
+        FootprintReport r;
+        const Mask fp = tileset_footprint(town, *s, Params{}, &r);
+        const std::vector<EstimatedObject> objects = estimate_objects(r, fp, &s->footprint);
+        const std::vector<EstimatedObject> whole = estimate_objects(r.estimate, fp);
+        EXPECT_EQ(whole.size(), 1u) << name;
+        EXPECT_GE(objects.size(), name == "grove" ? 3u : 2u) << name;
+        const double split = volume_overlap(objects, s->anchor_x, s->anchor_y, s->shape),
+                     one = volume_overlap(whole, s->anchor_x, s->anchor_y, s->shape);
+        EXPECT_GT(split, 2 * one) << name << ": " << split << " against " << one;
+        EXPECT_GT(split, 0.25) << name;
+    }
+}
