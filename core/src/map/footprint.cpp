@@ -118,13 +118,14 @@ bool find_whole_base(const Mask& est, int tw, int th, std::vector<std::pair<int,
 // Algorithm 1 finds one run under it. A trunk is bark: an opaque pixel redder
 // than it is green (r > g + 6, r >= b, r < 200; foliage and grass are
 // greener, sand and stone greyer or brighter) and brown rather than orange
-// (bark_saturation), in an 8-connected component at
+// or grey (bark_saturation_min and _max), in an 8-connected component at
 // least 6 pixels tall, taller than wide, of 15 pixels or more (a berry, a
 // flower or a speck of soil is smaller or wider). Components are found in
 // row-major order, so the list is the same on every machine.
 // Bark's saturation (max - min) / max, percent: LinCity-NG's bark is 41-56,
-// the town tileset's 46; autumn crowns and tiled roofs, as red, are 72-84.
-constexpr int bark_saturation = 65;
+// the town tileset's 46; autumn crowns and tiled roofs, as red, are 72-84,
+// stone walls in shade, as red, 18-20.
+constexpr int bark_saturation_min = 30, bark_saturation_max = 65;
 
 std::vector<TrunkFoot> find_trunks(const Image& image) {
     const int w = image.width, h = image.height;
@@ -133,7 +134,8 @@ std::vector<TrunkFoot> find_trunks(const Image& image) {
         for (int x = 0; x < w; ++x) {
             const std::uint8_t* p = image.at(x, y);
             bark[std::size_t(y) * w + x] = p[3] >= 128 && p[0] > p[1] + 6 && p[0] >= p[2] && p[0] < 200 &&
-                                            (p[0] - std::min(p[1], p[2])) * 100 <= bark_saturation * p[0];
+                                            (p[0] - std::min(p[1], p[2])) * 100 <= bark_saturation_max * p[0] &&
+                                            (p[0] - std::min(p[1], p[2])) * 100 >= bark_saturation_min * p[0];
         }
     std::vector<TrunkFoot> feet;
     std::vector<int> stack, component;
