@@ -36,6 +36,8 @@ constexpr double prism_on_ground = 1.5;
 // are its crown's rounded underside, with only a trunk's or a conifer's
 // lowest boughs' columns on any V (RealArt.otherGamesTreesStaySolidsOfRevolution).
 constexpr double prism_v_share = 0.75;
+// How much better than both other models a low prism off its V must fit.
+constexpr double prism_clear_margin = 0.05;
 // How far above a mound's base centre, pixels, the middle of its widest
 // rows may lie (a dome's widest rows straddle its base's centre; a crown's
 // its equator, above the ground).
@@ -444,13 +446,8 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     // the fits were not measured to help.
     if (!chosen && (revolution.size() != 1 || whole_base)) return revolution;
     std::optional<EstimatedObject> prism, mound;
-    if (!chosen || *chosen == ObjectModel::prism) {
-        double share = 0;
-        prism = fit_prism(object, &share);
-        // The rule takes a prism only where most columns stand on its V; a
-        // user may ask one of a fence whose rails hide the ground between posts.
-        if (!chosen && share < prism_v_share) prism.reset();
-    }
+    double share = 0;
+    if (!chosen || *chosen == ObjectModel::prism) prism = fit_prism(object, &share);
     if (!chosen || *chosen == ObjectModel::mound) mound = fit_mound(object);
     if (chosen) {  // the user's model; where it finds no fit, the estimate's own
         std::optional<EstimatedObject>& o = *chosen == ObjectModel::prism ? prism : mound;
@@ -462,13 +459,22 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     // keeps ties (within model_fit_margin): it was measured first, and both
     // other models fill a bush's or a boulder's outline about as well as it
     // does, where it measured closer to 3D (docs/beyond.md).
-    double best = silhouette_fit(revolution, object) + model_fit_margin;
+    const double revolution_fit = silhouette_fit(revolution, object);
+    const double prism_fit = prism ? silhouette_fit({*prism}, object) : 0, mound_fit = mound ? silhouette_fit({*mound}, object) : 0;
+    // A prism is taken where most columns stand on its V, or where it is low
+    // (no taller than half its width on screen) and fits clearly better than
+    // both other models: a fence whose rails hide the ground between its
+    // posts, a town of boxes on several V's. Every tree of the real art
+    // whose prism fits better than its solid of revolution is taller than
+    // that (RealArt.otherGamesTreesStaySolidsOfRevolution).
+    if (prism && share < prism_v_share &&
+        (prism->height() > prism->half_x + prism->half_y ||
+         prism_fit <= std::max(revolution_fit, mound_fit) + prism_clear_margin))
+        prism.reset();
+    double best = revolution_fit + model_fit_margin;
     std::vector<EstimatedObject> out = std::move(revolution);
-    for (std::optional<EstimatedObject>* m : {&prism, &mound}) {
-        if (!*m) continue;
-        const double fit = silhouette_fit({**m}, object);
-        if (fit > best) best = fit, out = {**m};
-    }
+    if (prism && prism_fit > best) best = prism_fit, out = {*prism};
+    if (mound && mound_fit > best) best = mound_fit, out = {*mound};
     return out;
 }
 
