@@ -80,6 +80,31 @@ struct Pooled {
     double sprites() const { return sprite_pixels ? sprite_wrong / sprite_pixels : 0; }
 };
 
+// A drawn scene: an 8x8 map of `tileset` from seed "drawn-SEED" ("isolux"
+// for 0), two lights drawn inside it, swept over occluders footprints,
+// solids and shapes (first axis) at `heights` against 3D, one frame.
+std::vector<SweepPoint> drawn_scene_points(const Tileset& tileset, std::uint64_t seed,
+                                           const std::vector<std::string>& heights) {
+    Scene s;
+    s.width = s.height = 8;
+    s.seed = seed == 0 ? "isolux" : "drawn-" + std::to_string(seed);
+    s.params.area_a = s.params.area_b = 128;
+    s.params.falloff_scale = 8;
+    Pcg32 rng(seed + 11);
+    const World w = make_world(tileset, s);
+    const Rect b = w.placed.bounds;
+    for (int i = 0; i < 2; ++i)
+        s.lights.push_back(Light{double(b.x + 100 + int(rng.below(std::uint32_t(b.w - 200)))) + 0.5,
+                                 double(b.y + 80 + int(rng.below(std::uint32_t(b.h - 160)))) + 0.5});
+    s.camera = {double(b.x), double(b.y), b.w, b.h};
+    SweepOptions o;
+    o.frames = 1;
+    o.repeats = 1;
+    o.carry_light = false;
+    o.references = {Reference::three_d};
+    return run_sweep(w, s, {{"occluders", {"footprints", "solids", "shapes"}}, {"light_height", heights}}, o);
+}
+
 }  // namespace
 
 // A canopy [20, 40) px high, 28 to 32 px out, under a light 60 px high: the
@@ -221,29 +246,13 @@ TEST(SolidsPass, solidsMislightAtMostHalfWhatFootprintsDoAgainst3d) {
     const std::vector<std::string> heights = {"4", "16", "32", "64"};
     std::vector<Pooled> paper_drawn(heights.size()), solids_drawn(heights.size()), shapes_drawn(heights.size());
     for (std::uint64_t seed = 0; seed < 7; ++seed) {
-        Scene s;
-        s.width = s.height = 8;
-        s.seed = seed == 0 ? "isolux" : "drawn-" + std::to_string(seed);
-        s.params.area_a = s.params.area_b = 128;
-        s.params.falloff_scale = 8;
-        Pcg32 rng(seed + 11);
-        const World w = make_world(test::default_tileset(), s);
-        const Rect b = w.placed.bounds;
-        for (int i = 0; i < 2; ++i)
-            s.lights.push_back(Light{double(b.x + 100 + int(rng.below(std::uint32_t(b.w - 200)))) + 0.5,
-                                     double(b.y + 80 + int(rng.below(std::uint32_t(b.h - 160)))) + 0.5});
-        s.camera = {double(b.x), double(b.y), b.w, b.h};
-        SweepOptions o;
-        o.frames = 1;
-        o.repeats = 1;
-        o.carry_light = false;
-        o.references = {Reference::three_d};
-        const auto points = run_sweep(w, s, {{"occluders", {"footprints", "solids", "shapes"}}, {"light_height", heights}}, o);
+        const auto points = drawn_scene_points(test::default_tileset(), seed, heights);
         ASSERT_EQ(points.size(), 12u);
+        const std::string name = seed == 0 ? "isolux" : "drawn-" + std::to_string(seed);
         for (std::size_t h = 0; h < heights.size(); ++h) {
             const SweepPoint &paper = points[h], &solids = points[4 + h], &shapes = points[8 + h];
             std::printf("seed %s, light height %s: ground %.1f%% -> %.1f%% (shapes %.1f%%), sprites %.1f%% -> %.1f%% (shapes %.1f%%)\n",
-                        s.seed.c_str(), heights[h].c_str(), 100 * paper.floor.lit_mismatch,
+                        name.c_str(), heights[h].c_str(), 100 * paper.floor.lit_mismatch,
                         100 * solids.floor.lit_mismatch, 100 * shapes.floor.lit_mismatch,
                         100 * paper.sprite.lit_mismatch, 100 * solids.sprite.lit_mismatch,
                         100 * shapes.sprite.lit_mismatch);
@@ -322,6 +331,32 @@ TEST(SolidsPass, solidsNeverWorseThanFootprintsOnTheTownScene) {
     for (const PaperAndSolids& p : paper_and_solids("town", town)) {
         EXPECT_LE(p.solids.sprite.lit_mismatch, p.paper.sprite.lit_mismatch) << p.where;
         EXPECT_LE(p.solids.floor.lit_mismatch, p.paper.floor.lit_mismatch) << p.where;
+    }
+}
+
+// Drawn seeds of the town tileset (its walls, houses, rocks, groves, town
+// tiles and mountains wherever the seed puts them), pooled: solids never
+// mislight more ground or sprite pixels than footprints at any height.
+TEST(SolidsPass, solidsNeverWorseThanFootprintsOnDrawnTownSeeds) {
+    const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
+    const std::vector<std::string> heights = {"4", "16", "32", "64"};
+    std::vector<Pooled> paper(heights.size()), solids(heights.size()), shapes(heights.size());
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+        const auto points = drawn_scene_points(town, seed, heights);
+        ASSERT_EQ(points.size(), 12u);
+        for (std::size_t h = 0; h < heights.size(); ++h) {
+            paper[h].add(points[h]);
+            solids[h].add(points[4 + h]);
+            shapes[h].add(points[8 + h]);
+        }
+    }
+    for (std::size_t h = 0; h < heights.size(); ++h) {
+        const std::string where = "drawn town seeds, light height " + heights[h];
+        std::printf("%s: ground %.1f%% -> %.1f%% (shapes %.1f%%), sprites %.1f%% -> %.1f%% (shapes %.1f%%)\n",
+                    where.c_str(), 100 * paper[h].floor(), 100 * solids[h].floor(), 100 * shapes[h].floor(),
+                    100 * paper[h].sprites(), 100 * solids[h].sprites(), 100 * shapes[h].sprites());
+        EXPECT_LE(solids[h].floor(), paper[h].floor()) << where;
+        EXPECT_LE(solids[h].sprites(), paper[h].sprites()) << where;
     }
 }
 
