@@ -15,6 +15,7 @@
 #include "isolux/hash.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/occluder_map.hpp"
+#include "isolux/tileset_file.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -44,6 +45,19 @@ const World& world() {
         s.width = 7;
         s.height = 6;
         return make_world(test::default_tileset(), s);
+    }();
+    return w;
+}
+
+// The town tileset's world (walls and houses as prisms, rocks and a mound,
+// a grove and parts: docs/beyond.md, "Models").
+const World& town_world() {
+    static World w = [] {
+        Scene s;
+        s.width = 7;
+        s.height = 6;
+        s.seed = "isolux town";
+        return make_world(load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json"), s);
     }();
     return w;
 }
@@ -347,10 +361,11 @@ TEST(Gl, theGpuTracesAgainstSolidsAsTheCpuDoes) {
     GpuTracer tracer;
     std::string error;
     ASSERT_TRUE(gpu_tracer_init(tracer, error)) << error;
-    const World& w = world();
-    const Rect b = w.placed.bounds;
     int compared = 0, lit_pixels = 0, shaded_pixels = 0, sprites_lit = 0, sprites_shaded = 0;
     std::uint64_t revision = 1000;
+    for (const World* wp : {&world(), &town_world()}) {
+    const World& w = *wp;
+    const Rect b = w.placed.bounds;
     for (Occluders kind : {Occluders::solids, Occluders::shapes}) {
         Params base;
         base.occluders = kind;
@@ -378,7 +393,7 @@ TEST(Gl, theGpuTracesAgainstSolidsAsTheCpuDoes) {
                 std::vector<LightMask*> masks{&got}, with_points{&got_points};
                 ASSERT_TRUE(gpu_trace_solids(tracer, occ, revision, masks, {height}, p, false)) << to_string(mode) << " " << variant;
                 ASSERT_TRUE(gpu_trace_solids(tracer, occ, revision, with_points, {height}, p, true)) << to_string(mode) << " " << variant;
-                const std::string where = std::string(kind == Occluders::solids ? "solids " : "shapes ") + std::string(to_string(mode)) +
+                const std::string where = std::string(wp == &world() ? "default " : "town ") + std::string(kind == Occluders::solids ? "solids " : "shapes ") + std::string(to_string(mode)) +
                                           " variant " + std::to_string(variant);
                 EXPECT_EQ(got.value, want.value) << where;
                 EXPECT_EQ(got.reached, want.reached) << where;
@@ -400,17 +415,21 @@ TEST(Gl, theGpuTracesAgainstSolidsAsTheCpuDoes) {
                 ++compared;
             }
     }
-    EXPECT_EQ(compared, 24);
+    }
+    EXPECT_EQ(compared, 48);
     EXPECT_GT(lit_pixels, 100000) << "the cases must light something";
     EXPECT_GT(shaded_pixels, 5000) << "and solids must shade some of it";
     EXPECT_GT(sprites_lit, 1000) << "the sprite pass must light sprite pixels the ground pass did not";
     EXPECT_GT(sprites_shaded, 1000) << "and shade some it did";
 
-    Scene s;
-    s.params.occluders = Occluders::solids;
-    s.params.falloff_scale = 8;
-    s.lights = {Light{b.x + b.w / 3.0 + 0.5, b.y + b.h / 2.0 + 0.5}, Light{b.x + 2 * b.w / 3.0 + 0.5, b.y + b.h / 3.0 + 0.5}};
-    FrameState cpu, gpu;
-    expect_gpu_frames_are_cpu_frames(tracer, w, s, cpu, gpu);
+    for (const World* wp : {&world(), &town_world()}) {
+        const Rect b = wp->placed.bounds;
+        Scene s;
+        s.params.occluders = Occluders::solids;
+        s.params.falloff_scale = 8;
+        s.lights = {Light{b.x + b.w / 3.0 + 0.5, b.y + b.h / 2.0 + 0.5}, Light{b.x + 2 * b.w / 3.0 + 0.5, b.y + b.h / 3.0 + 0.5}};
+        FrameState cpu, gpu;
+        expect_gpu_frames_are_cpu_frames(tracer, *wp, s, cpu, gpu);
+    }
     gpu_tracer_free(tracer);
 }
