@@ -8,11 +8,14 @@ cli=${1:-build/release/app/isolux-cli}
 out=docs/accuracy
 # A sweep that fails stops the script with its message (it would otherwise leave the page half made).
 # Each sweep says what it starts (the CLI refuses one beyond the work budget, with its estimate).
+# The town tileset's object kinds, each swept alone (below).
+kinds=$(python3 -c 'import json; print(" ".join(s["name"] for s in json.load(open("assets/town/tileset.json"))["sprites"] if s["kind"] == "overlay"))')
+sweeps_total=$((17 + $(wc -w <<< "$kinds")))
 sweeps_done=0
 sweep() {
   local said
   sweeps_done=$((sweeps_done + 1))
-  echo "make.sh: sweep $sweeps_done of 17: ${*: -1}" >&2
+  echo "make.sh: sweep $sweeps_done of $sweeps_total: ${*: -1}" >&2
   said=$("$cli" sweep "$@" 2>&1 >/dev/null) || { echo "$said" >&2; return 1; }
 }
 for scene in default forest; do
@@ -41,6 +44,15 @@ done
 # Beyond the paper: what stops the rays, on the town tileset (walls, houses, rocks, a mountain, a grove).
 sweep --scene assets/scenes/town.json --param occluders=footprints,solids,shapes --param light_height=4,16,32,64 \
   --reference 3d --frames 8 --repeats 1 --out $out/town_occluders.csv
+# Each object kind alone on the town scene's map (kind_scene.py), and the models the estimate gives each.
+"$cli" check-tileset assets/town/tileset.json --json > $out/town_models.json
+scenes=$(mktemp -d)
+trap 'rm -rf "$scenes"' EXIT
+for kind in $kinds; do
+  python3 $out/kind_scene.py "$kind" "$scenes/$kind.json"
+  sweep --scene "$scenes/$kind.json" --param occluders=footprints,solids,shapes --param light_height=4,16,32,64 \
+    --reference 3d --frames 8 --repeats 1 --out $out/town_kind_$kind.csv
+done
 # The CPU the times come from, for the page.
 lscpu | sed -n 's/^Model name: *//p' | head -1 > $out/machine.txt
 # What the truth costs: the 3D reference of the default scene, and a 48-setting sweep against it.

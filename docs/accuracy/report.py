@@ -196,6 +196,27 @@ for scene in list(SCENES) + ["town"]:
     out(f"`solids` worse than footprints: {', '.join(worse) if worse else 'nowhere'}. Over 1.5 times `shapes`: "
         f"{', '.join(far) if far else 'nowhere'}.", "")
 
+import json
+models = {e["name"]: e for e in json.load(open(os.path.join(HERE, "town_models.json")))["sprites"]}
+out("### The town by object kind", "",
+    "Each overlay of the town tileset alone (`docs/accuracy/kind_scene.py`: the town scene's floors, settings and",
+    "lights, every tile's overlays cleared, the kind on every tile whose column plus row is a multiple of 3), lit",
+    "mismatch against 3D inside the lights' areas. The models are what the estimate gives the kind's objects, and the",
+    "overlap the share of its true volume they hold (`isolux-cli check-tileset assets/town/tileset.json --json`).", "")
+for kind, e in models.items():
+    rs = rows(f"town_kind_{kind}")
+    objs = e["objects"]
+    named = ", ".join(sorted({o["model"] for o in objs})) or "none"
+    overlap = "n/a" if e["solid_overlap"] is None else f"{float(e['solid_overlap']) * 100:.1f}%"
+    out(f"**{kind}**: {len(objs)} object{'s' if len(objs) != 1 else ''} ({named}), overlap {overlap}.", "",
+        "| light height | ground: footprints | ground: solids | ground: shapes | sprites: footprints | sprites: solids | sprites: shapes |",
+        "|---|---|---|---|---|---|---|")
+    for h in ["4", "16", "32", "64"]:
+        f, so, sh = (one(rs, light_height=h, occluders=o) for o in ("footprints", "solids", "shapes"))
+        out(f"| {h} px | {pct(f['floor_lit_mismatch'])} | {pct(so['floor_lit_mismatch'])} | {pct(sh['floor_lit_mismatch'])} | "
+            f"{pct(f['sprite_lit_mismatch'])} | {pct(so['sprite_lit_mismatch'])} | {pct(sh['sprite_lit_mismatch'])} |")
+    out("")
+
 out("## Beyond the paper: rays over low obstacles", "",
     "`rays_over_obstacles` (off by default): each obstacle pixel carries the estimated height of its sprite (its",
     "opaque rows less its footprint's depth), and a ray from a light at its height passes over obstacles lower",
