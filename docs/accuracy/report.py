@@ -200,7 +200,8 @@ import json
 models = {e["name"]: e for e in json.load(open(os.path.join(HERE, "town_models.json")))["sprites"]}
 out("### The town by object kind", "",
     "Each overlay of the town tileset alone (`docs/accuracy/kind_scene.py`: the town scene's floors, settings and",
-    "lights, every tile's overlays cleared, the kind on every tile whose column plus row is a multiple of 3), lit",
+    "lights, every tile's overlays cleared, the kind on every tile whose column plus row is a multiple of 3 but the",
+    "tiles the town scene keeps clear under its lights), lit",
     "mismatch against 3D inside the lights' areas. The models are what the estimate gives the kind's objects, and the",
     "overlap the share of its true volume they hold (`isolux-cli check-tileset assets/town/tileset.json --json`).", "")
 for kind, e in models.items():

@@ -42,6 +42,10 @@ constexpr double prism_clear_margin = 0.05;
 // rows may lie (a dome's widest rows straddle its base's centre; a crown's
 // its equator, above the ground).
 constexpr double mound_equator_rise = 3;
+// ... or this share of its base's depth on screen, where that is more.
+constexpr double mound_equator_share = 0.1;
+// How much better than the dome a peak's cone must fit a mound's silhouette.
+constexpr double cone_fit_margin = 0.05;
 
 // Per row of the object's mask: the opaque run through column `c`, as the
 // first and last column (first > last: column c is transparent there).
@@ -471,10 +475,19 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
         (prism->height() > prism->half_x + prism->half_y ||
          prism_fit <= std::max(revolution_fit, mound_fit) + prism_clear_margin))
         prism.reset();
+    // A peak (a mound whose cross-section halfway up is half its base's: a
+    // mountain) needs no margin: no bush's outline fits a cone, and a solid
+    // of revolution stands at its base's front (its footprint), not its middle.
+    // A conifer's skirt fits a cone as well, but hides the stem under it.
+    const bool peak = mound && mound->radius.size() >= 2 &&
+                      mound->radius[mound->radius.size() / 2] < 0.6 * mound->radius[0] &&
+                      !hidden_below_widest(object, revolution[0]);
     double best = revolution_fit + model_fit_margin;
     std::vector<EstimatedObject> out = std::move(revolution);
-    if (prism && prism_fit > best) best = prism_fit, out = {*prism};
-    if (mound && mound_fit > best) best = mound_fit, out = {*mound};
+    bool prism_taken = false;
+    if (prism && prism_fit > best) best = prism_fit, out = {*prism}, prism_taken = true;
+    const double mound_needs = peak && !prism_taken ? revolution_fit : best;
+    if (mound && mound_fit > mound_needs) out = {*mound};
     return out;
 }
 
@@ -589,24 +602,37 @@ std::optional<EstimatedObject> fit_mound(const Mask& object) {
     const double across = widest / 2.0 / sqrt2, front = object.y0 + bottom + 1.0, fy = front - across / sqrt2;
     // The widest rows of a mound are its base's middle; where they stand
     // well above it, they are an equator above the ground (a bush's crown).
-    if (object.y0 + wide_middle + 0.5 < fy - mound_equator_rise) return std::nullopt;
+    // A mountain's side lobes may widen rows a little above its base's
+    // centre: the rise allowed grows with the base's depth on screen.
+    const double rise = std::max(mound_equator_rise, mound_equator_share * 2 * across / sqrt2);
+    if (object.y0 + wide_middle + 0.5 < fy - rise) return std::nullopt;
     const double above = fy - (object.y0 + top);
-    // The silhouette's top lies sqrt(H^2 + depth^2 / 2) above the base's centre.
-    const double h2 = above * above - across * across / 2;
-    if (h2 < 1) return std::nullopt;
-    const double height = std::sqrt(h2);
     const auto [a, b] = base;
-    EstimatedObject o;
-    o.model = ObjectModel::mound;
-    o.center_x = object.x0 + (a + b + 1) / 2.0, o.center_y = fy;
-    const std::size_t n = std::size_t(std::lround(height));
-    o.radius.resize(n), o.across.resize(n);
-    for (std::size_t z = 0; z < n; ++z) {
-        const double k = std::sqrt(std::max(0.0, 1 - std::pow((double(z) + 0.5) / height, 2)));
-        o.radius[z] = o.across[z] = across * k;
+    // Two profiles: a dome (a half ellipsoid), whose outline's top lies
+    // sqrt(H^2 + depth^2 / 2) above the base's centre, and a cone (a peak:
+    // a mountain), whose apex is the outline's top. The cone is taken where
+    // its silhouette fits better than the dome's by cone_fit_margin: a heap
+    // of boulders, a town's roofs fit a cone about as well, and hold more
+    // of their volume as domes or prisms.
+    std::optional<EstimatedObject> dome, cone;
+    for (const bool peak : {false, true}) {
+        const double h2 = peak ? above * above : above * above - across * across / 2;
+        if (h2 < 1 || (peak && above <= across / sqrt2)) continue;
+        const double height = std::sqrt(h2);
+        EstimatedObject o;
+        o.model = ObjectModel::mound;
+        o.center_x = object.x0 + (a + b + 1) / 2.0, o.center_y = fy;
+        const std::size_t n = std::size_t(std::lround(height));
+        o.radius.resize(n), o.across.resize(n);
+        for (std::size_t z = 0; z < n; ++z) {
+            const double t = (double(z) + 0.5) / height;
+            o.radius[z] = o.across[z] = across * (peak ? 1 - t : std::sqrt(std::max(0.0, 1 - t * t)));
+        }
+        o.rect = Rect{object.x0 + a, int(std::floor(fy - across / sqrt2)), b - a + 1, int(std::ceil(2 * across / sqrt2)) + 1};
+        (peak ? cone : dome) = std::move(o);
     }
-    o.rect = Rect{object.x0 + a, int(std::floor(fy - across / sqrt2)), b - a + 1, int(std::ceil(2 * across / sqrt2)) + 1};
-    return o;
+    if (cone && (!dome || silhouette_fit({*cone}, object) > silhouette_fit({*dome}, object) + cone_fit_margin)) return cone;
+    return dome;
 }
 
 std::vector<EstimatedObject> estimate_objects(const FootprintReport& report, const Mask& footprint,

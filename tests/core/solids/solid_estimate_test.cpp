@@ -465,3 +465,30 @@ TEST(SolidModels, rocksApartAndTreesOfAGroveAreObjectsOfTheirOwn) {
         EXPECT_GT(split, 0.25) << name;
     }
 }
+
+// A mountain wider than a tile (the town tileset's: a cone with two side
+// lobes): a mound with a peak's profile (a cone: its cross-section halfway
+// up about half its base's), standing on its base's middle, sharing far
+// more of its true volume than the solid of revolution standing at its
+// base's front (its footprint) that a user could force.
+TEST(SolidModels, aMountainIsAPeak) {
+    const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
+    const Sprite* s = nullptr;
+    for (const Sprite& c : town.sprites)
+        if (c.name == "mountain") s = &c;
+    ASSERT_NE(s, nullptr);
+    const auto objects = sprite_objects(town, *s, Params{});
+    ASSERT_EQ(objects.size(), 1u);
+    const EstimatedObject& o = objects[0];
+    EXPECT_EQ(o.model, ObjectModel::mound);
+    ASSERT_GE(o.radius.size(), 2u);
+    EXPECT_NEAR(o.radius[o.radius.size() / 2] / o.radius[0], 0.5, 0.05);
+    EXPECT_NEAR(o.center_y, s->anchor_y, 4);
+    Sprite forced = *s;
+    forced.footprint.object_model = ObjectModel::revolution;
+    const double as_mound = volume_overlap(objects, s->anchor_x, s->anchor_y, s->shape),
+                 as_revolution = volume_overlap(sprite_objects(town, forced, Params{}), s->anchor_x, s->anchor_y, s->shape);
+    std::printf("mountain: a peak shares %.3f of the true volume, a solid of revolution %.3f\n", as_mound, as_revolution);
+    EXPECT_GT(as_mound, 0.6);
+    EXPECT_GT(as_mound, 3 * as_revolution);
+}
