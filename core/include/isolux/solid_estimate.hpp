@@ -35,6 +35,10 @@ struct EstimatedObject {
     // so code that bounds a cross-section by its ellipse stays a superset.
     ObjectModel model = ObjectModel::revolution;
     double half_x = 0, half_y = 0;
+    // A prism whose columns all rise alike (a wall's, a hedge's, a box's):
+    // its top is one flat face, which the points a sprite shows there lie
+    // on; a stepped roof's or a town's rises vary.
+    bool flat_top = false;
     // The cross-section from height z to z + 1, an ellipse about the axis,
     // ground pixels: radius[z] its semi-axis in depth (ground direction
     // (1, 1), along screen y; 0: none), across[z] its semi-axis across the

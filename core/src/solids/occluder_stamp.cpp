@@ -88,7 +88,12 @@ void topmost_points(const EstimatedObject& o, int w, int h, std::vector<float>& 
         }
         for (int y = 0; y < h; ++y) {
             float& b = best[std::size_t(y) * w + x];
-            if (b < 0 && rows[y] >= 0) b = float(top - 0.5 * rows[y]);
+            // A flat-topped prism's point in its top cross-section lies on
+            // its top face (a hedge's): at the top's height, not half a pixel
+            // inside, where the prism's own spans would shade it from every
+            // light above it. (On a stepped roof the flat top is an average:
+            // its steps shade each other.)
+            if (b < 0 && rows[y] >= 0) b = float(rows[y] == 0 && o.flat_top ? o.height() : top - 0.5 * rows[y]);
         }
     }
 }

@@ -36,6 +36,9 @@ constexpr double prism_on_ground = 1.5;
 // are its crown's rounded underside, with only a trunk's or a conifer's
 // lowest boughs' columns on any V (RealArt.otherGamesTreesStaySolidsOfRevolution).
 constexpr double prism_v_share = 0.75;
+// How far apart, pixels, the 10 % and 90 % quantiles of a prism's column
+// rises may lie for its top to be flat (rounding, a hedge's leaves).
+constexpr double prism_flat_spread = 2;
 // How much better than both other models a low prism off its V must fit.
 constexpr double prism_clear_margin = 0.05;
 // How far above a mound's base centre, pixels, the middle of its widest
@@ -567,6 +570,7 @@ std::optional<EstimatedObject> fit_prism(const Mask& object, double* v_share) {
     if (height < 1) return std::nullopt;
     EstimatedObject o;
     o.model = ObjectModel::prism;
+    o.flat_top = quantile(rises, 0.9) - quantile(rises, 0.1) <= prism_flat_spread;
     o.half_x = (X1 - X0) / 2, o.half_y = (Y1 - Y0) / 2;
     const double Xc = (X0 + X1) / 2, Yc = (Y0 + Y1) / 2;
     o.center_x = Xc - Yc, o.center_y = (Xc + Yc) / 2;

@@ -30,12 +30,13 @@ using isolux::test::error_of;
 // The height each shown sprite pixel takes (sprite_solids tests only the
 // heights near its view line's crossing of the deepest cross-section): the topmost
 // half-pixel height on its view line inside a solid, front object first,
-// found here by trying every height, on every overlay of the default tileset.
+// found here by trying every height, on every overlay of the default tileset;
+// on a flat-topped prism's top cross-section, its top face's height.
 TEST(OccluderStamp, aSpritePixelShowsTheTopmostSolidPointOnItsViewLine) {
     const Tileset ts = test::default_tileset();
     Params p;
     p.occluders = Occluders::solids;
-    long tested = 0, from_solids = 0;
+    long tested = 0, from_solids = 0, on_flat_tops = 0;
     for (const Sprite& sp : ts.sprites) {
         if (sp.kind != SpriteKind::overlay) continue;
         const SpriteSolids ss = sprite_solids(ts, sp, p);
@@ -49,6 +50,10 @@ TEST(OccluderStamp, aSpritePixelShowsTheTopmostSolidPointOnItsViewLine) {
                 double expected = -1;
                 for (double z = o.height() - 0.5; z >= 0 && expected < 0; z -= 0.5)
                     if (o.contains(ground_frame(sx, sy, z))) expected = z;
+                if (o.flat_top && expected == o.height() - 0.5) {
+                    expected = o.height();
+                    ++on_flat_tops;
+                }
                 from_solids += expected >= 0;
                 if (expected < 0) expected = std::max(0.0, o.center_y - (y + 0.5));
                 ++tested;
@@ -56,6 +61,7 @@ TEST(OccluderStamp, aSpritePixelShowsTheTopmostSolidPointOnItsViewLine) {
             }
     }
     EXPECT_GT(from_solids, tested / 2);  // most shown pixels show a solid's point
+    EXPECT_GT(on_flat_tops, 100);        // the wall's top
 }
 
 // A solid's stamp (its spans over the ground under it) and its silhouette

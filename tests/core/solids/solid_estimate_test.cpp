@@ -307,6 +307,8 @@ TEST(SolidModels, wallsAndHousesArePrismsAndShareMoreOfTheirTrueVolume) {
         const auto objects = sprite_objects(town, s, p);
         ASSERT_EQ(objects.size(), 1u) << name;
         EXPECT_EQ(objects[0].model, ObjectModel::prism) << name;
+        // The hedge's top is flat; the house's stepped roof and the wall's crenellations are not.
+        EXPECT_EQ(objects[0].flat_top, std::string(name) == "hedge") << name;
         const double overlap = volume_overlap(objects, s.anchor_x, s.anchor_y, s.shape);
         Sprite forced = s;
         forced.footprint.object_model = ObjectModel::revolution;
