@@ -301,6 +301,11 @@ wait 2
 footprint oak {"run":[50,100,20],"object":{"foot":[64,108],"height":30}}
 wait 3
 window-shot $tmp/i_shot.png
+inspect rock
+wait 2
+footprint rock {"object":{"model":"prism"}}
+wait 3
+window-shot $tmp/i_prism.png
 save-footprints
 quit
 SCRIPT
@@ -312,6 +317,13 @@ timeout 120 "$app" --scene "$tmp/ts_scene.json" --script "$tmp/inspect.script" >
 # The inspector draws the oak's estimated solid as a yellow outline (255, 220, 0): dozens of pixels.
 yellow=$(oiiotool "$tmp/i_shot.png" --colorcount "1,0.8627,0,1" 2>/dev/null | awk '{print $1}')
 [ "${yellow:-0}" -gt 50 ] && ok || bad "the inspector shows no estimated solid (yellow pixels: ${yellow:-none})"
+# The rock's model, picked as a prism: saved in its footprint's object, read back by check-tileset, and
+# outlined in the prism's magenta (255, 80, 255) where the oak's revolution showed none of it.
+[ "$(json "$tmp/ts/tileset.json" "[s['footprint'] for s in d['sprites'] if s['name'] == 'rock']")" = "[{'object': {'model': 'prism'}}]" ] && ok || bad "the picked model was not saved: $(head -c 300 "$tmp/ts/tileset.json")"
+[ "$(json "$tmp/ts_check.json" "[o['model'] for s in d['sprites'] if s['name'] == 'rock' for o in s['objects']]")" = "['prism']" ] && ok || bad "check-tileset does not read the picked model: $(head -c 300 "$tmp/ts_check.json")"
+magenta=$(oiiotool "$tmp/i_prism.png" --colorcount "1,0.3137,1,1" 2>/dev/null | awk '{print $1}')
+magenta_before=$(oiiotool "$tmp/i_shot.png" --colorcount "1,0.3137,1,1" 2>/dev/null | awk '{print $1}')
+[ "${magenta:-0}" -gt 30 ] && [ "${magenta:-0}" -gt "$((${magenta_before:-0} + 30))" ] && ok || bad "the inspector does not outline the picked prism (magenta pixels: ${magenta:-none}, before: ${magenta_before:-none})"
 
 # 2f. A script with a bad number is refused with its line, not a crash.
 printf 'wait 1\nclick abc 10\n' >"$tmp/badnum.script"

@@ -324,13 +324,18 @@ TEST(SolidsPass, solidsHalveThePapersErrorOnTheAccuracyScenes) {
 
 // The town scene (the town tileset: walls, houses, a town in one tile,
 // rocks, a mountain, a grove, drawn in another look): solids never mislight
-// more ground or sprite pixels than footprints. (Half the paper's error is
-// not met there yet.)
+// more ground or sprite pixels than footprints, and at most half as many
+// under lights 4 and 16 px high. (Half is not met at 32 and 64 px yet:
+// docs/accuracy.md.)
 TEST(SolidsPass, solidsNeverWorseThanFootprintsOnTheTownScene) {
     const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
-    for (const PaperAndSolids& p : paper_and_solids("town", town)) {
-        EXPECT_LE(p.solids.sprite.lit_mismatch, p.paper.sprite.lit_mismatch) << p.where;
-        EXPECT_LE(p.solids.floor.lit_mismatch, p.paper.floor.lit_mismatch) << p.where;
+    const auto points = paper_and_solids("town", town);
+    ASSERT_EQ(points.size(), 4u);
+    for (std::size_t h = 0; h < points.size(); ++h) {
+        const PaperAndSolids& p = points[h];
+        const double share = h < 2 ? 0.5 : 1.0;  // light heights 4, 16, 32, 64
+        EXPECT_LE(p.solids.sprite.lit_mismatch, share * p.paper.sprite.lit_mismatch) << p.where;
+        EXPECT_LE(p.solids.floor.lit_mismatch, share * p.paper.floor.lit_mismatch) << p.where;
     }
 }
 
