@@ -438,6 +438,13 @@ case("solid_of_a_2048_opaque_sprite_sheet", ["check-tileset", opaque_ts, "--json
 case("solid_of_a_2048_opaque_sprite_traced", ["render", "--scene", write("ts/opaque.scene.json", json.dumps(
     {"width": 1, "height": 1, "tileset": opaque_ts, "edits": [{"tile": [0, 0], "overlays": ["o"]}],
      "lights": [{"x": 100, "y": 1500}]})), "--occluders", "solids", "--out", T("out.png")], 0)
+# A 2048x2048 sprite of 466 000 one-pixel specks: the object's parts are
+# found in time linear in its pixels (a mask per component took minutes).
+speck_row = b"".join(b"\x80\x80\x80\xff" if x % 3 == 0 else b"\0\0\0\0" for x in range(2048))
+write("ts/specks2048.png", png(2048, 2048, rows=b"".join(b"\0" + (speck_row if y % 3 == 0 else b"\0" * 8192) for y in range(2048))))
+specks_ts = write("ts/specks2048.json", json.dumps({"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]},
+                                                                 O(image="specks2048.png")]}))
+case("solid_of_2048_specks", ["check-tileset", specks_ts, "--json"], 0)
 # A million edits (36 MB) take time in proportion: each sprite name found in a
 # sorted index, not by a search per edit.
 case("edits_a_million", ["render", "--scene", write("million.scene.json", json.dumps(

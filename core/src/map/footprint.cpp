@@ -243,19 +243,20 @@ std::vector<ObjectPart> standing_parts(const Mask& est, int ax, int ay, int tw, 
     const long total = est.count(), least = std::max(16L, long(std::ceil(part_share * double(total))));
     Mask seen(est.rect());
     std::vector<ObjectPart> parts;
-    std::vector<std::pair<int, int>> stack;
+    std::vector<std::pair<int, int>> stack, component;
     for (int y0 = est.y0; y0 < est.y0 + est.height; ++y0)
         for (int x0 = est.x0; x0 < est.x0 + est.width; ++x0) {
             if (!est.get(x0, y0) || seen.get(x0, y0)) continue;
-            Mask part(est.rect());
-            long n = 0;
+            // The component's pixels first: a mask only for a part (at most
+            // 1 / part_share of them), so a sprite of many specks stays linear.
+            component.clear();
             int lowest_x = x0, lowest_y = y0;
             seen.set(x0, y0);
             stack.assign(1, {x0, y0});
             while (!stack.empty()) {
                 const auto [x, y] = stack.back();
                 stack.pop_back();
-                part.set(x, y), ++n;
+                component.push_back({x, y});
                 if (y > lowest_y || (y == lowest_y && x < lowest_x)) lowest_x = x, lowest_y = y;
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx)
@@ -264,7 +265,9 @@ std::vector<ObjectPart> standing_parts(const Mask& est, int ax, int ay, int tw, 
                             stack.push_back({x + dx, y + dy});
                         }
             }
-            if (n < least || !in_diamond(lowest_x, lowest_y, ax, ay, tw, th)) continue;
+            if (long(component.size()) < least || !in_diamond(lowest_x, lowest_y, ax, ay, tw, th)) continue;
+            Mask part(est.rect());
+            for (const auto& [x, y] : component) part.set(x, y);
             Mask foot = sprite_obstacle(part, delta_y);
             parts.push_back({std::move(part), std::move(foot)});
         }
