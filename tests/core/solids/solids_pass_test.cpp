@@ -341,7 +341,8 @@ TEST(SolidsPass, solidsNeverWorseThanFootprintsOnTheTownScene) {
 
 // Drawn seeds of the town tileset (its walls, houses, rocks, groves, town
 // tiles and mountains wherever the seed puts them), pooled: solids never
-// mislight more ground or sprite pixels than footprints at any height.
+// mislight more ground or sprite pixels than footprints at any height, and
+// at most half the ground pixels. (Half the sprite pixels is not met yet.)
 TEST(SolidsPass, solidsNeverWorseThanFootprintsOnDrawnTownSeeds) {
     const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
     const std::vector<std::string> heights = {"4", "16", "32", "64"};
@@ -360,7 +361,7 @@ TEST(SolidsPass, solidsNeverWorseThanFootprintsOnDrawnTownSeeds) {
         std::printf("%s: ground %.1f%% -> %.1f%% (shapes %.1f%%), sprites %.1f%% -> %.1f%% (shapes %.1f%%)\n",
                     where.c_str(), 100 * paper[h].floor(), 100 * solids[h].floor(), 100 * shapes[h].floor(),
                     100 * paper[h].sprites(), 100 * solids[h].sprites(), 100 * shapes[h].sprites());
-        EXPECT_LE(solids[h].floor(), paper[h].floor()) << where;
+        EXPECT_LE(solids[h].floor(), paper[h].floor() / 2) << where;
         EXPECT_LE(solids[h].sprites(), paper[h].sprites()) << where;
     }
 }
