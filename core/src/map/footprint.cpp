@@ -113,6 +113,38 @@ bool find_whole_base(const Mask& est, int tw, int th, std::vector<std::pair<int,
 
 }  // namespace
 
+namespace {
+
+// Calls fn(component) with each 8-connected component of the set pixels of a
+// w x h grid (`set`, row by row, 0 or 1), each a list of indices y * w + x,
+// in row-major order of their first pixel, so the same on every machine.
+template <class Fn>
+void for_each_component(std::vector<std::uint8_t> set, int w, int h, Fn fn) {
+    std::vector<int> stack, component;
+    for (int start = 0; start < w * h; ++start) {
+        if (!set[std::size_t(start)]) continue;
+        set[std::size_t(start)] = 0;
+        stack.assign(1, start);
+        component.clear();
+        while (!stack.empty()) {
+            const int i = stack.back();
+            stack.pop_back();
+            component.push_back(i);
+            const int x = i % w, y = i / w;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= w || ny >= h || !set[std::size_t(ny) * w + nx]) continue;
+                    set[std::size_t(ny) * w + nx] = 0;
+                    stack.push_back(ny * w + nx);
+                }
+        }
+        fn(component);
+    }
+}
+
+}  // namespace
+
 // A grove painted as one sprite (LinCity-NG's tree2 and tree3) shows its
 // trees apart only by colour: their canopies merge into one silhouette, and
 // Algorithm 1 finds one run under it. A trunk is bark: an opaque pixel redder
@@ -138,36 +170,18 @@ std::vector<TrunkFoot> find_trunks(const Image& image) {
                                             (p[0] - std::min(p[1], p[2])) * 100 >= bark_saturation_min * p[0];
         }
     std::vector<TrunkFoot> feet;
-    std::vector<int> stack, component;
-    for (int start = 0; start < w * h; ++start) {
-        if (!bark[std::size_t(start)]) continue;
-        bark[std::size_t(start)] = 0;
-        stack.assign(1, start);
-        component.clear();
-        while (!stack.empty()) {
-            const int i = stack.back();
-            stack.pop_back();
-            component.push_back(i);
-            const int x = i % w, y = i / w;
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int nx = x + dx, ny = y + dy;
-                    if (nx < 0 || ny < 0 || nx >= w || ny >= h || !bark[std::size_t(ny) * w + nx]) continue;
-                    bark[std::size_t(ny) * w + nx] = 0;
-                    stack.push_back(ny * w + nx);
-                }
-        }
+    for_each_component(std::move(bark), w, h, [&](const std::vector<int>& component) {
         int x0 = w, x1 = -1, y0 = h, y1 = -1;
         for (int i : component)
             x0 = std::min(x0, i % w), x1 = std::max(x1, i % w), y0 = std::min(y0, i / w), y1 = std::max(y1, i / w);
         const int tall = y1 - y0 + 1, wide = x1 - x0 + 1;
-        if (component.size() < 15 || tall < 6 || tall < wide) continue;
+        if (component.size() < 15 || tall < 6 || tall < wide) return;
         double sum = 0;
         int n = 0;
         for (int i : component)
             if (i / w >= y1 - 2) sum += i % w, ++n;
         feet.push_back({sum / n, y1});
-    }
+    });
     return feet;
 }
 
@@ -241,36 +255,21 @@ constexpr double part_share = 0.02;
 
 std::vector<ObjectPart> standing_parts(const Mask& est, int ax, int ay, int tw, int th, int delta_y) {
     const long total = est.count(), least = std::max(16L, long(std::ceil(part_share * double(total))));
-    Mask seen(est.rect());
+    const int w = est.width;
     std::vector<ObjectPart> parts;
-    std::vector<std::pair<int, int>> stack, component;
-    for (int y0 = est.y0; y0 < est.y0 + est.height; ++y0)
-        for (int x0 = est.x0; x0 < est.x0 + est.width; ++x0) {
-            if (!est.get(x0, y0) || seen.get(x0, y0)) continue;
-            // The component's pixels first: a mask only for a part (at most
-            // 1 / part_share of them), so a sprite of many specks stays linear.
-            component.clear();
-            int lowest_x = x0, lowest_y = y0;
-            seen.set(x0, y0);
-            stack.assign(1, {x0, y0});
-            while (!stack.empty()) {
-                const auto [x, y] = stack.back();
-                stack.pop_back();
-                component.push_back({x, y});
-                if (y > lowest_y || (y == lowest_y && x < lowest_x)) lowest_x = x, lowest_y = y;
-                for (int dy = -1; dy <= 1; ++dy)
-                    for (int dx = -1; dx <= 1; ++dx)
-                        if (est.get(x + dx, y + dy) && !seen.get(x + dx, y + dy)) {
-                            seen.set(x + dx, y + dy);
-                            stack.push_back({x + dx, y + dy});
-                        }
-            }
-            if (long(component.size()) < least || !in_diamond(lowest_x, lowest_y, ax, ay, tw, th)) continue;
-            Mask part(est.rect());
-            for (const auto& [x, y] : component) part.set(x, y);
-            Mask foot = sprite_obstacle(part, delta_y);
-            parts.push_back({std::move(part), std::move(foot)});
-        }
+    // A mask only for a part (at most 1 / part_share of them), so a sprite
+    // of many specks stays linear in its pixels.
+    for_each_component(est.bits, w, est.height, [&](const std::vector<int>& component) {
+        int lowest = component[0];
+        for (int i : component)
+            if (i / w > lowest / w || (i / w == lowest / w && i % w < lowest % w)) lowest = i;
+        if (long(component.size()) < least || !in_diamond(est.x0 + lowest % w, est.y0 + lowest / w, ax, ay, tw, th))
+            return;
+        Mask part(est.rect());
+        for (int i : component) part.bits[std::size_t(i)] = 1;
+        Mask foot = sprite_obstacle(part, delta_y);
+        parts.push_back({std::move(part), std::move(foot)});
+    });
     if (parts.size() < 2) parts.clear();
     return parts;
 }
