@@ -39,6 +39,15 @@ struct EstimatedObject {
     // its top is one flat face, which the points a sprite shows there lie
     // on; a stepped roof's or a town's rises vary.
     bool flat_top = false;
+    // A prism whose rises vary (a stepped roof, a town of boxes): its height
+    // per screen column, steps[i] over screen x in [i - reach, i + 1 - reach)
+    // from the axis (reach = half_x + half_y), each at most height(). Every
+    // point the prism fills in a column lies below its step: on a view line
+    // screen x is ground x - y, so each column is a flat-topped prism of its
+    // own, and the silhouette's top follows the sprite's. Empty: one height.
+    std::vector<double> steps;
+    // The prism's height over screen column sx (relative to the axis).
+    double step_at(double sx) const;
     // The cross-section from height z to z + 1, an ellipse about the axis,
     // ground pixels: radius[z] its semi-axis in depth (ground direction
     // (1, 1), along screen y; 0: none), across[z] its semi-axis across the
@@ -109,6 +118,14 @@ double silhouette_fit(const std::vector<EstimatedObject>& objects, const Mask& o
 // such V holds (a rounded base, a trunk). `v_share`, when given, receives
 // the share of the object's columns whose lowest pixel lies on the V.
 std::optional<EstimatedObject> fit_prism(const Mask& object, double* v_share = nullptr);
+
+// Prism `o` (fit_prism's, its top not flat) given a step per screen column
+// where it holds boxes side by side (a town's houses): each column's rise
+// from the rectangle's back edges to the object's top (a median over 3
+// columns, at least 1 pixel; a column the object leaves empty takes its
+// nearest neighbour's), taken where two neighbouring columns' rises differ
+// by a third of the prism's height or more. Else `o` is left as it is.
+void step_prism(const Mask& object, EstimatedObject& o);
 
 // The mound (a half ellipsoid on the ground) whose projection fits the
 // object's pixels: its base from the widest row and the lowest row, its

@@ -73,6 +73,8 @@ void topmost_points(const EstimatedObject& o, int w, int h, std::vector<float>& 
     FirstRun rows(h);
     for (int x = 0; x < w; ++x) {
         const double sx = x + 0.5 - o.center_x, u = sx / sqrt2;
+        // A prism's flat top or its step over this column: a face its points lie on.
+        const double face = o.flat_top ? o.height() : o.steps.empty() ? -1 : o.step_at(sx);
         rows.clear();
         for (int n = 0; n < heights; ++n) {
             const double z = top - 0.5 * n;
@@ -89,11 +91,11 @@ void topmost_points(const EstimatedObject& o, int w, int h, std::vector<float>& 
         for (int y = 0; y < h; ++y) {
             float& b = best[std::size_t(y) * w + x];
             // A flat-topped prism's point in its top cross-section lies on
-            // its top face (a hedge's): at the top's height, not half a pixel
-            // inside, where the prism's own spans would shade it from every
-            // light above it. (On a stepped roof the flat top is an average:
-            // its steps shade each other.)
-            if (b < 0 && rows[y] >= 0) b = float(rows[y] == 0 && o.flat_top ? o.height() : top - 0.5 * rows[y]);
+            // its top face (a hedge's), as a stepped prism's in its column's
+            // top one does on its step: at the face's height, not half a
+            // pixel inside, where the prism's own spans would shade it from
+            // every light above it.
+            if (b < 0 && rows[y] >= 0) b = float(o.height() - 0.5 * rows[y] == face ? face : top - 0.5 * rows[y]);
         }
     }
 }
@@ -111,6 +113,19 @@ void topmost_points(const EstimatedObject& o, int w, int h, std::vector<float>& 
 void stamp_spans(const EstimatedObject& o, SpanStamp& stamp) {
     const Rect r = stamp.rect;
     stamp.spans.assign(std::size_t(r.w) * std::size_t(r.h), {0.f, 0.f});
+    if (o.model == ObjectModel::prism) {
+        // A prism fills its rectangle from the ground to its column's step
+        // (a stepped prism's level is several runs along a row): per pixel.
+        for (int j = 0; j < r.h; ++j)
+            for (int i = 0; i < r.w; ++i) {
+                const double sx = r.x + i + 0.5 - o.center_x;
+                const Vec3 q = ground_frame(sx, r.y + j + 0.5 - o.center_y, 0);
+                if (std::abs(q.x) > o.half_x || std::abs(q.y) > o.half_y) continue;
+                const double top = std::min(o.height(), std::ceil(o.step_at(q.x - q.y)));
+                if (top > 0) stamp.spans[std::size_t(j) * r.w + std::size_t(i)] = {0.f, float(top)};
+            }
+        return;
+    }
     const int levels = int(o.radius.size());
     std::vector<std::pair<int, int>> runs(static_cast<std::size_t>(levels));
     FirstRun lowest(r.w), highest(r.w);

@@ -39,6 +39,9 @@ constexpr double prism_v_share = 0.75;
 // How far apart, pixels, the 10 % and 90 % quantiles of a prism's column
 // rises may lie for its top to be flat (rounding, a hedge's leaves).
 constexpr double prism_flat_spread = 2;
+// The jump between neighbouring columns' rises, as a share of a prism's
+// height, from which it is boxes side by side and steps (step_prism).
+constexpr double prism_step_jump = 1.0 / 3;
 // How much better than both other models a low prism off its V must fit.
 constexpr double prism_clear_margin = 0.05;
 // How far above a mound's base centre, pixels, the middle of its widest
@@ -98,9 +101,16 @@ bool disc_fits(const RunsThrough& runs, double fx, double yc, double r) {
 bool EstimatedObject::holds(std::size_t z, double x, double y) const {
     const double d = radius[z], a = across_at(z);
     if (d <= 0) return false;
-    if (model == ObjectModel::prism) return std::abs(x) <= half_x && std::abs(y) <= half_y;
+    if (model == ObjectModel::prism)
+        return std::abs(x) <= half_x && std::abs(y) <= half_y && (steps.empty() || double(z) < step_at(x - y));
     const double u = (x - y) / sqrt2, v = (x + y) / sqrt2;  // across the view, in depth
     return (u * u) / (a * a) + (v * v) / (d * d) <= 1;
+}
+
+double EstimatedObject::step_at(double sx) const {
+    if (steps.empty()) return height();
+    const double i = std::floor(sx + half_x + half_y);
+    return steps[std::size_t(std::clamp(i, 0.0, double(steps.size() - 1)))];
 }
 
 bool EstimatedObject::span_at(double x, double y, double& z_low, double& z_high) const {
@@ -423,6 +433,7 @@ void apply_correction(EstimatedObject& o, const FootprintSpec& c) {
         const std::size_t n = std::size_t(c.object_height);
         if (o.model == ObjectModel::prism) {
             o.radius.assign(n, o.radius[0]);
+            o.steps.clear();  // the user's height is the whole prism's
         } else {  // a mound keeps its profile, stretched to the new height
             std::vector<double> r(n), a(n);
             for (std::size_t z = 0; z < n; ++z) {
@@ -459,6 +470,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     if (chosen) {  // the user's model; where it finds no fit, the estimate's own
         std::optional<EstimatedObject>& o = *chosen == ObjectModel::prism ? prism : mound;
         if (!o) return revolution_objects(object, footprint, correction, trunks, whole_base);
+        if (o->model == ObjectModel::prism && !o->flat_top) step_prism(object, *o);
         apply_correction(*o, *correction);
         return {*o};
     }
@@ -490,7 +502,10 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     bool prism_taken = false;
     if (prism && prism_fit > best) best = prism_fit, out = {*prism}, prism_taken = true;
     const double mound_needs = peak && !prism_taken ? revolution_fit : best;
-    if (mound && mound_fit > mound_needs) out = {*mound};
+    if (mound && mound_fit > mound_needs) out = {*mound}, prism_taken = false;
+    // The model is picked on one height (the steps would fit any outline's
+    // top, a tree's too); the prism taken gets its steps.
+    if (prism_taken && !out[0].flat_top) step_prism(object, out[0]);
     return out;
 }
 
@@ -580,6 +595,45 @@ std::optional<EstimatedObject> fit_prism(const Mask& object, double* v_share) {
     return o;
 }
 
+void step_prism(const Mask& object, EstimatedObject& o) {
+    const double reach = o.half_x + o.half_y;
+    const double xb = o.center_x - o.half_x + o.half_y, yb = o.center_y - reach / 2;  // the back corner on screen
+    const std::size_t n = std::size_t(std::ceil(2 * reach));
+    if (n == 0) return;
+    std::vector<double> rise(n, -1);
+    for (const ColumnExtent& c : column_extents(object)) {
+        const double i = std::floor(c.x - o.center_x + reach);
+        if (i < 0 || i >= double(n)) continue;
+        rise[std::size_t(i)] = yb + std::abs(c.x - xb) / 2 - c.top;
+    }
+    // Empty columns take their nearest measured neighbour's rise (left first).
+    std::vector<double> filled = rise;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (rise[i] >= 0) continue;
+        for (std::size_t d = 1; d < n; ++d) {
+            if (i >= d && rise[i - d] >= 0) { filled[i] = rise[i - d]; break; }
+            if (i + d < n && rise[i + d] >= 0) { filled[i] = rise[i + d]; break; }
+        }
+    }
+    if (filled[0] < 0) return;  // no column measured
+    std::vector<double> steps(n);
+    double top = 1, jump = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        double a = filled[i > 0 ? i - 1 : i], b = filled[i], c = filled[i + 1 < n ? i + 1 : i];
+        const double median = std::max(std::min(a, b), std::min(std::max(a, b), c));
+        steps[i] = std::max(1.0, std::round(median));
+        top = std::max(top, steps[i]);
+        if (i > 0) jump = std::max(jump, std::abs(steps[i] - steps[i - 1]));
+    }
+    // Only boxes of their own side by side (a town's houses) step: a roof's
+    // slopes and a fence's posts rise by a few pixels a column, and a
+    // column's whole depth raised to a ridge's height stands taller than
+    // their front walls (measured worse against 3D, docs/beyond.md).
+    if (jump < prism_step_jump * o.height()) return;
+    o.steps = std::move(steps);
+    o.radius.assign(std::size_t(top), o.radius.empty() ? std::hypot(o.half_x, o.half_y) : o.radius[0]);
+}
+
 std::optional<EstimatedObject> fit_mound(const Mask& object) {
     // The base, taken round: its width from the widest row, its front from
     // the object's lowest row, so its centre's row lies half its depth on
@@ -660,18 +714,18 @@ std::vector<EstimatedObject> sprite_objects(const Tileset& tileset, const Sprite
 namespace {
 
 // A prism's silhouette: the pixels whose view line meets its rectangle at
-// a height in [0, height). On the view line through (sx, sy) from the foot
+// a height in [0, its column's step). On the view line through (sx, sy) from the foot
 // the point z high is (t + sx / 2, t - sx / 2) with t = sy + z, so the
 // pixel is drawn when the three ranges of t (the rectangle's two sides and
 // the heights) meet.
 void draw_prism(const EstimatedObject& o, Mask& m) {
-    const double reach = o.half_x + o.half_y, top = o.height();
+    const double reach = o.half_x + o.half_y;
     const int x0 = std::max(int(std::floor(o.center_x - reach)), 0), x1 = std::min(int(std::ceil(o.center_x + reach)), m.width - 1);
-    const int y0 = std::max(int(std::floor(o.center_y - reach / 2 - top)), 0),
+    const int y0 = std::max(int(std::floor(o.center_y - reach / 2 - o.height())), 0),
               y1 = std::min(int(std::ceil(o.center_y + reach / 2)), m.height - 1);
     for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
-            const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y;
+            const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y, top = o.step_at(sx);
             const double lo = std::max({-o.half_x - sx / 2, -o.half_y + sx / 2, sy});
             const double hi = std::min({o.half_x - sx / 2, o.half_y + sx / 2, sy + top});
             if (lo <= hi) m.set(x, y);

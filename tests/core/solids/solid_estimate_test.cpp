@@ -307,8 +307,10 @@ TEST(SolidModels, wallsAndHousesArePrismsAndShareMoreOfTheirTrueVolume) {
         const auto objects = sprite_objects(town, s, p);
         ASSERT_EQ(objects.size(), 1u) << name;
         EXPECT_EQ(objects[0].model, ObjectModel::prism) << name;
-        // The hedge's top is flat; the house's stepped roof and the wall's crenellations are not.
+        // The hedge's top is flat; the house's stepped roof and the wall's
+        // crenellations are not, but rise by a few pixels a column: no steps.
         EXPECT_EQ(objects[0].flat_top, std::string(name) == "hedge") << name;
+        EXPECT_TRUE(objects[0].steps.empty()) << name;
         const double overlap = volume_overlap(objects, s.anchor_x, s.anchor_y, s.shape);
         Sprite forced = s;
         forced.footprint.object_model = ObjectModel::revolution;
@@ -332,6 +334,8 @@ TEST(SolidModels, wallsAndHousesArePrismsAndShareMoreOfTheirTrueVolume) {
         const auto kept = sprite_objects(*set, *s, p);
         ASSERT_EQ(kept.size(), 1u) << name;
         EXPECT_EQ(kept[0].model, ObjectModel::prism) << name;
+        // The town's houses of several heights step; a fence's posts do not.
+        EXPECT_EQ(!kept[0].steps.empty(), std::string(name) == "town") << name;
         Sprite forced = *s;
         forced.footprint.object_model = ObjectModel::revolution;
         const auto revolution = sprite_objects(*set, forced, p);
@@ -377,6 +381,39 @@ TEST(SolidModels, aBoxFitsThePrismOfItsRectangleAndHeight) {
     const auto estimated = estimate_objects(round, foot(w, h, ax, ay));
     ASSERT_EQ(estimated.size(), 1u);
     EXPECT_EQ(estimated[0].model, ObjectModel::revolution);
+}
+
+// Boxes side by side (a town's houses): the prism steps with them, each
+// column as tall as the box that tops it, and holds more of their volume
+// than one height does. One box does not step.
+TEST(SolidModels, boxesSideBySideGiveAStepPerColumn) {
+    const int w = 200, h = 140, ax = 100, ay = 110;
+    const std::vector<Solid> boxes{Solid{SolidKind::box, {-36, -12, 0}, {0, 12, 40}},
+                                   Solid{SolidKind::box, {0, -12, 0}, {36, 12, 12}}};
+    const Mask object = drawn(boxes, w, h, ax, ay);
+    const std::optional<EstimatedObject> flat = fit_prism(object);
+    ASSERT_TRUE(flat.has_value());
+    EXPECT_FALSE(flat->flat_top);
+    EstimatedObject stepped = *flat;
+    step_prism(object, stepped);
+    ASSERT_FALSE(stepped.steps.empty()) << "a tall box beside a low one steps";
+    EXPECT_NEAR(stepped.height(), 40, 2);
+    // Left of both (the tall box's columns alone) and right (the low one's).
+    EXPECT_NEAR(stepped.step_at(-40), 40, 2);
+    EXPECT_NEAR(stepped.step_at(40), 12, 2);
+    EXPECT_TRUE(stepped.contains({-20, 0, 35}));
+    EXPECT_FALSE(stepped.contains({30, 0, 20})) << "above the low box is empty";
+    EXPECT_TRUE(stepped.contains({30, 0, 8}));
+    const double overlap = volume_overlap({stepped}, ax, ay, boxes), flat_overlap = volume_overlap({*flat}, ax, ay, boxes);
+    std::printf("stepped prism: %.3f of the boxes' volume, one height %.3f\n", overlap, flat_overlap);
+    EXPECT_GT(overlap, flat_overlap + 0.1);
+    EXPECT_GT(silhouette_fit({stepped}, object), silhouette_fit({*flat}, object));
+    // One box's rises are alike: no steps.
+    const Mask one = drawn({Solid{SolidKind::box, {-30, -12, 0}, {30, 12, 36}}}, w, h, ax, ay);
+    std::optional<EstimatedObject> box = fit_prism(one);
+    ASSERT_TRUE(box.has_value());
+    step_prism(one, *box);
+    EXPECT_TRUE(box->steps.empty());
 }
 
 // A half ellipsoid on the ground: the mound's base and height are its own,
