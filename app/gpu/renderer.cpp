@@ -176,6 +176,8 @@ void blur_and_composite(Renderer& r, Rect view, const Params& p, const Composite
     uniform_i(c, "u_dark_unlit", p.dark_unlit ? 1 : 0);
     uniform_i(c, "u_shadow", p.mode == Mode::shadow ? 1 : 0);
     uniform_i(c, "u_light_mix", p.light_mix == LightMix::surface ? 1 : 0);
+    uniform_f(c, "u_exposure", float(p.exposure));
+    uniform_i(c, "u_tone_map", p.tone_map == ToneMap::reinhard_knee ? 1 : 0);
     uniform_i(c, "u_show", o.show_light ? 1 : 0);
     uniform_i(c, "u_split", o.split);
     glDrawArrays(GL_TRIANGLES, 0, 3);

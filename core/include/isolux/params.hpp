@@ -44,6 +44,12 @@ enum class LightMix {
     surface,    // the sprite's own colour times the light (lit sprites keep their hue); soft shadows
 };
 
+// How the composite's result reaches the screen (not in the paper).
+enum class ToneMap {
+    none,           // Algorithm 3's per-channel clamp to [0, 1] (the paper)
+    reinhard_knee,  // the added light's luminance rolled into the headroom the texture leaves (composite.hpp)
+};
+
 // What a light's rays are stopped by (not in the paper but its own model first).
 enum class Occluders {
     footprints,  // the paper's: the obstacle map (where objects meet the ground), then the opacity correction
@@ -79,6 +85,8 @@ struct Params {
     FalloffShape falloff_shape = FalloffShape::chebyshev;
     bool edge_fade = false;         // intensity falls to 0 at the area's border (not in the paper)
     LightMix light_mix = LightMix::luminance;  // how Algorithm 3 mixes a sprite's colour with the light (LightMix)
+    double exposure = 1.0;          // multiplies Algorithm 3's light term (not in the paper; 1 is the paper's)
+    ToneMap tone_map = ToneMap::none;  // how the composite reaches the screen (ToneMap; none is the paper's)
 
     friend bool operator==(const Params&, const Params&) = default;
 };

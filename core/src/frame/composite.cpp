@@ -21,6 +21,20 @@
 
 namespace isolux {
 
+void tone_knee(const double base[3], const double add[3], double out[3]) {
+    const double top = std::max({base[0], base[1], base[2]}), head = std::max(0.0, 1.0 - top);
+    const double peak = std::max({base[0] + add[0], base[1] + add[1], base[2] + add[2]});
+    const double knee = tone_knee_at * head, over = peak - top;
+    double scale = 1;
+    if (over > knee) {
+        const double span = head - knee, x = span > 0 ? (over - knee) / span : 0;
+        const double target = top + knee + span * x / (1 + x);
+        for (int k = 0; k < 3; ++k)
+            if (add[k] > 0) scale = std::min(scale, (target - base[k]) / add[k]);
+    }
+    for (int k = 0; k < 3; ++k) out[k] = std::clamp(base[k] + add[k] * scale, 0.0, 1.0);
+}
+
 void composite_pixel(const double c[3], const double L[3], const Params& p, double out[3]) {
     const double ac = p.ambient_clarity;
     const double luminance = c[0] * 0.349 + c[1] * 0.114 + c[2] * 0.537;
@@ -28,22 +42,25 @@ void composite_pixel(const double c[3], const double L[3], const Params& p, doub
     const double tex_scale = std::sqrt(ac);
     const bool shadow = p.mode == Mode::shadow;
     const bool surface = p.light_mix == LightMix::surface;
+    double tex[3], light[3];
     for (int k = 0; k < 3; ++k) {
         // surface (not in the paper): the sprite's own colour takes the light,
         // and a shadow darkens it by up to three quarters instead of subtracting.
         if (surface && shadow) {
-            out[k] = std::clamp(c[k] * tex_scale * (1.0 - 0.75 * L[k]), 0.0, 1.0);
+            out[k] = std::clamp(c[k] * tex_scale * (1.0 - 0.75 * L[k] * p.exposure), 0.0, 1.0);
             continue;
         }
-        const double light_factor = (surface ? c[k] : luminance) * L[k] / denom;
-        double tex_factor = c[k] * tex_scale;
+        // The exposure multiplies last, so exposure 1 is the paper's bytes.
+        light[k] = (surface ? c[k] : luminance) * L[k] / denom * p.exposure;
+        tex[k] = c[k] * tex_scale;
         // dark_unlit: "if the texFactor variable in Algorithm 3 is multiplied
         // by lightTexture, then what is not hit by the light ... would appear
         // completely dark". In shadow mode the texture holds shadow, so the
         // light is its complement.
-        if (p.dark_unlit) tex_factor *= shadow ? (1.0 - L[k]) : L[k];
-        out[k] = std::clamp(shadow ? tex_factor - light_factor : tex_factor + light_factor, 0.0, 1.0);
+        if (p.dark_unlit) tex[k] *= shadow ? (1.0 - L[k]) : L[k];
+        out[k] = std::clamp(shadow ? tex[k] - light[k] : tex[k] + light[k], 0.0, 1.0);
     }
+    if (!shadow && p.tone_map == ToneMap::reinhard_knee) tone_knee(tex, light, out);
 }
 
 namespace {
@@ -65,7 +82,8 @@ void exact_pixel(const std::uint8_t* s, const std::uint8_t* l, bool grey, const 
 struct ShadeConstants {
     const Params* params;  // for the pixels redone exactly
     const std::uint8_t* light_end;  // the end of the light buffer the row reads (wide loads end 16 bytes before it)
-    float tex_scale, inv_denom;
+    float tex_scale, inv_denom;  // inv_denom: the exposure over Algorithm 3's denominator
+    float shadow_gain;           // light_mix surface in shadow mode: 0.75 times the exposure
     const float* unit;  // v / 255, v in 0..255
 };
 
@@ -95,7 +113,7 @@ void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeC
             for (int i = 0; i < m; ++i) {
                 float v;
                 if constexpr (Surface && Shadow) {
-                    v = cc[i] * ts * (1.0f - 0.75f * LL[i]);
+                    v = cc[i] * ts * (1.0f - k.shadow_gain * LL[i]);
                 } else {
                     const float light_factor = (Surface ? cc[i] : lum[i]) * LL[i] * inv_denom;
                     float tex_factor = cc[i] * ts;
@@ -126,6 +144,66 @@ void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeC
     }
 }
 
+// shade_row with tone_map reinhard_knee where light adds (light and flat
+// modes; shadow mode's bytes are none's): the texture and light terms kept
+// apart, then tone_knee in float, every step a select so the loops vectorise.
+template <bool Surface, bool DarkUnlit, bool Grey>
+void shade_row_toned(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k, std::uint8_t* d) {
+    constexpr int run = 256, texel = Grey ? 1 : 3;
+    constexpr float near = 1.0f / 512.0f, round_magic = 8388608.0f;
+    constexpr float knee_at = float(tone_knee_at);
+    alignas(16) float c[3][run], L[3][run], base[3][run], add[3][run];
+    alignas(16) float lum[run], scale[run];
+    alignas(16) std::int32_t bad[run];
+    const float ts = k.tex_scale, inv_denom = k.inv_denom;
+    for (int i0 = 0; i0 < n; i0 += run) {
+        const int cnt = std::min(run, n - i0);
+        const std::uint8_t* sp = s + std::size_t(i0) * 4;
+        const std::uint8_t* lp = l + std::size_t(i0) * texel;
+        for (int i = 0; i < cnt; ++i)
+            for (int ch = 0; ch < 3; ++ch) c[ch][i] = k.unit[sp[4 * i + ch]], L[ch][i] = k.unit[lp[texel * i + (Grey ? 0 : ch)]];
+        for (int i = 0; i < cnt; ++i) lum[i] = c[0][i] * 0.349f + c[1][i] * 0.114f + c[2][i] * 0.537f, bad[i] = 0;
+        for (int ch = 0; ch < 3; ++ch)
+            for (int i = 0; i < cnt; ++i) {
+                add[ch][i] = (Surface ? c[ch][i] : lum[i]) * L[ch][i] * inv_denom;
+                base[ch][i] = DarkUnlit ? c[ch][i] * ts * L[ch][i] : c[ch][i] * ts;
+            }
+        // The light rolled into the headroom the texture leaves (tone_knee).
+        for (int i = 0; i < cnt; ++i) {
+            const float b0 = base[0][i], b1 = base[1][i], b2 = base[2][i];
+            const float p0 = b0 + add[0][i], p1 = b1 + add[1][i], p2 = b2 + add[2][i];
+            const float top = std::max(b0, std::max(b1, b2)), peak = std::max(p0, std::max(p1, p2));
+            const float head = top < 1.0f ? 1.0f - top : 0.0f, knee = knee_at * head, span = head - knee;
+            const float over = peak - top, x = span > 0.0f ? (over - knee) / span : 0.0f;
+            const float target = top + knee + span * x / (1.0f + x);
+            float sc = 1.0f;
+            for (int ch = 0; ch < 3; ++ch) {
+                const float a = add[ch][i], r = (target - base[ch][i]) / (a > 0.0f ? a : 1.0f);
+                sc = a > 0.0f && r < sc ? r : sc;
+            }
+            scale[i] = over > knee ? sc : 1.0f;
+        }
+        for (int ch = 0; ch < 3; ++ch)
+            for (int i = 0; i < cnt; ++i) {
+                float x = (base[ch][i] + add[ch][i] * scale[i]) * 255.0f;
+                x = x < 0.0f ? 0.0f : x;
+                x = x > 255.0f ? 255.0f : x;
+                x += 0.5f;
+                const float off = x - ((x + round_magic) - round_magic);
+                bad[i] |= std::int32_t(off < near) & std::int32_t(off > -near);
+                base[ch][i] = x;
+            }
+        std::uint8_t* dp = d + std::size_t(i0) * 4;
+        for (int i = 0; i < cnt; ++i) {
+            const std::uint8_t alpha = sp[4 * i + 3];
+            const std::uint8_t keep = alpha != 0 ? 0xFF : 0x00;
+            for (int ch = 0; ch < 3; ++ch) dp[4 * i + ch] = std::uint8_t(std::uint8_t(std::int32_t(base[ch][i])) & keep);
+            dp[4 * i + 3] = alpha;
+            if (bad[i] & keep & 1) exact_pixel(sp + 4 * i, lp + texel * i, Grey, *k.params, dp + 4 * i);
+        }
+    }
+}
+
 #if defined(__SSE2__)
 // The same arithmetic four pixels at a time in SSE2 (every x86-64 has it):
 // the bytes spread into lanes by shifts and masks, shaded, packed back. The
@@ -136,7 +214,7 @@ void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const S
     const std::uint8_t* l_end = k.light_end ? k.light_end : l;
     const __m128 inv255 = _mm_set1_ps(1.0f / 255.0f), scale = _mm_set1_ps(255.0f), top = _mm_set1_ps(255.0f),
                  half = _mm_set1_ps(0.5f), magic = _mm_set1_ps(8388608.0f), near = _mm_set1_ps(1.0f / 512.0f),
-                 minus_near = _mm_set1_ps(-1.0f / 512.0f), one = _mm_set1_ps(1.0f), three_quarters = _mm_set1_ps(0.75f),
+                 minus_near = _mm_set1_ps(-1.0f / 512.0f), one = _mm_set1_ps(1.0f), three_quarters = _mm_set1_ps(k.shadow_gain),
                  ts = _mm_set1_ps(k.tex_scale), inv_denom = _mm_set1_ps(k.inv_denom), kr = _mm_set1_ps(0.349f),
                  kg = _mm_set1_ps(0.114f), kb = _mm_set1_ps(0.537f), fzero = _mm_setzero_ps();
     constexpr int texel = Grey ? 1 : 3;
@@ -229,7 +307,7 @@ ISOLUX_AVX2_FMA void shade_row_avx2(const std::uint8_t* s, const std::uint8_t* l
     const __m256 inv255 = _mm256_set1_ps(1.0f / 255.0f),
                  half_less_near = _mm256_set1_ps(0.5f - 1.0f / 2048.0f),
                  no_sign = _mm256_castsi256_ps(_mm256_set1_epi32(0x7FFFFFFF)), one = _mm256_set1_ps(1.0f),
-                 three_quarters = _mm256_set1_ps(0.75f), ts = _mm256_set1_ps(k.tex_scale),
+                 three_quarters = _mm256_set1_ps(k.shadow_gain), ts = _mm256_set1_ps(k.tex_scale),
                  light_scale = _mm256_set1_ps(k.inv_denom / 255.0f), fzero = _mm256_setzero_ps();
     // The luminance weights with the light's scale in them (one rounding each, in double).
     const double scale = double(k.inv_denom) / 255.0;
@@ -335,6 +413,14 @@ template <bool A, bool B, bool C, bool D> struct Avx2 { static constexpr ShadeRo
 #endif
 
 ShadeRow shade_row_for(const Params& p, bool grey) {
+    if (p.tone_map == ToneMap::reinhard_knee && p.mode != Mode::shadow) {
+        static constexpr std::array<ShadeRow, 8> toned = {
+            shade_row_toned<false, false, false>, shade_row_toned<false, false, true>,
+            shade_row_toned<false, true, false>,  shade_row_toned<false, true, true>,
+            shade_row_toned<true, false, false>,  shade_row_toned<true, false, true>,
+            shade_row_toned<true, true, false>,   shade_row_toned<true, true, true>};
+        return toned[std::size_t(p.light_mix == LightMix::surface) * 4 + std::size_t(p.dark_unlit) * 2 + std::size_t(grey)];
+    }
     const std::size_t at = std::size_t(p.mode == Mode::shadow) * 8 + std::size_t(p.light_mix == LightMix::surface) * 4 +
                            std::size_t(p.dark_unlit) * 2 + std::size_t(grey);
     static constexpr auto table = variants<Sse2>(std::make_index_sequence<16>());
@@ -361,7 +447,8 @@ void composite_into(const Image& colour, Rect view, const LightTexture& light, c
         for (int v = 0; v < 256; ++v) u[std::size_t(v)] = float(v / 255.0);
         return u;
     }();
-    ShadeConstants k{&p, nullptr, float(std::sqrt(ac)), float(1.0 / (ac * ac + 0.1)), unit.data()};
+    ShadeConstants k{&p,       nullptr, float(std::sqrt(ac)), float(p.exposure / (ac * ac + 0.1)), float(0.75 * p.exposure),
+                     unit.data()};
     const bool grey = light.channels == 1;
     const ShadeRow shade = shade_row_for(p, grey);
     thread_local std::vector<std::uint8_t> unlit;  // zeros: light outside the texture

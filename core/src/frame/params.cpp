@@ -92,6 +92,15 @@ const ParamInfo table[] = {
     {"dark_unlit", "--dark-unlit", nullptr, "dark unlit", "", shade_group, ParamType::boolean, 0, 1, false, 0, 1,
      false, {}, "Algorithm 3 variant (paper 4): the texture factor is multiplied by the light, so what no ray "
      "reaches is black.", composite, ISOLUX_FIELD(dark_unlit)},
+    {"exposure", "--exposure", nullptr, "exposure", "", shade_group, ParamType::real, 0, 16, true, 1.0 / 16, 16,
+     true, {}, "Multiplies Algorithm 3's light term (in shadow mode, the shadow subtracted), so how dark the night "
+     "is (ambient clarity) and how bright the lamps are are set apart. 1 is the paper's.", composite,
+     ISOLUX_FIELD(exposure)},
+    {"tone_map", "--tone-map", nullptr, "tone map", "", shade_group, ParamType::choice, 0, 1, false, 0, 1, false,
+     {"none", "reinhard_knee"}, "How the composite reaches the screen. none: each channel clamped (the paper). "
+     "reinhard_knee: the light's added luminance rolls off into the headroom the texture leaves, so a bright pool "
+     "keeps its hue and fades toward white instead of clipping channel by channel; unlit pixels are unchanged.",
+     composite, ISOLUX_FIELD(tone_map)},
 };
 
 #undef ISOLUX_FIELD
@@ -260,7 +269,7 @@ std::string builtin_preset_summary(std::string_view name) {
     if (name == "quality") return "quality: a ray to every pixel, traced every frame";
     if (name == "game")
         return "game: round lights fading to their border, shadows from solids estimated from the sprites, sprites keep "
-               "their colour, soft blur";
+               "their colour, bright pools rolled off instead of burnt to white, soft blur";
     return "";
 }
 
@@ -285,6 +294,9 @@ Params builtin_preset(std::string_view name) {
         p.falloff_scale = 12;
         p.light_mix = LightMix::surface;
         p.blur_radius = 3;
+        // Bright pools roll off toward their colour instead of clipping each
+        // channel to white (composite.hpp's tone_knee).
+        p.tone_map = ToneMap::reinhard_knee;
         return p;
     }
     if (name == "quality") {

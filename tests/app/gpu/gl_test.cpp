@@ -89,10 +89,24 @@ const Case cases[] = {
     {"light mix surface, shadow", [](Scene& s) { s.params.light_mix = LightMix::surface, s.params.mode = Mode::shadow; }},
     {"game preset", [](Scene& s) { s.params = builtin_preset("game"); }},
     {"dark unlit", [](Scene& s) { s.params.dark_unlit = true; }},
+    {"exposure 4, reinhard_knee", [](Scene& s) { s.params.exposure = 4, s.params.tone_map = ToneMap::reinhard_knee; }},
+    {"reinhard_knee, surface, dark unlit, ambient 0.1", [](Scene& s) {
+         s.params.tone_map = ToneMap::reinhard_knee, s.params.light_mix = LightMix::surface;
+         s.params.dark_unlit = true, s.params.ambient_clarity = 0.1, s.params.exposure = 2.5;
+     }},
+    {"reinhard_knee, shadow mode, exposure 0.5", [](Scene& s) {
+         s.params.tone_map = ToneMap::reinhard_knee, s.params.mode = Mode::shadow, s.params.exposure = 0.5;
+     }},
     {"shadow mode", [](Scene& s) { s.params.mode = Mode::shadow; }},
     {"coloured lights", [](Scene& s) {
          s.lights[0].r = 255, s.lights[0].g = 90, s.lights[0].b = 10;
          s.lights[1].intensity = 3;
+     }},
+    {"coloured lights, reinhard_knee, surface", [](Scene& s) {
+         s.lights[0].r = 40, s.lights[0].g = 90, s.lights[0].b = 255;
+         s.lights[1].intensity = 3;
+         s.params.tone_map = ToneMap::reinhard_knee, s.params.light_mix = LightMix::surface, s.params.exposure = 6;
+         s.params.ambient_clarity = 0.1;
      }},
 };
 

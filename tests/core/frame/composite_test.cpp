@@ -37,21 +37,26 @@ int expect_every_mode_is_reference(const Image& colour, Rect view, const LightTe
     for (Mode mode : {Mode::light, Mode::shadow, Mode::flat})
         for (LightMix mix : {LightMix::luminance, LightMix::surface})
             for (bool dark : {false, true})
-                for (double ac : clarities) {
-                    Params p;
-                    p.mode = mode;
-                    p.light_mix = mix;
-                    p.dark_unlit = dark;
-                    p.ambient_clarity = ac;
-                    const Image want = composite_reference(colour, view, light, p);
-                    for (bool wide : both_widths()) {
-                        set_wide_kernels(wide);
-                        EXPECT_EQ(composite(colour, view, light, p).rgba, want.rgba)
-                            << to_string(mode) << " mix " << int(mix) << " dark " << dark << " ac " << ac << " wide " << wide;
-                    }
-                    set_wide_kernels(true);
-                    ++configs;
-                }
+                for (double ac : clarities)
+                    for (ToneMap tone : {ToneMap::none, ToneMap::reinhard_knee})
+                        for (double exposure : {1.0, 3.7}) {
+                            Params p;
+                            p.mode = mode;
+                            p.light_mix = mix;
+                            p.dark_unlit = dark;
+                            p.ambient_clarity = ac;
+                            p.tone_map = tone;
+                            p.exposure = exposure;
+                            const Image want = composite_reference(colour, view, light, p);
+                            for (bool wide : both_widths()) {
+                                set_wide_kernels(wide);
+                                EXPECT_EQ(composite(colour, view, light, p).rgba, want.rgba)
+                                    << to_string(mode) << " mix " << int(mix) << " dark " << dark << " ac " << ac
+                                    << " tone " << int(tone) << " exposure " << exposure << " wide " << wide;
+                            }
+                            set_wide_kernels(true);
+                            ++configs;
+                        }
     return configs;
 }
 
@@ -65,7 +70,7 @@ TEST(FastComposite, EqualsTheReferenceInEveryModeAndClarity) {
     for (int i = 0; i < view.w * view.h; i += 5) colour.rgba[std::size_t(i) * 4 + 3] = 0;  // some transparent
     // A light texture covering part of the view only: the rest reads unlit.
     const LightTexture light = random_texture({view.x + 20, view.y - 10, 60, 50}, 5);
-    EXPECT_EQ(expect_every_mode_is_reference(colour, view, light, {0.0, 0.16, 0.4, 0.5, 0.77, 1.0}), 72);
+    EXPECT_EQ(expect_every_mode_is_reference(colour, view, light, {0.0, 0.16, 0.4, 0.5, 0.77, 1.0}), 288);
 }
 
 TEST(FastComposite, EveryColourAndLightPairAtTheDefaults) {
@@ -93,7 +98,7 @@ TEST(FastComposite, EveryColourAndLightPairAtTheDefaults) {
     }
     // And every mode, light mix and dark-unlit at the extreme clarities (0:
     // the light term ten times the colour's) and one between.
-    EXPECT_EQ(expect_every_mode_is_reference(colour, view, light, {0.0, 0.6, 1.0}), 36);
+    EXPECT_EQ(expect_every_mode_is_reference(colour, view, light, {0.0, 0.6, 1.0}), 144);
 }
 
 TEST(Composite, equalsAlgorithm3AtChosenPixels) {
