@@ -325,6 +325,14 @@ void print_floor_ratios() {
     print_ratio("composite_times_floor", interleaved([&] {
                     composite_into(one.frame.sprites, view, blurred, one.scene.params, view, out);
                 }, 5, composite_copy, 30, pairs), "<= 4", 2);
+    // Beyond the paper: tone_map reinhard_knee's composite over the clamp's
+    // (its light scaled into the headroom: a few more float steps a pixel).
+    Params toned = one.scene.params;
+    toned.tone_map = ToneMap::reinhard_knee;
+    print_ratio("composite_tone_knee_cost", interleaved([&] {
+                    composite_into(one.frame.sprites, view, blurred, toned, view, out);
+                }, 5, [&] { composite_into(one.frame.sprites, view, blurred, one.scene.params, view, out); }, 5, pairs),
+                nullptr, 2);
 
     // The correction of the forest's 32 lights, on their traced masks, in
     // place as the frame does it. The correction is idempotent (each pixel

@@ -1,5 +1,6 @@
 #include "cli/args.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -60,6 +61,40 @@ Params params_from_args(const ParamArgs& a, Params p) {
         if (a.values[i]) set_param(p, table[i].name, *a.values[i], table[i].flag);
     validate(p, "parameters");
     return p;
+}
+
+std::string overridden_by_lights(std::string_view name, std::string_view flag, const std::vector<Light>& lights) {
+    // The parameters a light may give for itself, and what it gives.
+    struct Own {
+        const char* name;
+        bool (*gives)(const Light&);
+        const char* what;
+    };
+    static const Own own[] = {
+        {"light_height", [](const Light& l) { return l.height.has_value(); }, "its own height"},
+        {"area_a", [](const Light& l) { return l.area_a.has_value(); }, "its own a (half-width)"},
+        {"area_b", [](const Light& l) { return l.area_b.has_value(); }, "its own b (half-height)"},
+    };
+    for (const Own& o : own)
+        if (name == o.name && !lights.empty() && std::all_of(lights.begin(), lights.end(), o.gives))
+            return std::string(flag) + " changes nothing: " +
+                   (lights.size() == 1 ? std::string("the one light gives ") : "each of the " + std::to_string(lights.size()) + " lights gives ") +
+                   o.what;
+    return "";
+}
+
+void note_overridden_flags(const ParamArgs& a, const std::vector<Light>& lights) {
+    const auto table = param_table();
+    std::vector<std::pair<std::string, std::string>> set;  // (name, flag as given)
+    if (a.area) set.push_back({"area_a", "--area"}), set.push_back({"area_b", "--area"});
+    for (std::size_t i = 0; i < table.size(); ++i)
+        if (a.values[i]) set.push_back({table[i].name, table[i].flag});
+    std::string said;  // --area names both a and b: one line each, unless the same
+    for (const auto& [name, flag] : set) {
+        const std::string note = overridden_by_lights(name, flag, lights);
+        if (!note.empty() && note != said) std::cerr << "isolux-cli: note: " << note << "\n";
+        if (!note.empty()) said = note;
+    }
 }
 
 bool parse_ints(const std::string& s, char sep, std::vector<long long>& out) {

@@ -28,6 +28,13 @@ void add_param_flags(CLI::App& cmd, ParamArgs& pa);
 // The preset (the scene's, a file or a built-in), then the overrides.
 Params params_from_args(const ParamArgs& a, Params p);
 
+// The note for a parameter set by `flag` (a flag, or a sweep's --param)
+// that changes nothing because every one of `lights` gives its own value
+// (light_height, area_a, area_b), else "". The caller prints it on stderr.
+std::string overridden_by_lights(std::string_view name, std::string_view flag, const std::vector<Light>& lights);
+// Prints that note for every parameter flag of `a` the lights override.
+void note_overridden_flags(const ParamArgs& a, const std::vector<Light>& lights);
+
 // Refuses work beyond what finishes in seconds, with the estimate and the
 // flag that allows it anyway.
 void check_work(double steps, bool allow, const std::string& what, double bytes = 0);

@@ -47,6 +47,7 @@ Scene scene_from_args(const RenderArgs& a) {
     if (!a.tileset.empty()) s.tileset = a.tileset;
     s.params = params_from_args(a.params, s.params);
     for (const std::string& text : a.lights) s.lights.push_back(parse_light(text));
+    note_overridden_flags(a.params, s.lights);
     return s;
 }
 
@@ -92,6 +93,7 @@ std::pair<Scene, World> tiled_from_args(const RenderArgs& a) {
     Scene s = t.scene;
     s.params = params_from_args(a.params, s.params);
     for (const std::string& text : a.lights) s.lights.push_back(parse_light(text));
+    note_overridden_flags(a.params, s.lights);
     return {s, std::move(t.world)};
 }
 

@@ -27,6 +27,10 @@ int run_sweep_command(const SweepArgs& a) {
     for (const auto& w : warnings) std::cerr << "isolux-cli: warning: " << printable(w) << "\n";
     std::vector<SweepAxis> axes;
     for (const std::string& text : a.params) axes.push_back(parse_sweep_axis(text, s.params, "--param"));
+    for (const SweepAxis& ax : axes) {
+        const std::string note = overridden_by_lights(ax.name, "--param " + ax.name, s.lights);
+        if (!note.empty()) std::cerr << "isolux-cli: note: " << note << "\n";
+    }
     std::vector<double> step;
     if (!parse_reals(a.step, step) || step.size() != 2) throw Error("--step \"" + a.step + "\": expected DX,DY");
     SweepOptions opt;

@@ -33,7 +33,11 @@ struct Stats {
     std::array<bool, 4> gpu_ran{};  // upload, sprites, blur, composite
     int head = 0;
     long recorded = 0;  // frames pushed so far (the last `frames` of them are kept)
-    float frame_ms = 0, fps = 0;
+    // The lighting pipeline's time a frame, and the whole loop's (an
+    // average over the same frames): the rate shown is 1000 / loop_ms, so the
+    // two never disagree.
+    float frame_ms = 0, loop_ms = 0;
+    float fps() const { return loop_ms > 0 ? 1000.0f / loop_ms : 0.0f; }
     int lights_traced = 0;
     std::string tracer;  // which tracer traced the last traced frame: "cpu" or "gpu"
     Rect last_rebuilt;  // the last frame report's rebuilt rectangle that was not empty (an edit's, or a full rebuild's)
@@ -41,7 +45,21 @@ struct Stats {
 
 // The UI's transient state, each part owned by the file that reads and
 // edits it; the document itself is the editor's.
+// Where a panel and each of its controls were drawn in the last frame
+// (screen pixels), for the app's script (save-controls) and its tests.
+struct PanelRects {
+    std::string name;
+    float x = 0, y = 0, w = 0, h = 0;  // the window
+    float scroll_y = 0, scroll_max_y = 0;
+};
+struct ControlRect {
+    std::string panel, name;
+    float x = 0, y = 0, w = 0, h = 0;
+};
+
 struct Ui {
+    std::vector<PanelRects> panels;      // this frame's, so far (cleared as the panels start)
+    std::vector<ControlRect> controls;
     bool editing = false;  // a slider or field is being dragged: one undo step at its end (widgets.cpp)
     Scene edit_before;
     DialogState dialogs;      // dialogs.cpp

@@ -224,8 +224,8 @@ void follow_endless_view(App& app, bool screenshot_mode) {
 
 }  // namespace
 
-// One frame's figures: the stages that ran, their times, and the frame's own
-// time (the pipeline's, `frame_ms`) and rate (the whole loop's, `dt`).
+// One frame's figures: the stages that ran, their times, the lighting
+// pipeline's time (`frame_ms`) and the whole loop's (`dt`, seconds).
 void push_stats(App& app, const FrameReport& rep, double frame_ms, double dt) {
     Stats& s = app.stats;
     for (int k = 0; k < stage_count; ++k) s.ms[k][s.head] = float(rep.ms[k]);
@@ -243,7 +243,7 @@ void push_stats(App& app, const FrameReport& rep, double frame_ms, double dt) {
     if (!rep.tracer.empty()) s.tracer = std::string(rep.tracer);
     if (!rep.rebuilt.empty()) s.last_rebuilt = rep.rebuilt;
     s.frame_ms = s.frame_ms * 0.9f + float(frame_ms) * 0.1f;
-    if (dt > 0) s.fps = s.fps * 0.9f + float(1.0 / dt) * 0.1f;
+    if (dt > 0) s.loop_ms = s.loop_ms > 0 ? s.loop_ms * 0.9f + float(dt * 1000) * 0.1f : float(dt * 1000);
 }
 
 // Stops a long trace the window is closing on (its work is thrown away).

@@ -26,8 +26,13 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
     FootprintReport r;
     const Mask obstacle = tileset_footprint(app.editor.world.tileset, s, p, &r);
     const float z = ui.inspector.zoom;
-    const ImVec2 o = ImGui::GetCursorScreenPos();
     const float w = s.image.width * z, h = s.image.height * z;
+    // The sprite in a box of its own that scrolls both ways, so any sprite at
+    // any zoom fits the panel and the lines below stay in view.
+    const float box_h = std::min(h + ImGui::GetStyle().ScrollbarSize + 2,
+                                 std::max(160.0f, ImGui::GetContentRegionAvail().y * 0.65f));
+    ImGui::BeginChild("sprite image", ImVec2(0, box_h), false, ImGuiWindowFlags_HorizontalScrollbar);
+    const ImVec2 o = ImGui::GetCursorScreenPos();
     ImGui::InvisibleButton("sprite", ImVec2(w, h));
     const bool hovered = ImGui::IsItemHovered();
     ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -81,10 +86,11 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
         spec.run_y = cy;
         changed = true;
     }
+    ImGui::EndChild();
     double cx = 0, cy = 0;
     Rect box;
     if (mask_centre(obstacle, cx, cy, box))
-        ImGui::Text("obstacle centre (%.0f, %.0f), %.0f px from the anchor (%d, %d)%s%s%s", cx, cy,
+        ImGui::TextWrapped("obstacle centre (%.0f, %.0f), %.0f px from the anchor (%d, %d)%s%s%s", cx, cy,
                     std::hypot(cx - s.anchor_x - 0.5, cy - s.anchor_y - 0.5), s.anchor_x, s.anchor_y,
                     r.baked_ground ? "; baked ground found" : "", r.baked_shadow ? "; baked shadow found" : "",
                     r.whole_base ? "; stands on its whole base" : "");

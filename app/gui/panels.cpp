@@ -122,16 +122,37 @@ std::string param_tooltip(const ParamInfo& info) {
     return t;
 }
 
-// One widget per row of the parameter table, grouped by the paper's section.
+void param_widget(App& app, const ParamInfo& info);
+
+// One widget per row of the parameter table, in its order, under a
+// collapsible heading per section (each heading once).
 // A drag is one undo step; the document is validated by set_params.
 void params_panel(App& app) {
-    Editor& e = app.editor;
     dock(app, "Parameters");
     if (!ImGui::Begin("Parameters")) return ImGui::End();
-    ImGui::PushItemWidth(170);
-    const char* group = "";
-    for (const ParamInfo& info : param_table()) {
-        if (std::string_view(group) != info.group) ImGui::TextDisabled("%s", group = info.group);
+    ImGui::PushItemWidth(std::min(170.0f, ImGui::GetContentRegionAvail().x * 0.55f));
+    // Rows packed a little closer than the style's: every control within one
+    // scroll at 1280x720 (tests/app/gui/app_test.sh).
+    ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, ImVec2(ImGui::GetStyle().ItemSpacing.x, 2));
+    ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, ImVec2(ImGui::GetStyle().FramePadding.x, 2));
+    std::vector<std::string_view> groups;
+    for (const ParamInfo& info : param_table())
+        if (std::find(groups.begin(), groups.end(), info.group) == groups.end()) groups.push_back(info.group);
+    for (std::string_view group : groups) {
+        if (!ImGui::CollapsingHeader(std::string(group).c_str(), ImGuiTreeNodeFlags_DefaultOpen)) continue;
+        for (const ParamInfo& info : param_table())
+            if (info.group == group) param_widget(app, info);
+    }
+    ImGui::PopStyleVar(2);
+    ImGui::PopItemWidth();
+    record_panel(app, "Parameters");
+    ImGui::End();
+}
+
+// A parameter's widget, its help and its rectangle for the app's script.
+void param_widget(App& app, const ParamInfo& info) {
+    Editor& e = app.editor;
+    {
         const Scene before = e.scene;
         const double v = info.get(e.scene.params);
         const ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | (info.logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
@@ -168,11 +189,10 @@ void params_panel(App& app) {
         if (changed && edited != v) info.set(e.scene.params, edited);  // live while dragging
         if (info.type == ParamType::integer || info.type == ParamType::real) track_edit(app, before);
         else if (changed) commit_edit(e, before, app.now);
+        record_control(app, "Parameters", info.name);
         ImGui::PopID();
         help(param_tooltip(info).c_str());
     }
-    ImGui::PopItemWidth();
-    ImGui::End();
 }
 
 void overlays_panel(App& app) {
@@ -440,6 +460,8 @@ void draw_panels(App& app) {
         ui.reset_layout = true;
     }
     ui.layout = panel_layout(app.window_w, app.window_h, int(ImGui::GetFrameHeight()), 26);
+    ui.panels.clear();
+    ui.controls.clear();
     menu_bar(app);
     map_panel(app);
     params_panel(app);

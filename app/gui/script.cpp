@@ -43,7 +43,7 @@ Script load_script(const std::filesystem::path& path) {
             {"overlay", 2}, {"sweep", -1}, {"wait-sweep", 0}, {"long-work", 1}, {"apply-point", 1}, {"save-sweep", 1},
             {"tool", 1}, {"brush", 2}, {"view", 3}, {"click-tile", 2}, {"drag-tiles", 4}, {"new", 0}, {"fit", 0},
             {"open-dropped", 1}, {"check-glyphs", 1}, {"dump-panels", 1}, {"export-final", 1}, {"select", 1},
-            {"character", -1}, {"show", 1}, {"export-tiled", 1}, {"move-lights", 1}, {"save-stats", 1},
+            {"character", -1}, {"show", 1}, {"export-tiled", 1}, {"move-lights", 1}, {"save-stats", 1}, {"save-controls", 1},
             {"pan", 3}};
         bool known = false;
         for (auto [op, n] : arity)
@@ -99,7 +99,7 @@ std::string stats_json(const Stats& s) {
     for (int k = 0; k < stage_count; ++k) cpu[std::string(to_string(Stage(k)))] = mean(k);
     const char* gpu_names[] = {"upload", "sprites", "blur", "composite"};
     for (int k = 0; k < 4; ++k) gpu[gpu_names[k]] = mean(stage_count + k);
-    nlohmann::json j = {{"frames", n}, {"frame_ms", s.frame_ms}, {"tracer", s.tracer}, {"lights_traced", s.lights_traced},
+    nlohmann::json j = {{"frames", n}, {"frame_ms", s.frame_ms}, {"loop_ms", s.loop_ms}, {"fps", s.fps()}, {"tracer", s.tracer}, {"lights_traced", s.lights_traced},
                         {"cpu_ms", cpu}, {"gpu_ms", gpu}};
     return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
@@ -307,6 +307,19 @@ void run_script_step(App& app) {
     } else if (step.op == "save-stats") {
         try {
             write_file_atomic(step.args[0], stats_json(app.stats));
+        } catch (const Error& err) {
+            set_status(e, err.what(), true);
+        }
+    } else if (step.op == "save-controls") {
+        // Where the last frame drew each recorded panel and control.
+        nlohmann::json j = {{"window", {app.window_w, app.window_h}}, {"panels", nlohmann::json::object()},
+                            {"controls", nlohmann::json::array()}};
+        for (const PanelRects& p : app.ui.panels)
+            j["panels"][p.name] = {{"rect", {p.x, p.y, p.w, p.h}}, {"scroll_y", p.scroll_y}, {"scroll_max_y", p.scroll_max_y}};
+        for (const ControlRect& c : app.ui.controls)
+            j["controls"].push_back({{"panel", c.panel}, {"name", c.name}, {"rect", {c.x, c.y, c.w, c.h}}});
+        try {
+            write_file_atomic(step.args[0], j.dump(2) + "\n");
         } catch (const Error& err) {
             set_status(e, err.what(), true);
         }

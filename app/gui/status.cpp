@@ -27,7 +27,10 @@ void stats_panel(App& app) {
     dock(app, "Stats");
     if (!ImGui::Begin("Stats", &app.editor.settings.show_stats)) return ImGui::End();
     const Stats& s = app.stats;
-    ImGui::Text("%.1f FPS, %.2f ms a frame, %d lights traced", s.fps, s.frame_ms, s.lights_traced);
+    ImGui::Text("%.1f FPS: %.2f ms a frame, lighting %.2f ms of it", s.fps(), s.loop_ms, s.frame_ms);
+    help("The rate and the frame's time are one average over the same frames (the whole loop: input, lighting, "
+         "panels, drawing); lighting is the pipeline's share of it (the stages below).");
+    ImGui::Text("%d lights traced", s.lights_traced);
     ImGui::Text("tracer: %s", s.tracer.empty() ? "none yet" : s.tracer == "gpu" ? "GPU (compute shader)" : "CPU");
     help("Which tracer traced the last traced frame: set under View › Tracer. Automatic takes the GPU's compute shader "
          "unless the GL driver is a software renderer (Mesa's llvmpipe), where the CPU is faster. Both give the same "
@@ -74,7 +77,7 @@ void status_bar(App& app) {
     ImGui::Text("world (%.0f, %.0f)  tile %s  |  %.0f FPS  %.2f ms  |  zoom %.2f  |  %s%s", app.ui.viewport.cursor_x + o.x,
                 app.ui.viewport.cursor_y + o.y,
                 on_tile ? (std::to_string(col + o.col) + ", " + std::to_string(row + o.row)).c_str() : "-",
-                app.stats.fps, app.stats.frame_ms, e.view.zoom, e.dirty ? "unsaved  |  " : "", "");
+                app.stats.fps(), app.stats.loop_ms, e.view.zoom, e.dirty ? "unsaved  |  " : "", "");
     ImGui::SameLine();
     if (e.status_error) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", e.status.c_str());
     else ImGui::TextUnformatted(e.status.c_str());

@@ -116,8 +116,21 @@ void light_area_overlay(App& app) {
         if (e.overlays.light_areas) {
             const Rect a = light_area(l, s.params);
             const int alpha = int(255 * e.overlays.light_areas_opacity);
-            dl->AddRect(to_screen(a.x, a.y), to_screen(a.x + a.w, a.y + a.h),
-                        sel ? IM_COL32(255, 220, 90, alpha) : IM_COL32(200, 200, 255, alpha));
+            const ImU32 line = sel ? IM_COL32(255, 220, 90, alpha) : IM_COL32(200, 200, 255, alpha);
+            if (s.params.falloff_shape == FalloffShape::euclidean && s.params.edge_fade) {
+                // A round light that fades lights the ellipse its area's box
+                // holds (shaped_falloff's t <= 1), not the box's corners.
+                constexpr int n = 96;
+                ImVec2 pts[n];
+                const double cx = a.x + a.w / 2.0, cy = a.y + a.h / 2.0;
+                for (int k = 0; k < n; ++k) {
+                    const double t = 2 * 3.141592653589793 * k / n;
+                    pts[k] = to_screen(cx + a.w / 2.0 * std::cos(t), cy + a.h / 2.0 * std::sin(t));
+                }
+                dl->AddPolyline(pts, n, line, ImDrawFlags_Closed, 1.0f);
+            } else {
+                dl->AddRect(to_screen(a.x, a.y), to_screen(a.x + a.w, a.y + a.h), line);
+            }
         }
         const ImU32 colour = l.hidden ? IM_COL32(140, 140, 140, 160) : sel ? IM_COL32(255, 220, 90, 255) : IM_COL32(255, 255, 255, 200);
         dl->AddCircle(c, sel ? 7.0f : 5.0f, colour, 16, 2.0f);

@@ -59,4 +59,14 @@ void dock(App& app, const char* name) {
     ImGui::SetNextWindowSize(ImVec2(float(r.w), float(r.h)), cond);
 }
 
+void record_control(App& app, const char* panel, const char* name) {
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    app.ui.controls.push_back({panel, name, a.x, a.y, b.x - a.x, b.y - a.y});
+}
+
+void record_panel(App& app, const char* name) {
+    const ImVec2 p = ImGui::GetWindowPos(), sz = ImGui::GetWindowSize();
+    app.ui.panels.push_back({name, p.x, p.y, sz.x, sz.y, ImGui::GetScrollY(), ImGui::GetScrollMaxY()});
+}
+
 }  // namespace isolux::app

@@ -19,4 +19,9 @@ void track_edit(App& app, const Scene& before_widget);
 // layout is (re)applied, otherwise where the user left it.
 void dock(App& app, const char* name);
 
+// Keeps the last item's rectangle as control `name` of `panel` (Ui::controls).
+void record_control(App& app, const char* panel, const char* name);
+// Keeps the current window's rectangle and scroll as panel `name` (Ui::panels).
+void record_panel(App& app, const char* name);
+
 }  // namespace isolux::app

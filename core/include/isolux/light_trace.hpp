@@ -40,9 +40,12 @@ std::uint8_t falloff(std::int64_t d, double falloff_scale);
 
 // The intensity at offset (dx, dy) from a light with half-extents a, b under
 // the falloff shape and edge fade of `p` (not in the paper): falloff() of the
-// Chebyshev or Euclidean distance, times 1 - (its distance to the border as a
-// share) when edge_fade. With the paper's settings it is falloff(max(|dx|,|dy|)).
+// Chebyshev or Euclidean distance, times the fade curve of t (its distance to
+// the border as a share) when edge_fade. With the paper's settings it is
+// falloff(max(|dx|,|dy|)).
 std::uint8_t shaped_falloff(std::int64_t dx, std::int64_t dy, int a, int b, const Params& p);
+// shaped_falloff before it is truncated to 8 bits (edge_fade on; real dx, dy).
+double faded_intensity(double dx, double dy, int a, int b, const Params& p);
 // Whether `p` asks for anything but the paper's falloff.
 inline bool shaped(const Params& p) { return p.falloff_shape != FalloffShape::chebyshev || p.edge_fade; }
 

@@ -38,6 +38,12 @@ enum class FalloffShape {
     euclidean,  // d = sqrt(dx^2 + dy^2): round lights
 };
 
+// How the edge fade falls along a ray, t the share of the way to the border (not in the paper).
+enum class FadeCurve {
+    linear,  // 1 - t: its slope jumps to 0 at the border (a ring where it meets the unlit ground)
+    smooth,  // 1 - 3t^2 + 2t^3: its slope 0 at the border and continuous everywhere
+};
+
 // How Algorithm 3 mixes a sprite's colour with the light.
 enum class LightMix {
     luminance,  // the paper's: the sprite's luminance times the light (coloured lights paint their hue)
@@ -84,6 +90,7 @@ struct Params {
     Footprint footprint = Footprint::automatic;  // sprites without their own footprint (not in the paper)
     FalloffShape falloff_shape = FalloffShape::chebyshev;
     bool edge_fade = false;         // intensity falls to 0 at the area's border (not in the paper)
+    FadeCurve fade_curve = FadeCurve::linear;  // the edge fade's curve (FadeCurve)
     LightMix light_mix = LightMix::luminance;  // how Algorithm 3 mixes a sprite's colour with the light (LightMix)
     double exposure = 1.0;          // multiplies Algorithm 3's light term (not in the paper; 1 is the paper's)
     ToneMap tone_map = ToneMap::none;  // how the composite reaches the screen (ToneMap; none is the paper's)

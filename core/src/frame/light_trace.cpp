@@ -66,12 +66,20 @@ std::uint8_t shaped_falloff(std::int64_t dx, std::int64_t dy, int a, int b, cons
         if (!round) return falloff(std::max(std::llabs(dx), std::llabs(dy)), p.falloff_scale);
         return std::uint8_t(255.0 / (1.0 + std::sqrt(ax * ax + ay * ay) / p.falloff_scale));
     }
+    return std::uint8_t(faded_intensity(ax, ay, a, b, p));
+}
+
+double faded_intensity(double dx, double dy, int a, int b, const Params& p) {
+    const double ax = std::abs(dx), ay = std::abs(dy);
+    const bool round = p.falloff_shape == FalloffShape::euclidean;
     const double d = round ? std::sqrt(ax * ax + ay * ay) : std::max(ax, ay);
     // The share of the way to the border: an ellipse for round lights, the rectangle for square ones.
     const double u = ax / (a + 1.0), v = ay / (b + 1.0);
-    const double t = round ? std::sqrt(u * u + v * v) : std::max(u, v);
-    const double fade = std::max(0.0, 1.0 - t);
-    return std::uint8_t(255.0 / (1.0 + d / p.falloff_scale) * fade);
+    const double t = std::min(1.0, round ? std::sqrt(u * u + v * v) : std::max(u, v));
+    // smooth: 1 - smoothstep(t), whose slope is 0 at the border, where the
+    // linear fade's kink reads as a ring on bright ground.
+    const double fade = p.fade_curve == FadeCurve::smooth ? 1.0 - t * t * (3.0 - 2.0 * t) : 1.0 - t;
+    return 255.0 / (1.0 + d / p.falloff_scale) * fade;
 }
 
 void shape_light(LightMask& m, const Params& p) {

@@ -28,7 +28,73 @@ constexpr const char* shade_group = "shading (paper 3.2, Algorithm 3)";
 
 // name, flag, old flag, label, symbol, group, type, min, max, min open,
 // slider min, slider max, logarithmic, choices, help, re-runs, field.
+// In the order the app's Parameters panel shows them: the look a user tunes
+// first (Algorithm 3's shading, what stops the rays and how light falls),
+// then the tracer's speed knobs, then the obstacle map.
 const ParamInfo table[] = {
+    {"ambient_clarity", "--ambient-clarity", "--ambient", "ambient clarity", "", shade_group, ParamType::real, 0, 1,
+     false, 0, 1, false, {}, "Algorithm 3's ambientClarity: texture x sqrt(c) + luminance x light / (c^2 + 0.1) "
+     "(paper 4: 0.4).", composite, ISOLUX_FIELD(ambient_clarity)},
+    {"exposure", "--exposure", nullptr, "exposure", "", shade_group, ParamType::real, 0, 16, true, 1.0 / 16, 16,
+     true, {}, "Multiplies Algorithm 3's light term (in shadow mode, the shadow subtracted), so how dark the night "
+     "is (ambient clarity) and how bright the lamps are are set apart. 1 is the paper's.", composite,
+     ISOLUX_FIELD(exposure)},
+    {"tone_map", "--tone-map", nullptr, "tone map", "", shade_group, ParamType::choice, 0, 1, false, 0, 1, false,
+     {"none", "reinhard_knee"}, "How the composite reaches the screen. none: each channel clamped (the paper). "
+     "reinhard_knee: the light's added luminance rolls off into the headroom the texture leaves, so a bright pool "
+     "keeps its hue and fades toward white instead of clipping channel by channel; unlit pixels are unchanged.",
+     composite, ISOLUX_FIELD(tone_map)},
+    {"light_mix", "--light-mix", nullptr, "light mix", "", shade_group, ParamType::choice, 0, 1, false, 0, 1, false,
+     {"luminance", "surface"}, "luminance: Algorithm 3 as written, the sprite's luminance times the light (a coloured "
+     "light paints its hue). surface: the sprite's colour times the light, so lit sprites keep their hue; shadows "
+     "darken instead of blacking out.", composite, ISOLUX_FIELD(light_mix)},
+    {"dark_unlit", "--dark-unlit", nullptr, "dark unlit", "", shade_group, ParamType::boolean, 0, 1, false, 0, 1,
+     false, {}, "Algorithm 3 variant (paper 4): the texture factor is multiplied by the light, so what no ray "
+     "reaches is black.", composite, ISOLUX_FIELD(dark_unlit)},
+    {"blur_radius", "--blur-radius", "--blur", "blur radius", "", shade_group, ParamType::integer, 0, 255, false, 0,
+     16, false, {}, "Box blur of the light texture, in pixels (paper 3.2).", blur, ISOLUX_FIELD(blur_radius)},
+    {"occluders", "--occluders", nullptr, "occluders", "", trace_group, ParamType::choice, 0, 2, false, 0, 2,
+     false, {"footprints", "solids", "shapes"}, "What stops the rays. footprints: the paper's obstacle map and "
+     "opacity correction; solids: beyond the paper, a solid estimated from each sprite's alpha, the light at its "
+     "height, so canopies cast shadows and a higher light casts shorter ones; shapes: the manifest's own shapes the "
+     "same way (every overlay needs one). Light and shadow modes.", obstacle_map, ISOLUX_FIELD(occluders)},
+    {"mode", "--mode", nullptr, "mode", "", trace_group, ParamType::choice, 0, 2, false, 0, 2, false,
+     {"light", "shadow", "flat"}, "light: rays stop at obstacles (the paper). shadow: paint what lies beyond the "
+     "first obstacle (paper 4). flat: no obstacles, falloff only (Figure 10b).", trace, ISOLUX_FIELD(mode)},
+    {"area_a", "--area-a", nullptr, "area a", "a", trace_group, ParamType::integer, 0, max_area, false, 0, 512, false,
+     {}, "A light's half-width in pixels; its area is (2a+1) x (2b+1) (paper 3.2).", trace, ISOLUX_FIELD(area_a)},
+    {"area_b", "--area-b", nullptr, "area b", "b", trace_group, ParamType::integer, 0, max_area, false, 0, 512, false,
+     {}, "A light's half-height in pixels (paper 3.2).", trace, ISOLUX_FIELD(area_b)},
+    {"falloff_scale", "--falloff-scale", nullptr, "falloff scale", "", trace_group, ParamType::real, 0, 1e6, true,
+     0.25, 64, true, {}, "i = 255 / (1 + max(|dx|,|dy|) / falloff scale). 1 is the paper's function; larger spreads "
+     "the light.", trace, ISOLUX_FIELD(falloff_scale)},
+    {"falloff_shape", "--falloff-shape", nullptr, "falloff shape", "", trace_group, ParamType::choice, 0, 1, false, 0,
+     1, false, {"chebyshev", "euclidean"}, "How the intensity falls with distance d: chebyshev, d = max(|dx|,|dy|), the "
+     "paper's (square lights); euclidean, d = sqrt(dx^2 + dy^2) (round lights).", trace, ISOLUX_FIELD(falloff_shape)},
+    {"edge_fade", "--edge-fade", nullptr, "edge fade", "", trace_group, ParamType::boolean, 0, 1, false, 0, 1, false,
+     {}, "The intensity falls to 0 at the area's border instead of being cut there (no straight edge).", trace,
+     ISOLUX_FIELD(edge_fade)},
+    {"fade_curve", "--fade-curve", nullptr, "fade curve", "", trace_group, ParamType::choice, 0, 1, false, 0, 1, false,
+     {"linear", "smooth"}, "The edge fade along a ray, t the share of the way to the border: linear, 1 - t (its "
+     "slope jumps at the border: a ring); smooth, 1 - 3t^2 + 2t^3 (its slope 0 at the border). With edge_fade.",
+     trace, ISOLUX_FIELD(fade_curve)},
+    {"light_height", "--light-height", nullptr, "light height", "", trace_group, ParamType::real, 0, 4096, false, 0,
+     256, false, {}, "A light's height above the ground in pixels, for lights that give none. The paper's model "
+     "ignores it; the 3D reference and the height options use it.", trace, ISOLUX_FIELD(light_height)},
+    {"ray_skip", "--ray-skip", nullptr, "ray skip", "k", trace_group, ParamType::integer, 1, 1 << 20, false, 1, 32,
+     true, {}, "Trace every k-th border ray; the gaps of skipped rays are blurred (paper 3.2).", trace,
+     ISOLUX_FIELD(ray_skip)},
+    {"trace_every", "--trace-every", nullptr, "l frames", "l", trace_group, ParamType::integer, 1, 10000, false, 1, 30,
+     false, {}, "Rays are traced once every l frames; in between the light texture is shifted with the camera "
+     "(paper 3.2). Walk the character (WASD) to see it.", nothing, ISOLUX_FIELD(trace_every)},
+    {"rays", "--rays", nullptr, "rays", "", trace_group, ParamType::choice, 0, 1, false, 0, 1, false,
+     {"border", "every_pixel"}, "border: a ray to each border pixel (Algorithm 2). every_pixel: a ray to every pixel "
+     "of the area, the paper's 4ab rays; the accuracy reference, slow.", trace, ISOLUX_FIELD(rays)},
+    {"rays_over_obstacles", "--rays-over-obstacles", nullptr, "rays over obstacles", "", trace_group,
+     ParamType::boolean, 0, 1, false, 0, 1, false, {}, "Beyond the paper: a ray passes over an obstacle lower than "
+     "the ray at that point (heights estimated from each sprite's opaque rows, the light at its height), so low "
+     "sprites cast shadows of finite length. Light and flat modes; with occluders footprints only.", obstacle_map,
+     ISOLUX_FIELD(rays_over_obstacles)},
     {"delta_y", "--delta-y", nullptr, "delta y", "Δy", obstacle_group, ParamType::integer, 1, 4096, false, 1, 128,
      false, {}, "How many rows Algorithm 1 reads on each sprite, ending at its lowest opaque row (paper 3.1: 25 for "
      "128-px sprites).", obstacle_map, ISOLUX_FIELD(delta_y)},
@@ -42,65 +108,6 @@ const ParamInfo table[] = {
      false, {"auto", "paper"}, "Where sprites meet the ground, for sprites whose manifest sets none. auto: "
      "Algorithm 1 after taking out a baked ground diamond and baked shadows; paper: Algorithm 1 as written.",
      obstacle_map, ISOLUX_FIELD(footprint)},
-    {"area_a", "--area-a", nullptr, "area a", "a", trace_group, ParamType::integer, 0, max_area, false, 0, 512, false,
-     {}, "A light's half-width in pixels; its area is (2a+1) x (2b+1) (paper 3.2).", trace, ISOLUX_FIELD(area_a)},
-    {"area_b", "--area-b", nullptr, "area b", "b", trace_group, ParamType::integer, 0, max_area, false, 0, 512, false,
-     {}, "A light's half-height in pixels (paper 3.2).", trace, ISOLUX_FIELD(area_b)},
-    {"ray_skip", "--ray-skip", nullptr, "ray skip", "k", trace_group, ParamType::integer, 1, 1 << 20, false, 1, 32,
-     true, {}, "Trace every k-th border ray; the gaps of skipped rays are blurred (paper 3.2).", trace,
-     ISOLUX_FIELD(ray_skip)},
-    {"trace_every", "--trace-every", nullptr, "l frames", "l", trace_group, ParamType::integer, 1, 10000, false, 1, 30,
-     false, {}, "Rays are traced once every l frames; in between the light texture is shifted with the camera "
-     "(paper 3.2). Walk the character (WASD) to see it.", nothing, ISOLUX_FIELD(trace_every)},
-    {"falloff_scale", "--falloff-scale", nullptr, "falloff scale", "", trace_group, ParamType::real, 0, 1e6, true,
-     0.25, 64, true, {}, "i = 255 / (1 + max(|dx|,|dy|) / falloff scale). 1 is the paper's function; larger spreads "
-     "the light.", trace, ISOLUX_FIELD(falloff_scale)},
-    {"falloff_shape", "--falloff-shape", nullptr, "falloff shape", "", trace_group, ParamType::choice, 0, 1, false, 0,
-     1, false, {"chebyshev", "euclidean"}, "How the intensity falls with distance d: chebyshev, d = max(|dx|,|dy|), the "
-     "paper's (square lights); euclidean, d = sqrt(dx^2 + dy^2) (round lights).", trace, ISOLUX_FIELD(falloff_shape)},
-    {"edge_fade", "--edge-fade", nullptr, "edge fade", "", trace_group, ParamType::boolean, 0, 1, false, 0, 1, false,
-     {}, "The intensity falls to 0 at the area's border instead of being cut there (no straight edge).", trace,
-     ISOLUX_FIELD(edge_fade)},
-    {"mode", "--mode", nullptr, "mode", "", trace_group, ParamType::choice, 0, 2, false, 0, 2, false,
-     {"light", "shadow", "flat"}, "light: rays stop at obstacles (the paper). shadow: paint what lies beyond the "
-     "first obstacle (paper 4). flat: no obstacles, falloff only (Figure 10b).", trace, ISOLUX_FIELD(mode)},
-    {"rays", "--rays", nullptr, "rays", "", trace_group, ParamType::choice, 0, 1, false, 0, 1, false,
-     {"border", "every_pixel"}, "border: a ray to each border pixel (Algorithm 2). every_pixel: a ray to every pixel "
-     "of the area, the paper's 4ab rays; the accuracy reference, slow.", trace, ISOLUX_FIELD(rays)},
-    {"light_height", "--light-height", nullptr, "light height", "", trace_group, ParamType::real, 0, 4096, false, 0,
-     256, false, {}, "A light's height above the ground in pixels, for lights that give none. The paper's model "
-     "ignores it; the 3D reference and the height options use it.", trace, ISOLUX_FIELD(light_height)},
-    {"occluders", "--occluders", nullptr, "occluders", "", obstacle_group, ParamType::choice, 0, 2, false, 0, 2,
-     false, {"footprints", "solids", "shapes"}, "What stops the rays. footprints: the paper's obstacle map and "
-     "opacity correction; solids: beyond the paper, a solid estimated from each sprite's alpha, the light at its "
-     "height, so canopies cast shadows and a higher light casts shorter ones; shapes: the manifest's own shapes the "
-     "same way (every overlay needs one). Light and shadow modes.", obstacle_map, ISOLUX_FIELD(occluders)},
-    {"rays_over_obstacles", "--rays-over-obstacles", nullptr, "rays over obstacles", "", trace_group,
-     ParamType::boolean, 0, 1, false, 0, 1, false, {}, "Beyond the paper: a ray passes over an obstacle lower than "
-     "the ray at that point (heights estimated from each sprite's opaque rows, the light at its height), so low "
-     "sprites cast shadows of finite length. Light and flat modes; with occluders footprints only.", obstacle_map,
-     ISOLUX_FIELD(rays_over_obstacles)},
-    {"blur_radius", "--blur-radius", "--blur", "blur radius", "", shade_group, ParamType::integer, 0, 255, false, 0,
-     16, false, {}, "Box blur of the light texture, in pixels (paper 3.2).", blur, ISOLUX_FIELD(blur_radius)},
-    {"ambient_clarity", "--ambient-clarity", "--ambient", "ambient clarity", "", shade_group, ParamType::real, 0, 1,
-     false, 0, 1, false, {}, "Algorithm 3's ambientClarity: texture x sqrt(c) + luminance x light / (c^2 + 0.1) "
-     "(paper 4: 0.4).", composite, ISOLUX_FIELD(ambient_clarity)},
-    {"light_mix", "--light-mix", nullptr, "light mix", "", shade_group, ParamType::choice, 0, 1, false, 0, 1, false,
-     {"luminance", "surface"}, "luminance: Algorithm 3 as written, the sprite's luminance times the light (a coloured "
-     "light paints its hue). surface: the sprite's colour times the light, so lit sprites keep their hue; shadows "
-     "darken instead of blacking out.", composite, ISOLUX_FIELD(light_mix)},
-    {"dark_unlit", "--dark-unlit", nullptr, "dark unlit", "", shade_group, ParamType::boolean, 0, 1, false, 0, 1,
-     false, {}, "Algorithm 3 variant (paper 4): the texture factor is multiplied by the light, so what no ray "
-     "reaches is black.", composite, ISOLUX_FIELD(dark_unlit)},
-    {"exposure", "--exposure", nullptr, "exposure", "", shade_group, ParamType::real, 0, 16, true, 1.0 / 16, 16,
-     true, {}, "Multiplies Algorithm 3's light term (in shadow mode, the shadow subtracted), so how dark the night "
-     "is (ambient clarity) and how bright the lamps are are set apart. 1 is the paper's.", composite,
-     ISOLUX_FIELD(exposure)},
-    {"tone_map", "--tone-map", nullptr, "tone map", "", shade_group, ParamType::choice, 0, 1, false, 0, 1, false,
-     {"none", "reinhard_knee"}, "How the composite reaches the screen. none: each channel clamped (the paper). "
-     "reinhard_knee: the light's added luminance rolls off into the headroom the texture leaves, so a bright pool "
-     "keeps its hue and fades toward white instead of clipping channel by channel; unlit pixels are unchanged.",
-     composite, ISOLUX_FIELD(tone_map)},
 };
 
 #undef ISOLUX_FIELD
@@ -268,7 +275,7 @@ std::string builtin_preset_summary(std::string_view name) {
     if (name == "fast") return "fast: half the border rays, a retrace every 4 frames, blurred";
     if (name == "quality") return "quality: a ray to every pixel, traced every frame";
     if (name == "game")
-        return "game: round lights fading to their border, shadows from solids estimated from the sprites, sprites keep "
+        return "game: round lights fading smoothly to their border, shadows from solids estimated from the sprites, sprites keep "
                "their colour, bright pools rolled off instead of burnt to white, soft blur";
     return "";
 }
@@ -291,6 +298,7 @@ Params builtin_preset(std::string_view name) {
         p.occluders = Occluders::solids;
         p.falloff_shape = FalloffShape::euclidean;
         p.edge_fade = true;
+        p.fade_curve = FadeCurve::smooth;
         p.falloff_scale = 12;
         p.light_mix = LightMix::surface;
         p.blur_radius = 3;

@@ -228,5 +228,24 @@ check endless_walk 0 "" -- render --size endless --view 100000,50000,400,300 --l
 check endless_walk_end 0 "" -- render --size endless --view 100600,50300,400,300 --light 100700,50400 --out "$tmp/walk_end.png"
 if cmp -s "$tmp/walk.png" "$tmp/walk_end.png"; then pass=$((pass + 1)); else echo "FAIL endless_walk_same_pixels"; fail=$((fail + 1)); fi
 
+# A flag every light overrides changes nothing, and says so on stderr (one
+# line naming it); a flag some light takes from the preset says nothing.
+show="$src/assets/scenes/showcase.json"
+check override_height 0 "--light-height changes nothing: each of the 3 lights gives its own height" -- \
+  render --scene "$show" --view 600,350,64,48 --light-height 100 --out "$tmp/o1.png"
+check override_none 0 "" -- render --scene "$show" --view 600,350,64,48 --out "$tmp/o2.png"
+if cmp -s "$tmp/o1.png" "$tmp/o2.png"; then pass=$((pass + 1)); else echo "FAIL override_height_same_pixels"; fail=$((fail + 1)); fi
+if grep -q "changes nothing" "$tmp/err"; then echo "FAIL override_none said something"; fail=$((fail + 1)); else pass=$((pass + 1)); fi
+check override_area 0 "--area changes nothing: the one light gives its own a (half-width)" -- \
+  render --size 4x4 --light 200,100,30,20 --area 40,40 --out "$tmp/o3.png"
+check override_partly 0 "" -- render --size 4x4 --light 200,100,30,20 --light 100,80 --area 40,40 --out "$tmp/o4.png"
+if grep -q "changes nothing" "$tmp/err"; then echo "FAIL override_partly said something"; fail=$((fail + 1)); else pass=$((pass + 1)); fi
+cat > "$tmp/high.json" <<'JSON'
+{"schema_version": 1, "width": 4, "height": 4, "preset": {"area_a": 24, "area_b": 24},
+ "lights": [{"x": 200, "y": 100, "height": 40}]}
+JSON
+check override_sweep 0 "--param light_height changes nothing: the one light gives its own height" -- \
+  sweep --scene "$tmp/high.json" --param light_height=20,60 --no-carried-light --frames 1 --repeats 1 --out "$tmp/o.csv"
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

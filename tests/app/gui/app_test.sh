@@ -391,7 +391,7 @@ quit
 SCRIPT
 timeout 120 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/move.script" --tracer cpu >"$tmp/log" 2>&1 || { bad "move-lights run"; cat "$tmp/log"; }
 [ "$(json "$tmp/moved.json" "int(d['lights'][0]['x'])")" = "701" ] && ok || bad "move-lights: light 1 is not 1 px right after 5 frames (+1 -1 +1 -1 +1)"
-[ "$(json "$tmp/stats.json" "d['lights_traced'] == 2 and d['tracer'] == 'cpu' and d['cpu_ms']['trace'] > 0 and d['frames'] >= 7")" = "True" ] \
+[ "$(json "$tmp/stats.json" "d['lights_traced'] == 2 and d['tracer'] == 'cpu' and d['cpu_ms']['trace'] > 0 and d['frames'] >= 7 and d['loop_ms'] > 0 and abs(d['fps'] * d['loop_ms'] - 1000) < 1")" = "True" ] \
   && ok || { bad "save-stats: not the moving frames' figures"; cat "$tmp/stats.json"; }
 
 # 5. Every overlay, the error heat map, and the Accuracy panel's sweep: a
@@ -494,6 +494,7 @@ show stats
 show help
 wait 2
 dump-panels $tmp/panels_$size.json
+save-controls $tmp/controls_$size.json
 show accuracy
 inspect oak
 wait 2
@@ -513,6 +514,25 @@ for f in sys.argv[1:]:
         assert p["x"] >= 0 and p["y"] >= 0 and p["x"] + p["w"] <= W and p["y"] + p["h"] <= H, (f, p, W, H)
 for n in ["Map", "Parameters", "Overlays", "Tools", "Lights", "Stats", "Help", "Accuracy", "Tileset inspector"]:
     assert n in names, (n, names)
+PY
+  # Every Parameters control within one scroll (the panel's content at most
+  # two of its heights), inside the panel's width, and the look's controls
+  # (occluders, ambient clarity, exposure, tone map) in view unscrolled.
+  python3 - "$tmp/controls_$size.json" "$("$cli" params | tail -n +2 | wc -l)" >"$tmp/check" 2>&1 <<'PY' && ok || { bad "a Parameters control out of reach at $size"; cat "$tmp/check"; }
+import json, sys
+d = json.load(open(sys.argv[1]))
+x, y, w, h = d["panels"]["Parameters"]["rect"]
+scroll, scroll_max = d["panels"]["Parameters"]["scroll_y"], d["panels"]["Parameters"]["scroll_max_y"]
+ctrls = [c for c in d["controls"] if c["panel"] == "Parameters"]
+assert len(ctrls) == int(sys.argv[2]), (len(ctrls), sys.argv[2])
+assert scroll == 0, scroll
+assert scroll_max <= h - 20, ("more than one scroll", scroll_max, h)
+for c in ctrls:
+    cx, cy, cw, ch = c["rect"]
+    assert cx >= x and cx + cw <= x + w + 0.5, ("wider than the panel", c, d["panels"]["Parameters"])
+    if c["name"] in ("occluders", "ambient_clarity", "exposure", "tone_map"):
+        assert cy + ch <= y + h, ("not in view unscrolled", c, d["panels"]["Parameters"])
+print("controls", len(ctrls), "panel", w, h, "scroll_max", scroll_max)
 PY
 done
 cat >"$tmp/comfort.script" <<SCRIPT

@@ -599,6 +599,54 @@ TEST(LightLook, euclideanFalloffMakesRoundLightsAndEdgeFadeReachesZeroAtTheBorde
     EXPECT_EQ(q.value, q2.value);
 }
 
+// fade_curve smooth: along every ray, for round and square lights and
+// areas wider than tall, the unrounded intensity's slope is continuous for
+// 0 < t <= 1 and 0 at the border; the linear fade's is not 0 there (the ring).
+TEST(LightLook, theSmoothFadesSlopeIsContinuousAndZeroAtTheBorder) {
+    for (FalloffShape shape : {FalloffShape::chebyshev, FalloffShape::euclidean})
+        for (const auto& [a, b] : {std::pair{64, 64}, std::pair{90, 45}})
+            for (FadeCurve curve : {FadeCurve::smooth, FadeCurve::linear}) {
+                Params p;
+                p.falloff_scale = 12;
+                p.edge_fade = true;
+                p.falloff_shape = shape;
+                p.fade_curve = curve;
+                for (int k = 0; k < 16; ++k) {
+                    const double angle = 0.1 + k * 0.39, cx = std::cos(angle), cy = std::sin(angle);
+                    // The ray's length to the border (t = 1), by bisection on t.
+                    auto t_at = [&](double s) {
+                        const double u = std::abs(s * cx) / (a + 1.0), v = std::abs(s * cy) / (b + 1.0);
+                        return shape == FalloffShape::euclidean ? std::sqrt(u * u + v * v) : std::max(u, v);
+                    };
+                    double lo = 0, hi = 4.0 * (a + b);
+                    for (int i = 0; i < 100; ++i) (t_at((lo + hi) / 2) < 1 ? lo : hi) = (lo + hi) / 2;
+                    const double end = lo, h = end / 20000;
+                    auto at = [&](double s) { return faded_intensity(s * cx, s * cy, a, b, p); };
+                    double before = (at(2 * h) - at(h)) / h, worst_jump = 0;
+                    for (int i = 2; i < 20000; ++i) {
+                        const double slope = (at((i + 1) * h) - at(i * h)) / h;
+                        worst_jump = std::max(worst_jump, std::abs(slope - before));
+                        before = slope;
+                    }
+                    const std::string what = std::string(shape == FalloffShape::euclidean ? "round" : "square") + " " +
+                                             std::to_string(a) + "x" + std::to_string(b) + " angle " + std::to_string(angle);
+                    // Near the centre the falloff's own slope changes fastest: 255 / s^2 per pixel at most.
+                    EXPECT_LT(worst_jump, 0.05) << what;
+                    const double end_slope = (at(end) - at(end - h)) / h;
+                    if (curve == FadeCurve::smooth) {
+                        EXPECT_LT(std::abs(end_slope), 1e-3) << what;
+                    } else {
+                        EXPECT_GT(std::abs(end_slope), 0.05) << what << ": the linear fade meets the border sloped";
+                    }
+                }
+            }
+    // The linear curve is today's: edge_fade's bytes unchanged.
+    Params p;
+    p.edge_fade = true;
+    p.falloff_scale = 8;
+    EXPECT_EQ(shaped_falloff(10, 0, 20, 20, p), std::uint8_t(255.0 / (1 + 10.0 / 8) * (1 - 10.0 / 21)));
+}
+
 TEST(LightLook, surfaceLightMixKeepsTheSpritesHue) {
     const double red[3] = {0.8, 0.0, 0.0}, white[3] = {1, 1, 1};
     double lum[3], surf[3];
