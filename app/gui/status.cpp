@@ -27,7 +27,7 @@ void stats_panel(App& app) {
     dock(app, "Stats");
     if (!ImGui::Begin("Stats", &app.editor.settings.show_stats)) return ImGui::End();
     const Stats& s = app.stats;
-    ImGui::Text("%.1f FPS: %.2f ms a frame, lighting %.2f ms of it", s.fps(), s.loop_ms, s.frame_ms);
+    ImGui::TextWrapped("%.1f FPS: %.2f ms a frame, lighting %.2f ms of it", s.fps(), s.loop_ms, s.frame_ms);
     help("The rate and the frame's time are one average over the same frames (the whole loop: input, lighting, "
          "panels, drawing); lighting is the pipeline's share of it (the stages below).");
     ImGui::Text("%d lights traced", s.lights_traced);
