@@ -148,6 +148,10 @@ void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeC
 // modes; shadow mode's bytes are none's): the texture and light terms kept
 // apart, then tone_knee in float, every step a select so the loops vectorise.
 template <bool Surface, bool DarkUnlit, bool Grey>
+// No floating-point trap is ever enabled here, so GCC may if-convert the
+// selects between two variables (it keeps them as branches otherwise):
+// the values are IEEE's either way.
+[[gnu::optimize("no-trapping-math")]]
 void shade_row_toned(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k, std::uint8_t* d) {
     constexpr int run = 256, texel = Grey ? 1 : 3;
     constexpr float near = 1.0f / 512.0f, round_magic = 8388608.0f;
@@ -168,31 +172,54 @@ void shade_row_toned(const std::uint8_t* s, const std::uint8_t* l, int n, const 
                 add[ch][i] = (Surface ? c[ch][i] : lum[i]) * L[ch][i] * inv_denom;
                 base[ch][i] = DarkUnlit ? c[ch][i] * ts * L[ch][i] : c[ch][i] * ts;
             }
-        // The light rolled into the headroom the texture leaves (tone_knee).
+        // The light rolled into the headroom the texture leaves (tone_knee),
+        // in flat loops of plain selects (GCC 12 vectorises those, not
+        // nested ones), the divisions unconditional with safe divisors.
         for (int i = 0; i < cnt; ++i) {
             const float b0 = base[0][i], b1 = base[1][i], b2 = base[2][i];
             const float p0 = b0 + add[0][i], p1 = b1 + add[1][i], p2 = b2 + add[2][i];
-            const float top = std::max(b0, std::max(b1, b2)), peak = std::max(p0, std::max(p1, p2));
-            const float head = top < 1.0f ? 1.0f - top : 0.0f, knee = knee_at * head, span = head - knee;
-            const float over = peak - top, x = span > 0.0f ? (over - knee) / span : 0.0f;
+            float top = b0;
+            top = top < b1 ? b1 : top;
+            top = top < b2 ? b2 : top;
+            float peak = p0;
+            peak = peak < p1 ? p1 : peak;
+            peak = peak < p2 ? p2 : peak;
+            float head = 1.0f - top;
+            head = head < 0.0f ? 0.0f : head;
+            const float knee = knee_at * head, span = head - knee, over = peak - top;
+            float safe_span = span;
+            safe_span = safe_span > 0.0f ? safe_span : 1.0f;
+            float x = (over - knee) / safe_span;
+            x = x > 0.0f ? x : 0.0f;  // below the knee `target` is unused
             const float target = top + knee + span * x / (1.0f + x);
+            // The light's scale: the least over the channels it lights (a
+            // channel it leaves alone bounds nothing), 1 below the knee.
             float sc = 1.0f;
             for (int ch = 0; ch < 3; ++ch) {
-                const float a = add[ch][i], r = (target - base[ch][i]) / (a > 0.0f ? a : 1.0f);
-                sc = a > 0.0f && r < sc ? r : sc;
+                const float a = add[ch][i];
+                float safe_a = a;
+                safe_a = safe_a > 0.0f ? safe_a : 1.0f;
+                float r = (target - base[ch][i]) / safe_a;
+                r = a > 0.0f ? r : 1.0f;
+                sc = r < sc ? r : sc;
             }
             scale[i] = over > knee ? sc : 1.0f;
         }
-        for (int ch = 0; ch < 3; ++ch)
+        for (int ch = 0; ch < 3; ++ch) {
+            float* tt = base[ch];
             for (int i = 0; i < cnt; ++i) {
-                float x = (base[ch][i] + add[ch][i] * scale[i]) * 255.0f;
+                float x = (tt[i] + add[ch][i] * scale[i]) * 255.0f;
                 x = x < 0.0f ? 0.0f : x;
                 x = x > 255.0f ? 255.0f : x;
-                x += 0.5f;
+                tt[i] = x;
+            }
+            for (int i = 0; i < cnt; ++i) {
+                const float x = tt[i] + 0.5f;
                 const float off = x - ((x + round_magic) - round_magic);
                 bad[i] |= std::int32_t(off < near) & std::int32_t(off > -near);
-                base[ch][i] = x;
+                tt[i] = x;
             }
+        }
         std::uint8_t* dp = d + std::size_t(i0) * 4;
         for (int i = 0; i < cnt; ++i) {
             const std::uint8_t alpha = sp[4 * i + 3];
@@ -208,15 +235,19 @@ void shade_row_toned(const std::uint8_t* s, const std::uint8_t* l, int n, const 
 // The same arithmetic four pixels at a time in SSE2 (every x86-64 has it):
 // the bytes spread into lanes by shifts and masks, shaded, packed back. The
 // last n % 4 pixels take shade_row.
-template <bool Shadow, bool Surface, bool DarkUnlit, bool Grey>
+// Toned: tone_map reinhard_knee where light adds (never with Shadow), in
+// the same lanes: the texture and light terms kept apart, then tone_knee.
+template <bool Shadow, bool Surface, bool DarkUnlit, bool Grey, bool Toned = false>
 void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k, std::uint8_t* d) {
+    static_assert(!(Toned && Shadow), "shadow mode's bytes are the clamp's");
     const __m128i bytes = _mm_set1_epi32(0xFF), rgb_bytes = _mm_set1_epi32(0xFFFFFF), zero = _mm_setzero_si128();
     const std::uint8_t* l_end = k.light_end ? k.light_end : l;
     const __m128 inv255 = _mm_set1_ps(1.0f / 255.0f), scale = _mm_set1_ps(255.0f), top = _mm_set1_ps(255.0f),
                  half = _mm_set1_ps(0.5f), magic = _mm_set1_ps(8388608.0f), near = _mm_set1_ps(1.0f / 512.0f),
                  minus_near = _mm_set1_ps(-1.0f / 512.0f), one = _mm_set1_ps(1.0f), three_quarters = _mm_set1_ps(k.shadow_gain),
                  ts = _mm_set1_ps(k.tex_scale), inv_denom = _mm_set1_ps(k.inv_denom), kr = _mm_set1_ps(0.349f),
-                 kg = _mm_set1_ps(0.114f), kb = _mm_set1_ps(0.537f), fzero = _mm_setzero_ps();
+                 kg = _mm_set1_ps(0.114f), kb = _mm_set1_ps(0.537f), fzero = _mm_setzero_ps(),
+                 knee_at = _mm_set1_ps(float(tone_knee_at));
     constexpr int texel = Grey ? 1 : 3;
     int i = 0;
     for (; i + 4 <= n; i += 4) {
@@ -250,9 +281,42 @@ void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const S
         const __m128 luminance = _mm_add_ps(_mm_add_ps(_mm_mul_ps(c[0], kr), _mm_mul_ps(c[1], kg)), _mm_mul_ps(c[2], kb));
         __m128 bad = fzero;
         __m128i packed = _mm_slli_epi32(alpha, 24);
+        __m128 toned[3];
+        if constexpr (Toned) {
+            // tone_knee four pixels at a time; select(m, a, b): a where m, else b.
+            auto select = [](__m128 m, __m128 a, __m128 b) { return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b)); };
+            __m128 base[3], add[3];
+            for (int ch = 0; ch < 3; ++ch) {
+                add[ch] = _mm_mul_ps(_mm_mul_ps(Surface ? c[ch] : luminance, L[ch]), inv_denom);
+                base[ch] = _mm_mul_ps(c[ch], ts);
+                if constexpr (DarkUnlit) base[ch] = _mm_mul_ps(base[ch], L[ch]);
+            }
+            const __m128 highest = _mm_max_ps(_mm_max_ps(base[0], base[1]), base[2]);
+            const __m128 peak = _mm_max_ps(_mm_max_ps(_mm_add_ps(base[0], add[0]), _mm_add_ps(base[1], add[1])),
+                                           _mm_add_ps(base[2], add[2]));
+            const __m128 head = _mm_max_ps(_mm_sub_ps(one, highest), fzero), knee = _mm_mul_ps(knee_at, head);
+            const __m128 span = _mm_sub_ps(head, knee), over = _mm_sub_ps(peak, highest);
+            const __m128 rolled = _mm_cmpgt_ps(over, knee);
+            __m128 sc = one;
+            if (_mm_movemask_ps(rolled)) {  // else all four are below the knee: the light as it is
+                const __m128 safe_span = select(_mm_cmpgt_ps(span, fzero), span, one);
+                const __m128 x = _mm_max_ps(_mm_div_ps(_mm_sub_ps(over, knee), safe_span), fzero);
+                const __m128 target =
+                    _mm_add_ps(_mm_add_ps(highest, knee), _mm_div_ps(_mm_mul_ps(span, x), _mm_add_ps(one, x)));
+                for (int ch = 0; ch < 3; ++ch) {
+                    const __m128 lit = _mm_cmpgt_ps(add[ch], fzero);
+                    const __m128 r = _mm_div_ps(_mm_sub_ps(target, base[ch]), select(lit, add[ch], one));
+                    sc = _mm_min_ps(sc, select(lit, r, one));
+                }
+                sc = select(rolled, sc, one);
+            }
+            for (int ch = 0; ch < 3; ++ch) toned[ch] = _mm_add_ps(base[ch], _mm_mul_ps(add[ch], sc));
+        }
         for (int ch = 0; ch < 3; ++ch) {
             __m128 v;
-            if constexpr (Surface && Shadow) {
+            if constexpr (Toned) {
+                v = toned[ch];
+            } else if constexpr (Surface && Shadow) {
                 v = _mm_mul_ps(_mm_mul_ps(c[ch], ts), _mm_sub_ps(one, _mm_mul_ps(three_quarters, L[ch])));
             } else {
                 const __m128 light_factor = _mm_mul_ps(_mm_mul_ps(Surface ? c[ch] : luminance, L[ch]), inv_denom);
@@ -274,8 +338,13 @@ void shade_row_sse2(const std::uint8_t* s, const std::uint8_t* l, int n, const S
             for (int q = 0; q < 4; ++q)
                 if ((redo >> q) & 1) exact_pixel(s + std::size_t(i + q) * 4, lp + texel * q, Grey, *k.params, d + std::size_t(i + q) * 4);
     }
-    if (i < n) shade_row<Shadow, Surface, DarkUnlit, Grey>(s + std::size_t(i) * 4, l + std::size_t(i) * texel, n - i, k,
-                                                            d + std::size_t(i) * 4);
+    if (i >= n) return;
+    if constexpr (Toned)
+        shade_row_toned<Surface, DarkUnlit, Grey>(s + std::size_t(i) * 4, l + std::size_t(i) * texel, n - i, k,
+                                                  d + std::size_t(i) * 4);
+    else
+        shade_row<Shadow, Surface, DarkUnlit, Grey>(s + std::size_t(i) * 4, l + std::size_t(i) * texel, n - i, k,
+                                                    d + std::size_t(i) * 4);
 }
 #endif
 
@@ -414,11 +483,19 @@ template <bool A, bool B, bool C, bool D> struct Avx2 { static constexpr ShadeRo
 
 ShadeRow shade_row_for(const Params& p, bool grey) {
     if (p.tone_map == ToneMap::reinhard_knee && p.mode != Mode::shadow) {
+#if defined(__SSE2__)
+        static constexpr std::array<ShadeRow, 8> toned = {
+            shade_row_sse2<false, false, false, false, true>, shade_row_sse2<false, false, false, true, true>,
+            shade_row_sse2<false, false, true, false, true>,  shade_row_sse2<false, false, true, true, true>,
+            shade_row_sse2<false, true, false, false, true>,  shade_row_sse2<false, true, false, true, true>,
+            shade_row_sse2<false, true, true, false, true>,   shade_row_sse2<false, true, true, true, true>};
+#else
         static constexpr std::array<ShadeRow, 8> toned = {
             shade_row_toned<false, false, false>, shade_row_toned<false, false, true>,
             shade_row_toned<false, true, false>,  shade_row_toned<false, true, true>,
             shade_row_toned<true, false, false>,  shade_row_toned<true, false, true>,
             shade_row_toned<true, true, false>,   shade_row_toned<true, true, true>};
+#endif
         return toned[std::size_t(p.light_mix == LightMix::surface) * 4 + std::size_t(p.dark_unlit) * 2 + std::size_t(grey)];
     }
     const std::size_t at = std::size_t(p.mode == Mode::shadow) * 8 + std::size_t(p.light_mix == LightMix::surface) * 4 +
