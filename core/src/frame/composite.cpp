@@ -146,12 +146,18 @@ void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeC
 
 // shade_row with tone_map reinhard_knee where light adds (light and flat
 // modes; shadow mode's bytes are none's): the texture and light terms kept
-// apart, then tone_knee in float, every step a select so the loops vectorise.
-template <bool Surface, bool DarkUnlit, bool Grey>
+// apart, then tone_knee in float. Rows' last n % 4 pixels after
+// shade_row_sse2's toned lanes, and whole rows where there is no SSE2.
 // No floating-point trap is ever enabled here, so GCC may if-convert the
 // selects between two variables (it keeps them as branches otherwise):
-// the values are IEEE's either way.
-[[gnu::optimize("no-trapping-math")]]
+// the values are IEEE's either way. (Clang has no such attribute.)
+#if defined(__GNUC__) && !defined(__clang__)
+#define ISOLUX_NO_TRAPPING_MATH [[gnu::optimize("no-trapping-math")]]
+#else
+#define ISOLUX_NO_TRAPPING_MATH
+#endif
+template <bool Surface, bool DarkUnlit, bool Grey>
+ISOLUX_NO_TRAPPING_MATH
 void shade_row_toned(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k, std::uint8_t* d) {
     constexpr int run = 256, texel = Grey ? 1 : 3;
     constexpr float near = 1.0f / 512.0f, round_magic = 8388608.0f;
