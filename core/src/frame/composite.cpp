@@ -87,15 +87,55 @@ struct ShadeConstants {
     const float* unit;  // v / 255, v in 0..255
 };
 
+// shade_row's and shade_row_toned's shared steps over a run of up to
+// shade_run pixels: the bytes spread into floats (table lookups, no
+// conversions) with the paper's luminance, each channel's values (scaled
+// and clamped to [0, 255]) moved to their rounding point with the pixels
+// near a level's half flagged, and the bytes written back, the flagged
+// pixels redone exactly in double.
+constexpr int shade_run = 256;
+using RunChannels = float[3][shade_run];
+
+template <bool Grey>
+void spread_run(const std::uint8_t* sp, const std::uint8_t* lp, int m, const float* unit, RunChannels& c, RunChannels& L,
+                float* lum, std::int32_t* bad) {
+    constexpr int texel = Grey ? 1 : 3;
+    for (int i = 0; i < m; ++i)
+        for (int ch = 0; ch < 3; ++ch) c[ch][i] = unit[sp[4 * i + ch]], L[ch][i] = unit[lp[texel * i + (Grey ? 0 : ch)]];
+    for (int i = 0; i < m; ++i) lum[i] = c[0][i] * 0.349f + c[1][i] * 0.114f + c[2][i] * 0.537f, bad[i] = 0;
+}
+
+void flag_near_halves(float* tt, int m, std::int32_t* bad) {
+    constexpr float near = 1.0f / 512.0f, round_magic = 8388608.0f;  // 2^23: adding it rounds to an integer
+    for (int i = 0; i < m; ++i) {
+        const float x = tt[i] + 0.5f;
+        const float off = x - ((x + round_magic) - round_magic);  // distance to the nearest integer
+        bad[i] |= std::int32_t(off < near) & std::int32_t(off > -near);
+        tt[i] = x;
+    }
+}
+
+template <bool Grey>
+void write_run(const std::uint8_t* sp, const std::uint8_t* lp, int m, const RunChannels& t, const std::int32_t* bad,
+               const Params& p, std::uint8_t* dp) {
+    constexpr int texel = Grey ? 1 : 3;
+    for (int i = 0; i < m; ++i) {
+        const std::uint8_t alpha = sp[4 * i + 3];
+        const std::uint8_t keep = alpha != 0 ? 0xFF : 0x00;  // transparent: all zero
+        for (int ch = 0; ch < 3; ++ch) dp[4 * i + ch] = std::uint8_t(std::uint8_t(std::int32_t(t[ch][i])) & keep);
+        dp[4 * i + 3] = alpha;
+        if (bad[i] & keep & 1) exact_pixel(sp + 4 * i, lp + texel * i, Grey, p, dp + 4 * i);
+    }
+}
+
 // Three passes over runs of up to 256 pixels, so the arithmetic is one
 // loop over plain float arrays (vectorised): spread the bytes into floats
 // (table lookups, no conversions), shade, gather the bytes back. Grey: the
 // light's texels are one byte, the same in every channel.
 template <bool Shadow, bool Surface, bool DarkUnlit, bool Grey>
 void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k, std::uint8_t* d) {
-    constexpr int run = 256, texel = Grey ? 1 : 3;
-    constexpr float near = 1.0f / 512.0f, round_magic = 8388608.0f;  // 2^23: adding it rounds to an integer
-    alignas(16) float c[3][run], L[3][run], t[3][run];
+    constexpr int run = shade_run, texel = Grey ? 1 : 3;
+    alignas(16) RunChannels c, L, t;
     alignas(16) std::int32_t bad[run];
     alignas(16) float lum[run];
     const float ts = k.tex_scale, inv_denom = k.inv_denom;
@@ -103,9 +143,7 @@ void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeC
         const int m = std::min(run, n - i0);
         const std::uint8_t* sp = s + std::size_t(i0) * 4;
         const std::uint8_t* lp = l + std::size_t(i0) * texel;
-        for (int i = 0; i < m; ++i)
-            for (int ch = 0; ch < 3; ++ch) c[ch][i] = k.unit[sp[4 * i + ch]], L[ch][i] = k.unit[lp[texel * i + (Grey ? 0 : ch)]];
-        for (int i = 0; i < m; ++i) lum[i] = c[0][i] * 0.349f + c[1][i] * 0.114f + c[2][i] * 0.537f, bad[i] = 0;
+        spread_run<Grey>(sp, lp, m, k.unit, c, L, lum, bad);
         for (int ch = 0; ch < 3; ++ch) {
             const float* cc = c[ch];
             const float* LL = L[ch];
@@ -126,21 +164,9 @@ void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeC
                 x = x > 255.0f ? 255.0f : x;
                 tt[i] = x;
             }
-            for (int i = 0; i < m; ++i) {
-                const float x = tt[i] + 0.5f;
-                const float off = x - ((x + round_magic) - round_magic);  // distance to the nearest integer
-                bad[i] |= std::int32_t(off < near) & std::int32_t(off > -near);
-                tt[i] = x;
-            }
+            flag_near_halves(tt, m, bad);
         }
-        std::uint8_t* dp = d + std::size_t(i0) * 4;
-        for (int i = 0; i < m; ++i) {
-            const std::uint8_t alpha = sp[4 * i + 3];
-            const std::uint8_t keep = alpha != 0 ? 0xFF : 0x00;  // transparent: all zero
-            for (int ch = 0; ch < 3; ++ch) dp[4 * i + ch] = std::uint8_t(std::uint8_t(std::int32_t(t[ch][i])) & keep);
-            dp[4 * i + 3] = alpha;
-            if (bad[i] & keep & 1) exact_pixel(sp + 4 * i, lp + texel * i, Grey, *k.params, dp + 4 * i);
-        }
+        write_run<Grey>(sp, lp, m, t, bad, *k.params, d + std::size_t(i0) * 4);
     }
 }
 
@@ -159,10 +185,9 @@ void shade_row(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeC
 template <bool Surface, bool DarkUnlit, bool Grey>
 ISOLUX_NO_TRAPPING_MATH
 void shade_row_toned(const std::uint8_t* s, const std::uint8_t* l, int n, const ShadeConstants& k, std::uint8_t* d) {
-    constexpr int run = 256, texel = Grey ? 1 : 3;
-    constexpr float near = 1.0f / 512.0f, round_magic = 8388608.0f;
+    constexpr int run = shade_run, texel = Grey ? 1 : 3;
     constexpr float knee_at = float(tone_knee_at);
-    alignas(16) float c[3][run], L[3][run], base[3][run], add[3][run];
+    alignas(16) RunChannels c, L, base, add;
     alignas(16) float lum[run], scale[run];
     alignas(16) std::int32_t bad[run];
     const float ts = k.tex_scale, inv_denom = k.inv_denom;
@@ -170,9 +195,7 @@ void shade_row_toned(const std::uint8_t* s, const std::uint8_t* l, int n, const 
         const int cnt = std::min(run, n - i0);
         const std::uint8_t* sp = s + std::size_t(i0) * 4;
         const std::uint8_t* lp = l + std::size_t(i0) * texel;
-        for (int i = 0; i < cnt; ++i)
-            for (int ch = 0; ch < 3; ++ch) c[ch][i] = k.unit[sp[4 * i + ch]], L[ch][i] = k.unit[lp[texel * i + (Grey ? 0 : ch)]];
-        for (int i = 0; i < cnt; ++i) lum[i] = c[0][i] * 0.349f + c[1][i] * 0.114f + c[2][i] * 0.537f, bad[i] = 0;
+        spread_run<Grey>(sp, lp, cnt, k.unit, c, L, lum, bad);
         for (int ch = 0; ch < 3; ++ch)
             for (int i = 0; i < cnt; ++i) {
                 add[ch][i] = (Surface ? c[ch][i] : lum[i]) * L[ch][i] * inv_denom;
@@ -219,21 +242,9 @@ void shade_row_toned(const std::uint8_t* s, const std::uint8_t* l, int n, const 
                 x = x > 255.0f ? 255.0f : x;
                 tt[i] = x;
             }
-            for (int i = 0; i < cnt; ++i) {
-                const float x = tt[i] + 0.5f;
-                const float off = x - ((x + round_magic) - round_magic);
-                bad[i] |= std::int32_t(off < near) & std::int32_t(off > -near);
-                tt[i] = x;
-            }
+            flag_near_halves(tt, cnt, bad);
         }
-        std::uint8_t* dp = d + std::size_t(i0) * 4;
-        for (int i = 0; i < cnt; ++i) {
-            const std::uint8_t alpha = sp[4 * i + 3];
-            const std::uint8_t keep = alpha != 0 ? 0xFF : 0x00;
-            for (int ch = 0; ch < 3; ++ch) dp[4 * i + ch] = std::uint8_t(std::uint8_t(std::int32_t(base[ch][i])) & keep);
-            dp[4 * i + 3] = alpha;
-            if (bad[i] & keep & 1) exact_pixel(sp + 4 * i, lp + texel * i, Grey, *k.params, dp + 4 * i);
-        }
+        write_run<Grey>(sp, lp, cnt, base, bad, *k.params, d + std::size_t(i0) * 4);
     }
 }
 
