@@ -11,7 +11,9 @@
 # build's. The cases cover every fast stage: the blur's every path (none, the fused pass at
 # radii 1 to 7, the 32-bit sums beyond), white lights' grey texture and
 # coloured lights' RGB, the composite's clarities, mixes and dark-unlit, the
-# opacity correction, light, shadow and flat modes, ray skips, the l frames
+# opacity correction, light, shadow and flat modes, ray skips, the l frames,
+# occluders solids and shapes (explicit flags, not a preset: light and
+# shadow modes, light heights, the default and town tilesets)
 # with a moving camera, three layouts and the layers; on seeded maps, both
 # scenes, the real art of tests/realart (when tests/realart/fetch.sh has
 # unpacked it) and Tiled's own example map. NEW_CLI also renders each case
@@ -65,6 +67,14 @@ cases=(
   "scene-default|--scene $here/assets/scenes/default.json"
   "scene-forest|--scene $here/assets/scenes/forest.json"
   "scene-forest-blur3|--scene $here/assets/scenes/forest.json --blur 3 --ambient 0.1"
+  "solids|$lights --occluders solids"
+  "solids-high|$lights --occluders solids --light-height 96 --blur 3 --light-mix surface"
+  "solids-shadow|$lights --occluders solids --mode shadow"
+  "solids-skip2|$lights --occluders solids --ray-skip 2 --no-opacity-correction"
+  "shapes|$lights --occluders shapes"
+  "shapes-shadow|$lights --occluders shapes --mode shadow --light-height 16"
+  "solids-town|--tileset $here/assets/town/tileset.json --size 10x10 $lights --occluders solids"
+  "shapes-town|--tileset $here/assets/town/tileset.json --size 10x10 $lights --occluders shapes"
 )
 art=${ISOLUX_REALART_CACHE:-$HOME/.cache/isolux-realart}
 for name in freedroidrpg lincity-ng widelands; do

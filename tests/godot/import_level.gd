@@ -19,7 +19,9 @@ func _init():
 	var nodes = {"lights": [], "occluders": [], "sprites": [], "floors": {}}
 	for l in level.get_node("Lights").get_children():
 		nodes["lights"].push_back({"name": l.name, "x": l.position.x, "y": l.position.y, "color": l.color.to_html(false),
-			"energy": l.energy, "area": [l.get_meta("isolux_area").x, l.get_meta("isolux_area").y]})
+			"energy": l.energy, "area": [l.get_meta("isolux_area").x, l.get_meta("isolux_area").y],
+			"drawn": [l.texture.get_width() * l.texture_scale * l.scale.x / 2.0,
+				l.texture.get_height() * l.texture_scale * l.scale.y / 2.0]})
 	for o in level.get_node("Occluders").get_children():
 		var pts = []
 		for p in o.occluder.polygon:

@@ -81,9 +81,16 @@ def cli_png(args, name):
 
 # ------------------------------------------------------------ 1, 2: import
 VIEW = (256, 70, 1024, 768)  # fits the suite's 1280x1024 Xvfb screen
+# The default scene with its round lights measured on the ground (a = b):
+# each Light2D an ellipse twice as wide as tall on the 128 x 64 tiles.
+ground = json.load(open(os.path.join(src, "assets/scenes/default.json")))
+ground.setdefault("preset", {}).update({"falloff_space": "ground", "falloff_shape": "euclidean", "edge_fade": True})
+ground_path = os.path.join(tmp, "ground.json")
+json.dump(ground, open(ground_path, "w"))
 for name, scene_path in (("default", os.path.join(src, "assets/scenes/default.json")),
                          ("showcase", os.path.join(src, "assets/scenes/showcase.json")),
-                         ("walk", os.path.join(src, "examples/walk/level.json"))):
+                         ("walk", os.path.join(src, "examples/walk/level.json")),
+                         ("ground", ground_path)):
     scene = json.load(open(scene_path))
     tmx = os.path.join(tmp, name, "level.tmx")
     os.makedirs(os.path.dirname(tmx))
@@ -112,6 +119,13 @@ for name, scene_path in (("default", os.path.join(src, "assets/scenes/default.js
         ok = (abs(got["x"] - want["x"]) < 0.01 and abs(got["y"] - want["y"]) < 0.01 and
               got["color"] == want["color"] and abs(got["energy"] - want["intensity"]) < 1e-6 and got["area"] == area)
         check(ok, f"{name}: Light2D {got} for the scene's {want}")
+        # Its drawn half-extents: the a x b box, or on the ground (r = 2) the
+        # ellipse of ground distance inside it.
+        r = 2.0 if preset.get("falloff_space") == "ground" else 1.0
+        drawn = [min(area[0], r * area[1]), min(area[1], area[0] / r)]
+        if min(area) > 0:
+            check(all(abs(g - w) < 0.01 for g, w in zip(got["drawn"], drawn)),
+                  f"{name}: Light2D drawn {got['drawn']} for half-extents {drawn}")
     check(abs(nodes["ambient"] - preset.get("ambient_clarity", 1)) < 1e-3, f"{name}: CanvasModulate {nodes['ambient']}")
     check(len(nodes["sprites"]) == text.count(" gid="), f"{name}: {len(nodes['sprites'])} sprites")
     check(nodes["floors"]["cells"] == scene["width"] * scene["height"], f"{name}: {nodes['floors']['cells']} floor cells")

@@ -43,11 +43,18 @@ std::uint8_t falloff(std::int64_t d, double falloff_scale);
 // Chebyshev or Euclidean distance, times the fade curve of t (its distance to
 // the border as a share) when edge_fade. With the paper's settings it is
 // falloff(max(|dx|,|dy|)).
-std::uint8_t shaped_falloff(std::int64_t dx, std::int64_t dy, int a, int b, const Params& p);
+// dy_scale multiplies |dy| in the distance d (falloff_dy_scale: 1 on the
+// screen, the tile ratio on the ground); the fade's t keeps the a x b area.
+std::uint8_t shaped_falloff(std::int64_t dx, std::int64_t dy, int a, int b, const Params& p, double dy_scale);
 // shaped_falloff before it is truncated to 8 bits (edge_fade on; real dx, dy).
-double faded_intensity(double dx, double dy, int a, int b, const Params& p);
+double faded_intensity(double dx, double dy, int a, int b, const Params& p, double dy_scale);
+// The factor on |dy| in a light's distance: 1 with falloff_space screen (the
+// paper), tile_width / tile_height with ground.
+double falloff_dy_scale(const Params& p, int tile_width, int tile_height);
 // Whether `p` asks for anything but the paper's falloff.
-inline bool shaped(const Params& p) { return p.falloff_shape != FalloffShape::chebyshev || p.edge_fade; }
+inline bool shaped(const Params& p) {
+    return p.falloff_shape != FalloffShape::chebyshev || p.edge_fade || p.falloff_space != FalloffSpace::screen;
+}
 
 // One light's traced pixels, over the part of its area that matters (`clip`,
 // world pixels). value[i] is what Algorithm 2 draws there: the paper's
@@ -61,6 +68,7 @@ struct LightMask {
     std::int64_t cx = 0, cy = 0;  // the light's centre pixel
     int a = 0, b = 0;             // the area's half-extents (for shaped falloffs)
     double falloff_scale = 1.0;
+    double dy_scale = 1.0;        // falloff_dy_scale: what shape_light and the shadow mode's sum measure with
     std::vector<std::uint8_t> value, reached;
 
     bool lit(std::size_t i) const { return value[i] != 0; }
@@ -68,7 +76,8 @@ struct LightMask {
 
 // Readies `mask` for a light at (cx, cy) with half-extents a, b over `clip`:
 // its fields set, `value` all unlit (its capacity kept), `reached` emptied
-// unless `with_reached` (the shadow mode's tracers fill it).
+// unless `with_reached` (the shadow mode's tracers fill it). Its dy_scale is
+// left as it was: the caller, which knows the tileset, sets it.
 void start_mask(LightMask& mask, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p, Rect clip,
                 bool with_reached = false);
 

@@ -38,6 +38,13 @@ enum class FalloffShape {
     euclidean,  // d = sqrt(dx^2 + dy^2): round lights
 };
 
+// Where a light's distances are measured (not in the paper).
+enum class FalloffSpace {
+    screen,  // the paper's: d from the screen offset (dx, dy)
+    ground,  // on the ground: dy scaled by the tileset's tile width over its height (r), so a
+             // round light is a disc of ground, an ellipse r times as wide as tall on screen
+};
+
 // How the edge fade falls along a ray, t the share of the way to the border (not in the paper).
 enum class FadeCurve {
     linear,  // 1 - t: its slope jumps to 0 at the border (a ring where it meets the unlit ground)
@@ -89,6 +96,7 @@ struct Params {
     Occluders occluders = Occluders::footprints;  // what stops the rays (occluder_map.hpp; not in the paper)
     Footprint footprint = Footprint::automatic;  // sprites without their own footprint (not in the paper)
     FalloffShape falloff_shape = FalloffShape::chebyshev;
+    FalloffSpace falloff_space = FalloffSpace::screen;  // where distances are measured (FalloffSpace)
     bool edge_fade = false;         // intensity falls to 0 at the area's border (not in the paper)
     FadeCurve fade_curve = FadeCurve::linear;  // the edge fade's curve (FadeCurve)
     LightMix light_mix = LightMix::luminance;  // how Algorithm 3 mixes a sprite's colour with the light (LightMix)

@@ -59,16 +59,16 @@ void require_shapes(const World& world, Rect region);
 double light_height(const Light& light, const Params& p);
 
 // One light (centre pixel cx, cy; half-extents a, b; `height` above the
-// ground) against the true shapes: value = shaped_falloff(dx, dy) where the
+// ground) against the true shapes: value = shaped_falloff(dx, dy, dy_scale) where the
 // pixel's surface point sees the light, 0 elsewhere. `surface` must cover
 // `clip`. With `facing`, a surface turned away from the light is dark too.
 LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::int64_t cx, std::int64_t cy,
-                      double height, int a, int b, const Params& p, Rect clip, bool facing);
+                      double height, int a, int b, const Params& p, Rect clip, bool facing, double dy_scale);
 
 // One light, exact in 2D: a pixel is lit when no pixel of its own Bresenham
 // line from the centre (both ends included) is an obstacle.
 LightMask exact_line_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
-                           Rect clip);
+                           Rect clip, double dy_scale);
 
 // The work of reference_texture over `rect`, in trace_work's steps, known
 // before it starts: every_pixel's own trace; for exact_line a Bresenham line

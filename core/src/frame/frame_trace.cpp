@@ -162,6 +162,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     }
     if (!traced_elsewhere && n > 0) rep.tracer = "cpu";
 
+    const double dy_scale = falloff_dy_scale(p, world.tileset.tile_width, world.tileset.tile_height);
     const TraceControl& control = st.options.control;
     const TraceControl* ctl = control.cancel || control.done ? &control : nullptr;
     // One light, its passes against solids walked on `light_threads` threads.
@@ -191,7 +192,9 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             correct_with_ground_lines(tl.mask, st.cache->ground);
         else if (correct)
             correct_with_opacity_maps(tl.mask, world.placed, st.opacity);
-        if (shaped(p)) shape_light(tl.mask, p);  // beyond the paper: round lights, a fade to the border
+        // Beyond the paper: round lights, distances on the ground, a fade to the border.
+        tl.mask.dy_scale = dy_scale;
+        if (shaped(p)) shape_light(tl.mask, p);
         trace_ms[k] = ms_between(t0, t1);
         correct_ms[k] = ms_between(t1, Clock::now());
         tl.cost_ms = trace_ms[k] + correct_ms[k];

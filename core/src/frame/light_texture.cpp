@@ -151,7 +151,7 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
             const std::uint8_t vy = falloff(std::llabs(y - mask.cy), mask.falloff_scale);
             for (int x = 0; x < r.w; ++x)
                 row[std::size_t(x)] = (reached[x] && v[x] == 0)
-                                          ? (shaped(p) ? shaped_falloff(r.x + x - mask.cx, y - mask.cy, mask.a, mask.b, p)
+                                          ? (shaped(p) ? shaped_falloff(r.x + x - mask.cx, y - mask.cy, mask.a, mask.b, p, mask.dy_scale)
                                                        : std::min(by_x[std::size_t(x)], vy))
                                           : 0;
             v = row.data();

@@ -59,20 +59,23 @@ std::uint8_t falloff(std::int64_t d, double falloff_scale) {
     return std::uint8_t(std::min(255.0, v));
 }
 
-std::uint8_t shaped_falloff(std::int64_t dx, std::int64_t dy, int a, int b, const Params& p) {
-    const double ax = double(std::llabs(dx)), ay = double(std::llabs(dy));
+std::uint8_t shaped_falloff(std::int64_t dx, std::int64_t dy, int a, int b, const Params& p, double dy_scale) {
     const bool round = p.falloff_shape == FalloffShape::euclidean;
     if (!p.edge_fade) {
-        if (!round) return falloff(std::max(std::llabs(dx), std::llabs(dy)), p.falloff_scale);
-        return std::uint8_t(255.0 / (1.0 + std::sqrt(ax * ax + ay * ay) / p.falloff_scale));
+        if (!round && dy_scale == 1.0) return falloff(std::max(std::llabs(dx), std::llabs(dy)), p.falloff_scale);
+        const double ax = double(std::llabs(dx)), ay = double(std::llabs(dy)) * dy_scale;
+        const double d = round ? std::sqrt(ax * ax + ay * ay) : std::max(ax, ay);
+        return std::uint8_t(255.0 / (1.0 + d / p.falloff_scale));
     }
-    return std::uint8_t(faded_intensity(ax, ay, a, b, p));
+    return std::uint8_t(faded_intensity(double(std::llabs(dx)), double(std::llabs(dy)), a, b, p, dy_scale));
 }
 
-double faded_intensity(double dx, double dy, int a, int b, const Params& p) {
+double faded_intensity(double dx, double dy, int a, int b, const Params& p, double dy_scale) {
     const double ax = std::abs(dx), ay = std::abs(dy);
     const bool round = p.falloff_shape == FalloffShape::euclidean;
-    const double d = round ? std::sqrt(ax * ax + ay * ay) : std::max(ax, ay);
+    // The distance on the ground (dy_scale r) or the screen (1).
+    const double gy = ay * dy_scale;
+    const double d = round ? std::sqrt(ax * ax + gy * gy) : std::max(ax, gy);
     // The share of the way to the border: an ellipse for round lights, the rectangle for square ones.
     const double u = ax / (a + 1.0), v = ay / (b + 1.0);
     const double t = std::min(1.0, round ? std::sqrt(u * u + v * v) : std::max(u, v));
@@ -82,11 +85,16 @@ double faded_intensity(double dx, double dy, int a, int b, const Params& p) {
     return 255.0 / (1.0 + d / p.falloff_scale) * fade;
 }
 
+double falloff_dy_scale(const Params& p, int tile_width, int tile_height) {
+    if (p.falloff_space == FalloffSpace::screen || tile_width <= 0 || tile_height <= 0) return 1.0;
+    return double(tile_width) / double(tile_height);
+}
+
 void shape_light(LightMask& m, const Params& p) {
     for (int y = 0; y < m.clip.h; ++y)
         for (int x = 0; x < m.clip.w; ++x) {
             std::uint8_t& v = m.value[std::size_t(y) * m.clip.w + x];
-            if (v) v = shaped_falloff(m.clip.x + x - m.cx, m.clip.y + y - m.cy, m.a, m.b, p);
+            if (v) v = shaped_falloff(m.clip.x + x - m.cx, m.clip.y + y - m.cy, m.a, m.b, p, m.dy_scale);
         }
 }
 

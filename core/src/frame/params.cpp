@@ -71,6 +71,10 @@ const ParamInfo table[] = {
     {"falloff_shape", "--falloff-shape", nullptr, "falloff shape", "", trace_group, ParamType::choice, 0, 1, false, 0,
      1, false, {"chebyshev", "euclidean"}, "How the intensity falls with distance d: chebyshev, d = max(|dx|,|dy|), the "
      "paper's (square lights); euclidean, d = sqrt(dx^2 + dy^2) (round lights).", trace, ISOLUX_FIELD(falloff_shape)},
+    {"falloff_space", "--falloff-space", nullptr, "falloff space", "", trace_group, ParamType::choice, 0, 1, false, 0,
+     1, false, {"screen", "ground"}, "Where d is measured: screen, from the screen offset (the paper); ground, on the "
+     "ground, dy scaled by the tile width over its height r (a round light is an ellipse r times as wide as tall).",
+     trace, ISOLUX_FIELD(falloff_space)},
     {"edge_fade", "--edge-fade", nullptr, "edge fade", "", trace_group, ParamType::boolean, 0, 1, false, 0, 1, false,
      {}, "The intensity falls to 0 at the area's border instead of being cut there (no straight edge).", trace,
      ISOLUX_FIELD(edge_fade)},
@@ -297,6 +301,11 @@ Params builtin_preset(std::string_view name) {
         // ground and on the sprites: docs/accuracy.md).
         p.occluders = Occluders::solids;
         p.falloff_shape = FalloffShape::euclidean;
+        // Pools that lie on the ground: distances measured there, and the
+        // area's box b = a / r around the ellipse a round light makes (r = 2,
+        // the default tileset's 128 x 64 diamonds and most isometric art's).
+        p.falloff_space = FalloffSpace::ground;
+        p.area_b = p.area_a / 2;
         p.edge_fade = true;
         p.fade_curve = FadeCurve::smooth;
         p.falloff_scale = 12;

@@ -29,9 +29,10 @@ Rect area_of(std::int64_t cx, std::int64_t cy, int a, int b) {
 }
 
 // A light's mask over the part of its area inside `clip`, nothing lit yet.
-LightMask unlit_mask(std::int64_t cx, std::int64_t cy, int a, int b, const Params& p, Rect clip) {
+LightMask unlit_mask(std::int64_t cx, std::int64_t cy, int a, int b, const Params& p, Rect clip, double dy_scale) {
     LightMask m;
     start_mask(m, cx, cy, a, b, p, intersect(clip, area_of(cx, cy, a, b)));
+    m.dy_scale = dy_scale;
     return m;
 }
 
@@ -145,8 +146,8 @@ WorldSolids world_solids(const World& world, Rect region) {
 }
 
 LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::int64_t cx, std::int64_t cy,
-                      double height, int a, int b, const Params& p, Rect clip, bool facing) {
-    LightMask m = unlit_mask(cx, cy, a, b, p, clip);
+                      double height, int a, int b, const Params& p, Rect clip, bool facing, double dy_scale) {
+    LightMask m = unlit_mask(cx, cy, a, b, p, clip, dy_scale);
     if (m.clip.empty()) return m;
     // The light stands `height` above the ground point shown at its centre pixel.
     const Vec3 ground_point = ground_frame(double(cx) + 0.5, double(cy) + 0.5, 0);
@@ -154,7 +155,7 @@ LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::in
     std::vector<std::size_t> candidates;
     for (int y = m.clip.y; y < m.clip.y + m.clip.h; ++y)
         for (int x = m.clip.x; x < m.clip.x + m.clip.w; ++x) {
-            const std::uint8_t v = shaped_falloff(x - cx, y - cy, a, b, p);  // the model's intensity, shape and fade
+            const std::uint8_t v = shaped_falloff(x - cx, y - cy, a, b, p, dy_scale);  // the model's intensity, shape and fade
             if (v == 0) continue;
             std::size_t si = 0;
             std::int32_t owner = -1;
@@ -205,15 +206,16 @@ LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::in
 }
 
 LightMask exact_line_light(const Mask& obstacles, std::int64_t cx, std::int64_t cy, int a, int b, const Params& p,
-                           Rect clip) {
-    LightMask m = unlit_mask(cx, cy, a, b, p, clip);
+                           Rect clip, double dy_scale) {
+    LightMask m = unlit_mask(cx, cy, a, b, p, clip, dy_scale);
     for (int y = m.clip.y; y < m.clip.y + m.clip.h; ++y)
         for (int x = m.clip.x; x < m.clip.x + m.clip.w; ++x) {
             bool clear = true;
             for (BresenhamRay r(cx, cy, x, y); clear && !r.done(); r.step())
                 clear = !obstacles.get(int(r.x), int(r.y));
             if (clear)
-                m.value[std::size_t(y - m.clip.y) * m.clip.w + (x - m.clip.x)] = shaped_falloff(x - cx, y - cy, a, b, p);
+                m.value[std::size_t(y - m.clip.y) * m.clip.w + (x - m.clip.x)] =
+                    shaped_falloff(x - cx, y - cy, a, b, p, dy_scale);
         }
     return m;
 }
@@ -310,13 +312,14 @@ LightTexture reference_texture(const World& world, const Scene& scene, Rect rect
         solids = world_solids(world, Rect{region.x - tallest, region.y - tallest, region.w + 2 * tallest,
                                           region.h + 2 * tallest});
     }
+    const double dy_scale = falloff_dy_scale(p, world.tileset.tile_width, world.tileset.tile_height);
     for (const Light* l : lights) {
         const std::int64_t cx = std::int64_t(std::floor(l->x)), cy = std::int64_t(std::floor(l->y));
         const int a = light_a(*l, p), b = light_b(*l, p);
         LightMask m = ref == Reference::exact_line
-                          ? exact_line_light(obstacles, cx, cy, a, b, p, rect)
+                          ? exact_line_light(obstacles, cx, cy, a, b, p, rect, dy_scale)
                           : truth_light(surface, solids, cx, cy, light_height(*l, p), a, b, p, rect,
-                                        ref == Reference::three_d_facing);
+                                        ref == Reference::three_d_facing, dy_scale);
         accumulate_light(tex, m, *l, p);
     }
     return tex;

@@ -348,6 +348,12 @@ TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
     s.lights = {Light{120.5, 90.5}, Light{300.5, 160.5, 60, 40}};
     FrameState cpu, gpu;
     expect_gpu_frames_are_cpu_frames(tracer, world(), s, cpu, gpu);
+    // The game preset: solids, round lights measured on the ground, a smooth
+    // fade (the GPU's rays, then the one intensity function on the CPU).
+    Scene game = s;
+    game.params = builtin_preset("game");
+    FrameState cpu_game, gpu_game;
+    expect_gpu_frames_are_cpu_frames(tracer, world(), game, cpu_game, gpu_game);
     // A new frame state on another map, with the same tracer: its obstacle
     // map is uploaded again (revisions are unique in the process).
     Scene other;

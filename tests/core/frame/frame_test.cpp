@@ -599,14 +599,16 @@ TEST(LightLook, euclideanFalloffMakesRoundLightsAndEdgeFadeReachesZeroAtTheBorde
     EXPECT_EQ(q.value, q2.value);
 }
 
-// fade_curve smooth: along every ray, for round and square lights and
-// areas wider than tall, the unrounded intensity's slope is continuous for
+// fade_curve smooth: along every ray, for round and square lights, areas
+// wider than tall, on the screen and on the ground (dy_scale 2), the unrounded intensity's slope is continuous for
 // 0 < t <= 1 and 0 at the border; the linear fade's is not 0 there (the ring).
 TEST(LightLook, theSmoothFadesSlopeIsContinuousAndZeroAtTheBorder) {
     for (FalloffShape shape : {FalloffShape::chebyshev, FalloffShape::euclidean})
         for (const auto& [a, b] : {std::pair{64, 64}, std::pair{90, 45}})
-            for (FadeCurve curve : {FadeCurve::smooth, FadeCurve::linear}) {
+            for (FadeCurve curve : {FadeCurve::smooth, FadeCurve::linear})
+            for (double dy_scale : {1.0, 2.0}) {
                 Params p;
+                p.falloff_space = dy_scale == 1.0 ? FalloffSpace::screen : FalloffSpace::ground;
                 p.falloff_scale = 12;
                 p.edge_fade = true;
                 p.falloff_shape = shape;
@@ -621,7 +623,7 @@ TEST(LightLook, theSmoothFadesSlopeIsContinuousAndZeroAtTheBorder) {
                     double lo = 0, hi = 4.0 * (a + b);
                     for (int i = 0; i < 100; ++i) (t_at((lo + hi) / 2) < 1 ? lo : hi) = (lo + hi) / 2;
                     const double end = lo, h = end / 20000;
-                    auto at = [&](double s) { return faded_intensity(s * cx, s * cy, a, b, p); };
+                    auto at = [&](double s) { return faded_intensity(s * cx, s * cy, a, b, p, dy_scale); };
                     double before = (at(2 * h) - at(h)) / h, worst_jump = 0;
                     for (int i = 2; i < 20000; ++i) {
                         const double slope = (at((i + 1) * h) - at(i * h)) / h;
@@ -629,9 +631,11 @@ TEST(LightLook, theSmoothFadesSlopeIsContinuousAndZeroAtTheBorder) {
                         before = slope;
                     }
                     const std::string what = std::string(shape == FalloffShape::euclidean ? "round" : "square") + " " +
-                                             std::to_string(a) + "x" + std::to_string(b) + " angle " + std::to_string(angle);
-                    // Near the centre the falloff's own slope changes fastest: 255 / s^2 per pixel at most.
-                    EXPECT_LT(worst_jump, 0.05) << what;
+                                             std::to_string(a) + "x" + std::to_string(b) + " dy_scale " + std::to_string(dy_scale) +
+                                             " angle " + std::to_string(angle);
+                    // Near the centre the falloff's own slope changes fastest: 255 / s^2 per pixel at most,
+                    // times dy_scale^2 on the ground (a ray's distance grows up to dy_scale per pixel).
+                    EXPECT_LT(worst_jump, 0.05 * dy_scale * dy_scale) << what;
                     const double end_slope = (at(end) - at(end - h)) / h;
                     if (curve == FadeCurve::smooth) {
                         EXPECT_LT(std::abs(end_slope), 1e-3) << what;
@@ -644,7 +648,7 @@ TEST(LightLook, theSmoothFadesSlopeIsContinuousAndZeroAtTheBorder) {
     Params p;
     p.edge_fade = true;
     p.falloff_scale = 8;
-    EXPECT_EQ(shaped_falloff(10, 0, 20, 20, p), std::uint8_t(255.0 / (1 + 10.0 / 8) * (1 - 10.0 / 21)));
+    EXPECT_EQ(shaped_falloff(10, 0, 20, 20, p, 1.0), std::uint8_t(255.0 / (1 + 10.0 / 8) * (1 - 10.0 / 21)));
 }
 
 TEST(LightLook, surfaceLightMixKeepsTheSpritesHue) {

@@ -175,3 +175,52 @@ TEST(Look, theKneeKeepsDimLightAndNeverClips) {
     }
     EXPECT_GT(previous, 0.99) << "its highest channel nears 1 as the light grows";
 }
+
+// falloff_space ground: a light's distances are measured on the ground, a
+// pixel's dy scaled by the tileset's tile width over its height r, so a
+// round light's pool on screen is r times as wide as it is tall, for the
+// default tileset's 128 x 64 diamonds, 64 x 32, 96 x 48 and a flatter 120 x 40.
+// Measured on the traced texture of a whole frame (render_frame reads r from
+// the world's tileset), as the half-widths where the light is at least 64.
+TEST(Look, aGroundLightsPoolIsRTimesAsWideAsTall) {
+    for (const auto& [tw, th] : {std::pair{128, 64}, std::pair{64, 32}, std::pair{96, 48}, std::pair{120, 40}}) {
+        Tileset ts = test::default_tileset();
+        ts.tile_width = tw;
+        ts.tile_height = th;
+        Scene s;
+        s.width = s.height = 12;
+        s.params.mode = Mode::flat;  // the pool's shape alone, nothing in its way
+        s.params.falloff_shape = FalloffShape::euclidean;
+        s.params.falloff_scale = 40;
+        s.params.area_a = s.params.area_b = 200;
+        const World w = make_world(ts, s);
+        const Rect v = camera_view(s.camera, w);
+        const std::int64_t cx = v.x + v.w / 2, cy = v.y + v.h / 2;
+        s.lights = {Light{double(cx) + 0.5, double(cy) + 0.5}};
+        auto half_extents = [&](FalloffSpace space, int& half_w, int& half_h) {
+            Scene t = s;
+            t.params.falloff_space = space;
+            FrameState st;
+            render_frame(st, w, t, Camera{double(cx - 250), double(cy - 250), 501, 501}, 0);
+            auto at = [&](std::int64_t x, std::int64_t y) {
+                return st.traced.texels[(std::size_t(y - st.traced.rect.y) * st.traced.rect.w + std::size_t(x - st.traced.rect.x)) *
+                                        std::size_t(st.traced.channels)];
+            };
+            half_w = half_h = 0;
+            while (at(cx + half_w + 1, cy) >= 64) ++half_w;
+            while (at(cx, cy + half_h + 1) >= 64) ++half_h;
+        };
+        int sw = 0, sh = 0, gw = 0, gh = 0;
+        half_extents(FalloffSpace::screen, sw, sh);
+        half_extents(FalloffSpace::ground, gw, gh);
+        const double r = double(tw) / th;
+        std::printf("%dx%d: screen %d x %d, ground %d x %d (r %.2f)\n", tw, th, sw, sh, gw, gh, r);
+        EXPECT_EQ(sw, sh) << "on the screen a round light is a circle";
+        EXPECT_EQ(gw, sw) << "across, the ground's distance is the screen's";
+        EXPECT_NEAR(double(gw) / gh, r, 0.05 * r) << tw << "x" << th;
+    }
+    // The game preset's lights: a round pool that fades out in an a x a/r box.
+    const Params game = builtin_preset("game");
+    EXPECT_EQ(game.falloff_space, FalloffSpace::ground);
+    EXPECT_EQ(game.area_b * 2, game.area_a) << "b = a / r for the default tileset's r = 2";
+}

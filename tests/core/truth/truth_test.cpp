@@ -56,7 +56,7 @@ TEST(Truth, aLightBesideABoxCastsTheShadowWorkedOutByHand) {
     const Surface s = ground(area);
     const Params p = wide();
     const Solid tall{SolidKind::box, {10.75, -4.75, 0}, {20.75, 5.25, 1000}};
-    const LightMask m = truth_light(s, one(tall), 0, 0, 10, 100, 100, p, area, false);
+    const LightMask m = truth_light(s, one(tall), 0, 0, 10, 100, 100, p, area, false, 1.0);
     EXPECT_TRUE(lit(m, 0, 0));
     // P = L + (30, 0): straight behind the box: dark.
     EXPECT_FALSE(lit(m, 30, 15));
@@ -69,7 +69,7 @@ TEST(Truth, aLightBesideABoxCastsTheShadowWorkedOutByHand) {
     // the line is at z 6.7 to 3.3 across the box: dark; at L + (60, 0), z 8.3
     // to 6.7: lit.
     const Solid low{SolidKind::box, {10.75, -4.75, 0}, {20.75, 5.25, 5}};
-    const LightMask n = truth_light(s, one(low), 0, 0, 10, 100, 100, p, area, false);
+    const LightMask n = truth_light(s, one(low), 0, 0, 10, 100, 100, p, area, false, 1.0);
     EXPECT_FALSE(lit(n, 30, 15));
     EXPECT_TRUE(lit(n, 60, 30));
 }
@@ -78,7 +78,7 @@ TEST(Truth, aLightAboveEverythingLightsAllTheGroundAroundASolid) {
     const Rect area{-60, -60, 121, 121};
     const Surface s = ground(area);
     const Solid low{SolidKind::box, {10.75, -4.75, 0}, {20.75, 5.25, 5}};
-    const LightMask m = truth_light(s, one(low), 0, 0, 4000, 60, 60, wide(), area, false);
+    const LightMask m = truth_light(s, one(low), 0, 0, 4000, 60, 60, wide(), area, false, 1.0);
     for (int y = area.y; y < area.y + area.h; ++y)
         for (int x = area.x; x < area.x + area.w; ++x) {
             const Vec3 p = ground_frame(x + 0.5, y + 0.5, 0);
@@ -100,9 +100,9 @@ TEST(Truth, raisingALightNeverDarkensAGroundPixel) {
     }
     const Rect area{-70, -70, 141, 141};
     const Surface s = ground(area);
-    LightMask before = truth_light(s, w, 0, 0, 2, 70, 70, wide(), area, false);
+    LightMask before = truth_light(s, w, 0, 0, 2, 70, 70, wide(), area, false, 1.0);
     for (double h : {6.0, 12.0, 24.0, 48.0, 96.0}) {
-        const LightMask after = truth_light(s, w, 0, 0, h, 70, 70, wide(), area, false);
+        const LightMask after = truth_light(s, w, 0, 0, h, 70, 70, wide(), area, false, 1.0);
         long darkened = 0, lit_before = 0;
         for (std::size_t i = 0; i < before.value.size(); ++i) {
             // Ground under a solid is hidden by it: not a ground pixel anyone sees.
@@ -127,8 +127,8 @@ TEST(Truth, facingDarkensWhatTheLightSeesFromBehind) {
     const Rect area{-30, -30, 61, 61};
     const Surface s = ground(area);
     const WorldSolids none;
-    const LightMask a = truth_light(s, none, 0, 0, 20, 30, 30, wide(), area, false);
-    const LightMask b = truth_light(s, none, 0, 0, 20, 30, 30, wide(), area, true);
+    const LightMask a = truth_light(s, none, 0, 0, 20, 30, 30, wide(), area, false, 1.0);
+    const LightMask b = truth_light(s, none, 0, 0, 20, 30, 30, wide(), area, true, 1.0);
     EXPECT_EQ(a.value, b.value);
     for (std::uint8_t v : a.value) ASSERT_NE(v, 0);
 }
@@ -141,7 +141,7 @@ TEST(Truth, exactLineEqualsAlgorithm2TracedToEachPixel) {
         for (auto& b : obstacles.bits) b = rng.below(100) < 12;
         obstacles.set(0, 0, false);
         Params p;
-        const LightMask m = exact_line_light(obstacles, 0, 0, 20, 14, p, area);
+        const LightMask m = exact_line_light(obstacles, 0, 0, 20, 14, p, area, 1.0);
         for (int y = area.y; y < area.y + area.h; ++y)
             for (int x = area.x; x < area.x + area.w; ++x) {
                 std::vector<std::uint8_t> tex(std::size_t(area.w) * area.h, 0);
@@ -183,36 +183,41 @@ TEST(Truth, theGeneratorsShapesReproduceItsSpritesOpaquePixels) {
 // One intensity for every tracer: where nothing blocks, the paper's tracer
 // (then shape_light, as render_frame does), the exact line, the 3D reference
 // and rays over obstacles all give shaped_falloff, for each falloff shape and
-// edge fade (a round, faded light has no square edge in any of them).
+// edge fade, on the screen and on the ground (dy_scale 2: a round light's
+// pool is an ellipse; a round, faded light has no square edge in any of them).
 TEST(Truth, everyTracerGivesTheOneIntensityFunctionForEveryShapeAndFade) {
     const Rect area{-30, -20, 61, 41};
     const Mask clear(area);
     const Surface s = ground(area);
     const WorldSolids nothing;
     for (FalloffShape shape : {FalloffShape::chebyshev, FalloffShape::euclidean})
-        for (bool fade : {false, true}) {
+        for (bool fade : {false, true})
+        for (double dy_scale : {1.0, 2.0}) {
             Params p;
+            p.falloff_space = dy_scale == 1.0 ? FalloffSpace::screen : FalloffSpace::ground;
             p.falloff_scale = 6;
             p.falloff_shape = shape;
             p.edge_fade = fade;
             LightMask paper = trace_light(clear, 0, 0, 30, 20, p, area, true);
+            paper.dy_scale = dy_scale;  // as render_frame sets it from the tileset
             shape_light(paper, p);
-            const LightMask line = exact_line_light(clear, 0, 0, 30, 20, p, area);
-            const LightMask truth = truth_light(s, nothing, 0, 0, 32, 30, 20, p, area, false);
+            const LightMask line = exact_line_light(clear, 0, 0, 30, 20, p, area, dy_scale);
+            const LightMask truth = truth_light(s, nothing, 0, 0, 32, 30, 20, p, area, false, dy_scale);
             ObstacleHeights flat;
             flat.rect = area;
             flat.height.assign(clear.bits.size(), 0);
             LightMask over = trace_light_over(clear, flat, 0, 0, 30, 20, 32, p, area);
+            over.dy_scale = dy_scale;
             shape_light(over, p);
             long faded = 0;
             for (int y = area.y; y < area.y + area.h; ++y)
                 for (int x = area.x; x < area.x + area.w; ++x) {
-                    const std::uint8_t want = shaped_falloff(x, y, 30, 20, p);
+                    const std::uint8_t want = shaped_falloff(x, y, 30, 20, p, dy_scale);
                     const std::size_t i = std::size_t(y - area.y) * area.w + (x - area.x);
-                    ASSERT_EQ(paper.value[i], want) << int(shape) << fade << " paper " << x << "," << y;
-                    ASSERT_EQ(line.value[i], want) << int(shape) << fade << " exact_line " << x << "," << y;
-                    ASSERT_EQ(truth.value[i], want) << int(shape) << fade << " 3d " << x << "," << y;
-                    ASSERT_EQ(over.value[i], want) << int(shape) << fade << " over " << x << "," << y;
+                    ASSERT_EQ(paper.value[i], want) << int(shape) << fade << dy_scale << " paper " << x << "," << y;
+                    ASSERT_EQ(line.value[i], want) << int(shape) << fade << dy_scale << " exact_line " << x << "," << y;
+                    ASSERT_EQ(truth.value[i], want) << int(shape) << fade << dy_scale << " 3d " << x << "," << y;
+                    ASSERT_EQ(over.value[i], want) << int(shape) << fade << dy_scale << " over " << x << "," << y;
                     faded += fade && want == 0;
                 }
             if (fade && shape == FalloffShape::euclidean) {
@@ -239,7 +244,7 @@ TEST(Truth, aCurvedSurfaceFromWholePixelHeightsHasNoSelfShadowAcne) {
         }
     Params p = wide();
     for (const auto& [lx, ly, lh] : {std::array<double, 3>{-100, -20, 90}, {90, 30, 60}, {0, -100, 120}}) {
-        const LightMask m = truth_light(s, one(canopy), std::int64_t(lx), std::int64_t(ly), lh, 120, 110, p, area, false);
+        const LightMask m = truth_light(s, one(canopy), std::int64_t(lx), std::int64_t(ly), lh, 120, 110, p, area, false, 1.0);
         // The light stands lh above the ground point its centre pixel shows.
         const Vec3 foot = ground_frame(std::floor(lx) + 0.5, std::floor(ly) + 0.5, 0);
         const Vec3 light{foot.x, foot.y, lh};

@@ -499,7 +499,10 @@ func _colour(text: String, fallback: Color) -> Color:
 	return Color("#" + hex)
 
 
-# A light: a round texture scaled to its a x b area.
+# A light: a round texture scaled to its a x b area. With falloff_space
+# ground (isolux's distances measured on the ground, dy scaled by the tile
+# width over its height r), to the ellipse of ground distance inside it:
+# min(a, r b) across, min(b, a / r) down.
 func _build_light(l: Dictionary) -> Light2D:
 	var light = Light2D.new()
 	light.name = l["name"] if l["name"] != "" else "light"
@@ -514,8 +517,13 @@ func _build_light(l: Dictionary) -> Light2D:
 		light.enabled = false
 		light.texture_scale = 1.0
 	else:
-		light.texture_scale = 2.0 * max(a, b) / 256.0
-		light.scale = Vector2(a / max(a, b), b / max(a, b))
+		var r = 1.0
+		if _props.get("falloff_space", "screen") == "ground" and _th() > 0:
+			r = _tw() / _th()
+		var across = min(a, r * b)
+		var down = min(b, a / r)
+		light.texture_scale = 2.0 * max(across, down) / 256.0
+		light.scale = Vector2(across / max(across, down), down / max(across, down))
 	light.color = _colour(props.get("color", ""), Color(1, 1, 1))
 	light.energy = float(props.get("intensity", "1"))
 	light.range_height = float(props.get("height", _props.get("light_height", "0")))
