@@ -13,6 +13,10 @@
 #include "frame/fused_radius.hpp"
 #include "frame/oracles.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace isolux {
 
 namespace {
@@ -52,6 +56,52 @@ void blur_within_texel(const LightTexture& tex, const SurfaceIds& ids, int x, in
     }
     std::uint8_t* o = &out.texels[(std::size_t(y - t.y) * t.w + std::size_t(x - t.x)) * C];
     for (int k = 0; k < C; ++k) o[k] = std::uint8_t((sum[k] + n / 2) / n);
+}
+
+// Whether every texel of the (2R + 1)^2 window around v0 (inside the
+// texture) holds v0's value: then the rule's mean is that value whatever
+// surfaces the window meets, the plain blur's too, and the texel needs no
+// redo. Most texels near a sprite's outline lie in the dark between lights.
+template <int C, int R>
+bool window_uniform(const std::uint8_t* v0, std::ptrdiff_t row_bytes) {
+    std::uint32_t differ = 0;
+    for (int dy = -R; dy <= R; ++dy) {
+        const std::uint8_t* row = v0 + dy * row_bytes;
+        for (int i = -R; i <= R; ++i)
+            for (int k = 0; k < C; ++k) differ |= std::uint32_t(row[i * C + k] ^ v0[k]);
+    }
+    return differ == 0;
+}
+
+#if defined(__SSE2__)
+// Whether the windows of sixteen texels in a row, from `first` on (inside
+// the texture), hold nothing but 0: the dark between lights, where every
+// texel's blur is 0 by either rule. Overlapping loads keep to the rows.
+template <int C, int R>
+bool windows_dark(const std::uint8_t* first, std::ptrdiff_t row_bytes) {
+    constexpr int bytes = (16 + 2 * R) * C;
+    static_assert(bytes >= 16);
+    __m128i any = _mm_setzero_si128();
+    for (int dy = -R; dy <= R; ++dy) {
+        const std::uint8_t* row = first - R * C + dy * row_bytes;
+        for (int i = 0; i + 16 < bytes; i += 16)
+            any = _mm_or_si128(any, _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i)));
+        any = _mm_or_si128(any, _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + bytes - 16)));
+    }
+    return _mm_movemask_epi8(_mm_cmpeq_epi8(any, _mm_setzero_si128())) == 0xffff;
+}
+#endif
+
+// Whether every texel of `window` (inside the texture) is 0.
+template <int C>
+bool window_dark(const LightTexture& tex, Rect window) {
+    const Rect t = tex.rect;
+    std::uint32_t any = 0;
+    for (int y = window.y; y < window.y + window.h; ++y) {
+        const std::uint8_t* v = &tex.texels[(std::size_t(y - t.y) * t.w + std::size_t(window.x - t.x)) * C];
+        for (int i = 0; i < window.w * C; ++i) any |= v[i];
+    }
+    return any == 0;
 }
 
 // The same for any texel: the texture's edge bounds the walks, and pixels
@@ -96,15 +146,36 @@ void blur_within_region(const LightTexture& tex, const SurfaceIds& ids, Rect z, 
         auto edge = [&](int x) {
             // Off `inner`: plain only inside the texture with no surface's
             // rectangle in reach (the ground all round); else by the rule.
-            const bool texture_inside = x - R >= t.x && x + R < t.x + t.w && y - R >= t.y && y + R < t.y + t.h;
-            if (texture_inside && intersect(Rect{x - R, y - R, 2 * R + 1, 2 * R + 1}, s).empty()) return;
+            const Rect window = intersect(Rect{x - R, y - R, 2 * R + 1, 2 * R + 1}, t);
+            const bool texture_inside = window.w == 2 * R + 1 && window.h == 2 * R + 1;
+            if (texture_inside && intersect(window, s).empty()) return;
+            if (window_dark<C>(tex, window)) return;  // 0 by either rule
             blur_within_texel_any<C>(tex, R, ids, x, y, out);
         };
         for (int x = z.x; x < xa; ++x) edge(x);
         if (xa < xb) {
-            const std::uint8_t* reach = &ids.reach[std::size_t(y - s.y) * s.w];
-            for (int x = xa; x < xb; ++x)
-                if (reach[x - s.x] <= R) blur_within_texel<C, R>(tex, ids, x, y, out);
+            // Only texels another surface lies within R of (reach <= R), and
+            // of those only where the window's values differ, take the rule.
+            const std::uint8_t* reach = &ids.reach[std::size_t(y - s.y) * s.w] - s.x;
+            const std::uint8_t* values = &tex.texels[std::size_t(y - t.y) * t.w * C] - std::ptrdiff_t(t.x) * C;
+            const std::ptrdiff_t row_bytes = std::ptrdiff_t(t.w) * C;
+            auto redo = [&](int x) {
+                if (!window_uniform<C, R>(values + std::ptrdiff_t(x) * C, row_bytes))
+                    blur_within_texel<C, R>(tex, ids, x, y, out);
+            };
+            int x = xa;
+#if defined(__SSE2__)
+            // Sixteen reaches at a time: a row is mostly far from any outline.
+            const __m128i limit = _mm_set1_epi8(char(R));
+            for (; x + 16 <= xb; x += 16) {
+                const __m128i r = _mm_loadu_si128(reinterpret_cast<const __m128i*>(reach + x));
+                unsigned near = unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_min_epu8(r, limit), r)));
+                if (near && windows_dark<C, R>(values + std::ptrdiff_t(x) * C, row_bytes)) continue;
+                for (; near; near &= near - 1) redo(x + __builtin_ctz(near));
+            }
+#endif
+            for (; x < xb; ++x)
+                if (reach[x] <= R) redo(x);
         }
         for (int x = std::max(xb, xa); x < z.x + z.w; ++x) edge(x);
     }

@@ -294,6 +294,38 @@ TEST(BlurWithinSurfaces, TheFrameBlursWithinTheSurfacesWithSolidsOnly) {
     }
 }
 
+// The redo skips texels whose window holds one value (the dark between
+// lights, a lit stretch of one level), sixteen at a time where all are 0,
+// and texels at the texture's edge whose window is dark: on textures made
+// of such stretches (0 and other values, touching the edges, wide enough
+// for the sixteen-texel steps) the bytes stay the reference's.
+TEST(BlurWithinSurfaces, darkAndEvenStretchesGiveTheReferencesBytes) {
+    int checked = 0;
+    for (std::uint64_t seed : {11, 12, 13, 14})
+        for (int channels : {1, 3}) {
+            const Rect r{-7, 3, 83, 47};
+            LightTexture t(r, channels);
+            Pcg32 rng(seed);
+            for (int b = 0; b < 14; ++b) {  // stretches of one value over random noise
+                const int x = int(rng.below(std::uint32_t(r.w))) - 5, y = int(rng.below(std::uint32_t(r.h))) - 5;
+                const int w = 3 + int(rng.below(40)), h = 3 + int(rng.below(25));
+                const std::uint8_t v = b % 2 ? std::uint8_t(rng.below(256)) : 0;
+                for (int yy = std::max(0, y); yy < std::min(r.h, y + h); ++yy)
+                    for (int xx = std::max(0, x); xx < std::min(r.w, x + w); ++xx)
+                        for (int k = 0; k < channels; ++k)
+                            t.texels[(std::size_t(yy) * r.w + xx) * channels + k] = b == 13 ? std::uint8_t(rng.below(256)) : v;
+            }
+            SurfaceIds ids = random_surfaces(r, seed);
+            index_surfaces(ids);
+            for (int radius = 1; radius <= 7; ++radius) {
+                EXPECT_EQ(box_blur_within(t, radius, ids).texels, box_blur_within_reference(t, radius, ids).texels)
+                    << "seed " << seed << " channels " << channels << " r " << radius;
+                ++checked;
+            }
+        }
+    EXPECT_EQ(checked, 56);
+}
+
 TEST(BlurWithinSurfaces, ReachIsTheChebyshevDistanceToAnotherSurface) {
     // Every pixel's reach against a brute-force search, the outside counting
     // as the ground; and the blur gives the same bytes with ids over any
