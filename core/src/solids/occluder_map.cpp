@@ -128,10 +128,15 @@ void flag_spans(OccluderMap& m, Rect part) {
     }
 }
 
-// The lists of a map before a pan, and the ground pixels (in both the old
-// region and the new) whose lists the pan cannot change.
+// The most memory the last update's lists keep for the next (per thread).
+constexpr std::size_t kept_spare_bytes = std::size_t(64) << 20;
+
+// The lists of a map before a pan or an edit, the parts of the region (in
+// both the old region and the new) whose lists it cannot change, and the
+// rest, listed anew.
 struct KeptIndex {
-    Rect rect, unchanged;
+    Rect rect;
+    std::vector<Rect> unchanged, anew;
     std::vector<std::uint32_t> start;
     std::vector<OccluderMap::Shown> shown;
 };
@@ -141,7 +146,9 @@ struct KeptIndex {
 // column, at most reach_rows above it: with `kept`, the pixels it holds
 // unchanged keep their lists, and only the others are listed from the
 // surface (a pan: the strips that came in, and the rows below a top that
-// moved, which gain or lose the points of sprites above).
+// moved, which gain or lose the points of sprites above; an edit: the
+// columns it changed, down to reach_rows below it). What remains for the
+// whole region is a running sum and copies of the kept lists.
 void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
     const Surface& s = m.surface;
     const std::size_t n = s.instance.size();
@@ -149,7 +156,10 @@ void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
         throw Error("occluders: the region of " + std::to_string(n) + " pixels is too large to trace against solids");
     const Rect region = s.rect;
     const std::size_t w = std::size_t(std::max(0, region.w));
-    const Rect unchanged = kept ? intersect(kept->unchanged, region) : Rect{};
+    std::vector<Rect> unchanged;
+    if (kept)
+        for (Rect r : kept->unchanged)
+            if (!intersect(r, region).empty()) unchanged.push_back(intersect(r, region));
     for (std::uint8_t& f : m.flags) f &= OccluderMap::has_span;
     // 1. The points of the ground pixels listed anew: each sprite pixel of
     // row y shows a point `rows` high over ground pixel i + rows * w, listed
@@ -163,8 +173,10 @@ void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
     std::vector<std::uint32_t>& start = m.shown_start;
     start.assign(n + 2, 0);
     std::uint32_t tallest = 0, reach = 0;
-    const std::vector<Rect> anew = unchanged.empty() ? std::vector<Rect>{region} : outside(region, unchanged);
-    for (const Rect part : anew) {
+    const std::vector<Rect> anew = kept ? kept->anew : std::vector<Rect>{region};
+    for (Rect part : anew) {
+        part = intersect(part, region);
+        if (part.empty()) continue;
         const std::size_t x0 = std::size_t(part.x - region.x), x1 = x0 + std::size_t(part.w);
         const std::size_t g0 = std::size_t(part.y - region.y), g1 = g0 + std::size_t(part.h);  // its ground rows
         const std::size_t from = part == region ? 0 : g0 - std::min<std::size_t>(g0, std::size_t(m.reach_rows));
@@ -185,11 +197,13 @@ void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
     const auto old_index = [&](std::size_t y, std::size_t x) {  // region row and column -> the old map's pixel
         return std::size_t(int(y) + region.y - kept->rect.y) * std::size_t(kept->rect.w) + std::size_t(int(x) + region.x - kept->rect.x);
     };
-    const std::size_t ux0 = std::size_t(unchanged.x - region.x), uy0 = std::size_t(unchanged.y - region.y);
-    for (std::size_t y = uy0; y < uy0 + std::size_t(unchanged.h); ++y) {
-        const std::size_t o = old_index(y, ux0);
-        for (std::size_t x = 0; x < std::size_t(unchanged.w); ++x)
-            start[y * w + ux0 + x + 2] = kept->start[o + x + 1] - kept->start[o + x];
+    for (const Rect u : unchanged) {
+        const std::size_t ux0 = std::size_t(u.x - region.x), uy0 = std::size_t(u.y - region.y);
+        for (std::size_t y = uy0; y < uy0 + std::size_t(u.h); ++y) {
+            const std::size_t o = old_index(y, ux0);
+            for (std::size_t x = 0; x < std::size_t(u.w); ++x)
+                start[y * w + ux0 + x + 2] = kept->start[o + x + 1] - kept->start[o + x];
+        }
     }
     // 3. The starts (a running sum of the counts: shown_start[g + 1] is then
     // where g's points start) and the has_shown flags.
@@ -201,12 +215,15 @@ void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
     // 4. The unchanged pixels' lists, a row's at once, then the points
     // placed at their ground pixels' cursors shown_start[g + 1], which end
     // where g + 1's start: the starts, with one last entry to drop.
-    for (std::size_t y = uy0; y < uy0 + std::size_t(unchanged.h); ++y) {
-        const std::size_t g = y * w + ux0, o = old_index(y, ux0);
-        const std::uint32_t first = kept->start[o], last = kept->start[o + std::size_t(unchanged.w)];
-        std::copy(kept->shown.begin() + first, kept->shown.begin() + last, m.shown.begin() + start[g + 1]);
-        for (std::uint32_t k = first; k < last; ++k) tallest = std::max(tallest, kept->shown[k].rows);
-        for (std::size_t x = 0; x < std::size_t(unchanged.w); ++x) start[g + x + 1] = start[g + x + 2];
+    for (const Rect u : unchanged) {
+        const std::size_t ux0 = std::size_t(u.x - region.x), uy0 = std::size_t(u.y - region.y);
+        for (std::size_t y = uy0; y < uy0 + std::size_t(u.h); ++y) {
+            const std::size_t g = y * w + ux0, o = old_index(y, ux0);
+            const std::uint32_t first = kept->start[o], last = kept->start[o + std::size_t(u.w)];
+            std::copy(kept->shown.begin() + first, kept->shown.begin() + last, m.shown.begin() + start[g + 1]);
+            for (std::uint32_t k = first; k < last; ++k) tallest = std::max(tallest, kept->shown[k].rows);
+            for (std::size_t x = 0; x < std::size_t(u.w); ++x) start[g + x + 1] = start[g + x + 2];
+        }
     }
     for (const Point& p : points) m.shown[start[p.ground + 1]++] = p.shown;
     start.pop_back();
@@ -311,7 +328,14 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
     }
     // The kept pixels' spans, surface and has_span flags hold where they are
     // (in place when the size is the same: a pan).
-    KeptIndex kept{m.rect, keep, std::move(m.shown_start), std::move(m.shown)};
+    // The old lists trade places with the last update's (their storage kept
+    // per thread: an edit then lists into memory it already has).
+    thread_local KeptIndex kept;
+    kept.rect = m.rect;
+    kept.unchanged = {keep};
+    kept.anew.clear();
+    kept.start.swap(m.shown_start);
+    kept.shown.swap(m.shown);
     move_grid(m.spans, m.rect, region);
     move_grid(m.surface.instance, m.rect, region, -1);
     move_grid(m.surface.height, m.rect, region);
@@ -329,15 +353,29 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
             if (part.surface.instance[i] >= 0)
                 m.reach_rows = std::max(m.reach_rows, int(rows_above(std::max(part.surface.height[i], 0.f))));
     }
-    // The lists that cannot change: not where the world changed (those are
-    // listed whole), nor in the rows below a top that moved, within reach of
-    // the sprites above it, which came or went.
-    if (!edited.empty()) return index_shown(m);
-    if (region.y != kept.rect.y) {
-        const int top = std::max(region.y, kept.rect.y) + m.reach_rows;
-        kept.unchanged = intersect(keep, Rect{keep.x, top, keep.w, std::max(0, keep.y + keep.h - top)});
+    // The lists that cannot change. After an edit in place: all but those
+    // of the edit's columns, from its top to reach_rows below its bottom
+    // (its sprite pixels' points land there; reach_rows already holds the
+    // edit's own heights). After a pan: not the rows below a top that moved,
+    // within reach of the sprites above it, which came or went.
+    if (!edited.empty() && !(region == kept.rect)) {
+        index_shown(m);  // a pan and an edit at once: listed whole
+    } else if (!edited.empty()) {
+        const Rect lists = intersect(region, Rect{edited.x, edited.y, edited.w, edited.h + m.reach_rows});
+        kept.unchanged = outside(region, lists);
+        kept.anew = {lists};
+        index_shown(m, &kept);
+    } else {
+        if (region.y != kept.rect.y) {
+            const int top = std::max(region.y, kept.rect.y) + m.reach_rows;
+            kept.unchanged = {intersect(keep, Rect{keep.x, top, keep.w, std::max(0, keep.y + keep.h - top)})};
+        }
+        kept.anew = kept.unchanged[0].empty() ? std::vector<Rect>{region} : outside(region, kept.unchanged[0]);
+        index_shown(m, &kept);
     }
-    index_shown(m, &kept);
+    // A large map's spare lists are not kept past the update.
+    if (kept.start.capacity() * sizeof(std::uint32_t) + kept.shown.capacity() * sizeof(OccluderMap::Shown) > kept_spare_bytes)
+        kept = KeptIndex{};
 }
 
 }  // namespace isolux
