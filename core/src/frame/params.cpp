@@ -279,8 +279,8 @@ std::string builtin_preset_summary(std::string_view name) {
     if (name == "fast") return "fast: half the border rays, a retrace every 4 frames, blurred";
     if (name == "quality") return "quality: a ray to every pixel, traced every frame";
     if (name == "game")
-        return "game: round lights fading smoothly to their border, shadows from solids estimated from the sprites, sprites keep "
-               "their colour, bright pools rolled off instead of burnt to white, soft blur";
+        return "game: round lights on the ground fading smoothly to their border, shadows from solids estimated from the "
+               "sprites, sprites keep their colour, bright pools rolled off instead of burnt to white, soft blur";
     return "";
 }
 
