@@ -59,12 +59,20 @@ std::uint8_t falloff(std::int64_t d, double falloff_scale) {
     return std::uint8_t(std::min(255.0, v));
 }
 
+namespace {
+// A light's distance d for offsets |dx|, |dy| under the falloff shape, |dy|
+// counted dy_scale times (the ground's r, or 1 on the screen).
+double shaped_distance(double ax, double ay, const Params& p, double dy_scale) {
+    const double gy = ay * dy_scale;
+    return p.falloff_shape == FalloffShape::euclidean ? std::sqrt(ax * ax + gy * gy) : std::max(ax, gy);
+}
+}  // namespace
+
 std::uint8_t shaped_falloff(std::int64_t dx, std::int64_t dy, int a, int b, const Params& p, double dy_scale) {
-    const bool round = p.falloff_shape == FalloffShape::euclidean;
     if (!p.edge_fade) {
-        if (!round && dy_scale == 1.0) return falloff(std::max(std::llabs(dx), std::llabs(dy)), p.falloff_scale);
-        const double ax = double(std::llabs(dx)), ay = double(std::llabs(dy)) * dy_scale;
-        const double d = round ? std::sqrt(ax * ax + ay * ay) : std::max(ax, ay);
+        if (p.falloff_shape == FalloffShape::chebyshev && dy_scale == 1.0)
+            return falloff(std::max(std::llabs(dx), std::llabs(dy)), p.falloff_scale);  // the paper's integers
+        const double d = shaped_distance(double(std::llabs(dx)), double(std::llabs(dy)), p, dy_scale);
         return std::uint8_t(255.0 / (1.0 + d / p.falloff_scale));
     }
     return std::uint8_t(faded_intensity(double(std::llabs(dx)), double(std::llabs(dy)), a, b, p, dy_scale));
@@ -73,9 +81,7 @@ std::uint8_t shaped_falloff(std::int64_t dx, std::int64_t dy, int a, int b, cons
 double faded_intensity(double dx, double dy, int a, int b, const Params& p, double dy_scale) {
     const double ax = std::abs(dx), ay = std::abs(dy);
     const bool round = p.falloff_shape == FalloffShape::euclidean;
-    // The distance on the ground (dy_scale r) or the screen (1).
-    const double gy = ay * dy_scale;
-    const double d = round ? std::sqrt(ax * ax + gy * gy) : std::max(ax, gy);
+    const double d = shaped_distance(ax, ay, p, dy_scale);
     // The share of the way to the border: an ellipse for round lights, the rectangle for square ones.
     const double u = ax / (a + 1.0), v = ay / (b + 1.0);
     const double t = std::min(1.0, round ? std::sqrt(u * u + v * v) : std::max(u, v));

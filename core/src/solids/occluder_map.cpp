@@ -159,7 +159,7 @@ void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
     std::vector<Rect> unchanged;
     if (kept)
         for (Rect r : kept->unchanged)
-            if (!intersect(r, region).empty()) unchanged.push_back(intersect(r, region));
+            if (const Rect c = intersect(r, region); !c.empty()) unchanged.push_back(c);
     for (std::uint8_t& f : m.flags) f &= OccluderMap::has_span;
     // 1. The points of the ground pixels listed anew: each sprite pixel of
     // row y shows a point `rows` high over ground pixel i + rows * w, listed
