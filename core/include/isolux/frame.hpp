@@ -18,6 +18,7 @@
 #include "isolux/light_trace.hpp"
 #include "isolux/blur.hpp"
 #include "isolux/occluder_map.hpp"
+#include "isolux/sprite_shading.hpp"
 #include "isolux/opacity_correction.hpp"
 #include "isolux/scene.hpp"
 #include "isolux/stage.hpp"
@@ -132,6 +133,11 @@ struct FrameState {
     std::vector<Mask> opacity;   // each tileset sprite's opacity map, by sprite index
     ObstacleHeights obstacle_heights;  // with rays_over_obstacles: the obstacles' estimated heights
     OccluderMap occluders;             // with occluders solids or shapes: spans and surface heights
+    // With sprite_shading: each pixel's normal and the height of the point it
+    // shows, over the obstacle map's region, remade with it
+    // (shading_revision: the obstacles_revision it was made for).
+    ShadingMap shading;
+    std::uint64_t shading_revision = 0;
     // With blur_within_surfaces: which surface each pixel of the occluders'
     // region shows (world pixels, as `occluders`), what the blur stays
     // within, and a new value whenever it changes (0: none). Its reach is

@@ -12,6 +12,7 @@
 //            light_trace.hpp, light_texture.hpp, opacity_correction.hpp, blur.hpp,
 //            composite.hpp, frame.hpp (the whole pipeline, one call a frame)
 //   solids   solid.hpp, solid_estimate.hpp, occluder_map.hpp, height_rays.hpp
+//   shading  sprite_shading.hpp (sprites shaded by their surfaces' facing)
 //   truth    truth.hpp (the 3D reference), accuracy.hpp (metrics and sweeps)
 #pragma once
 
@@ -49,6 +50,8 @@
 #include "isolux/occluder_map.hpp"
 #include "isolux/solid.hpp"
 #include "isolux/solid_estimate.hpp"
+
+#include "isolux/sprite_shading.hpp"
 
 #include "isolux/accuracy.hpp"
 #include "isolux/truth.hpp"

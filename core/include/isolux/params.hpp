@@ -70,6 +70,15 @@ enum class Occluders {
     shapes,      // the manifest's own shapes (art made from 3D models), the light at its height
 };
 
+// What turns a sprite pixel's light with the way its surface faces each
+// light (not in the paper: there a lit sprite pixel gets its light flat).
+enum class SpriteShading {
+    none,       // the paper's: no shading
+    solids,     // the normals of the solids estimated from the sprites' alpha (sprite_shading.hpp)
+    shapes,     // the manifest's true shapes, or its height maps
+    luminance,  // the picture's brightness gradient, as normal-map generators make them
+};
+
 // Which pixels rays are traced to.
 enum class Rays {
     border,       // every pixel of the area's border (paper 3.2, Algorithm 2)
@@ -102,6 +111,8 @@ struct Params {
     LightMix light_mix = LightMix::luminance;  // how Algorithm 3 mixes a sprite's colour with the light (LightMix)
     double exposure = 1.0;          // multiplies Algorithm 3's light term (not in the paper; 1 is the paper's)
     ToneMap tone_map = ToneMap::none;  // how the composite reaches the screen (ToneMap; none is the paper's)
+    SpriteShading sprite_shading = SpriteShading::none;  // sprites shaded by their surfaces' facing (SpriteShading)
+    double shading_strength = 1.0;  // 0: flat light, 1: the full Lambert term (with sprite_shading)
 
     friend bool operator==(const Params&, const Params&) = default;
 };
@@ -131,7 +142,7 @@ struct ParamInfo {
     bool min_open;
     double slider_min, slider_max;  // the app's slider span (Ctrl+click types any accepted value)
     bool logarithmic;      // slider scale
-    std::array<const char*, 3> choices;  // ParamType::choice: names by enum value (nullptr past the last)
+    std::array<const char*, 4> choices;  // ParamType::choice: names by enum value (nullptr past the last)
     const char* help;      // one line: what it does, in the paper's words
     StageSet reruns;       // frame stages a change re-runs (empty: it changes only when traces happen)
     double (*get)(const Params&);

@@ -193,6 +193,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
         c.footprints.size() != world.tileset.sprites.size()) {
         c.footprints.clear();
         c.solids.clear();
+        c.normals.clear();
         st.opacity.clear();
         for (const Sprite& s : world.tileset.sprites) {
             if (s.kind != SpriteKind::overlay) {  // floors are never obstacles
@@ -369,6 +370,25 @@ void surface_ids_step(FrameState& st, const Params& p, FrameReport& rep) {
     st.surface_ids_revision = st.obstacles_revision;
 }
 
+// Beyond the paper: the normals and points sprite shading reads, over the
+// obstacle map's region; remade with it (and when the shading's source
+// changes), and timed with the trace that reads it (which a change of
+// either re-runs).
+void shading_step(FrameState& st, const World& world, const Params& p, FrameReport& rep) {
+    FrameCache& c = *st.cache;
+    if (p.sprite_shading == SpriteShading::none) {
+        st.shading = ShadingMap{};
+        st.shading_revision = 0;
+        return;
+    }
+    if (st.shading_revision == st.obstacles_revision && c.normals.from == p.sprite_shading &&
+        st.shading.rect == c.obstacle_region && !st.shading.empty())
+        return;
+    Timer t{rep, Stage::trace};
+    st.shading = build_shading_map(world, p, c.obstacle_region, c.normals);
+    st.shading_revision = st.obstacles_revision;
+}
+
 // The scene without its hidden lights (they stay in the scene but light
 // nothing); `storage` holds the copy when one is needed.
 const Scene& shown_scene(const Scene& scene, Scene& storage) {
@@ -410,6 +430,7 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_
     draw_view_sprites(st, world, view, delta, rep);
     const Rect needed = region_lights_need(world, scene, tex_rect);
     const ObstacleChange obstacles = update_obstacle_map(st, world, scene.params, needed, delta, rep);
+    shading_step(st, world, scene.params, rep);
     const TraceDecision trace = decide_retrace(st, scene, view, frame, obstacles);
     if (trace.retrace) trace_step(st, world, scene, tex_rect, trace, obstacles, rep);
     surface_ids_step(st, scene.params, rep);

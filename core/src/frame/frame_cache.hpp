@@ -20,6 +20,7 @@ struct FrameCache {
     Params obstacle_params;
     Rect obstacle_region;
     SolidsCache solids;  // with occluders solids: each sprite's, estimated once
+    NormalsCache normals;  // with sprite_shading: each sprite's normals, made once
 
     // Each light's traced and corrected pixels, kept while the obstacle map,
     // the tracing parameters and the light's centre, area and clip are the

@@ -13,6 +13,7 @@
 #include "isolux/light_trace.hpp"
 #include "isolux/occluder_map.hpp"
 #include "isolux/opacity_correction.hpp"
+#include "isolux/sprite_shading.hpp"
 #include "solids/solids_pass_tree.hpp"
 #include "base/worker_pool.hpp"
 
@@ -47,7 +48,9 @@ LightPlan plan_lights(FrameCache& c, const Scene& scene, Rect tex_rect, Rect edi
         t.cy = std::int64_t(std::floor(l.y));
         t.a = light_a(l, p);
         t.b = light_b(l, p);
-        t.height = p.rays_over_obstacles || p.occluders != Occluders::footprints ? light_height(l, p) : 0;
+        t.height = p.rays_over_obstacles || p.occluders != Occluders::footprints || p.sprite_shading != SpriteShading::none
+                       ? light_height(l, p)
+                       : 0;
         t.colour = {l.r, l.g, l.b};
         t.intensity = l.intensity;
         // Against solids a clipped light still walks its whole area's rays
@@ -163,6 +166,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     if (!traced_elsewhere && n > 0) rep.tracer = "cpu";
 
     const double dy_scale = falloff_dy_scale(p, world.tileset.tile_width, world.tileset.tile_height);
+    const bool shade = p.sprite_shading != SpriteShading::none && p.shading_strength > 0;
     const TraceControl& control = st.options.control;
     const TraceControl* ctl = control.cancel || control.done ? &control : nullptr;
     // One light, its passes against solids walked on `light_threads` threads.
@@ -195,6 +199,8 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
         // Beyond the paper: round lights, distances on the ground, a fade to the border.
         tl.mask.dy_scale = dy_scale;
         if (shaped(p)) shape_light(tl.mask, p);
+        // Beyond the paper: sprite pixels turned from the light get less of it.
+        if (shade) shade_sprites(tl.mask, st.shading, tl.height, p);
         trace_ms[k] = ms_between(t0, t1);
         correct_ms[k] = ms_between(t1, Clock::now());
         tl.cost_ms = trace_ms[k] + correct_ms[k];

@@ -135,6 +135,9 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
             for (int k = 0; k < 3; ++k)
                 lut[k][v] = std::uint8_t(std::min(255.0, std::floor(v * light.intensity * colour[k] / 255.0 + 0.5)));
     const bool shadow = p.mode == Mode::shadow;
+    // With sprite shading a lit sprite pixel may hold less than its light:
+    // what it lacks is the shadow its own surface casts (sprite_shading.hpp).
+    const bool shaded = p.sprite_shading != SpriteShading::none && p.shading_strength > 0;
     std::vector<std::uint8_t> by_x;
     if (shadow) {
         // Shadow pixels are not lit: their falloff comes from their distance,
@@ -149,11 +152,15 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
         if (shadow) {
             const std::uint8_t* reached = &mask.reached[mrow];
             const std::uint8_t vy = falloff(std::llabs(y - mask.cy), mask.falloff_scale);
-            for (int x = 0; x < r.w; ++x)
-                row[std::size_t(x)] = (reached[x] && v[x] == 0)
-                                          ? (shaped(p) ? shaped_falloff(r.x + x - mask.cx, y - mask.cy, mask.a, mask.b, p, mask.dy_scale)
-                                                       : std::min(by_x[std::size_t(x)], vy))
-                                          : 0;
+            for (int x = 0; x < r.w; ++x) {
+                if (!reached[x] || (v[x] != 0 && !shaded)) {
+                    row[std::size_t(x)] = 0;
+                    continue;
+                }
+                const std::uint8_t full = shaped(p) ? shaped_falloff(r.x + x - mask.cx, y - mask.cy, mask.a, mask.b, p, mask.dy_scale)
+                                                    : std::min(by_x[std::size_t(x)], vy);
+                row[std::size_t(x)] = v[x] < full ? std::uint8_t(full - v[x]) : 0;
+            }
             v = row.data();
         }
         std::uint8_t* out = &tex.texels[(std::size_t(y - tex.rect.y) * tex.rect.w + (r.x - tex.rect.x)) * std::size_t(tex.channels)];

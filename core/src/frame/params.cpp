@@ -58,6 +58,15 @@ const ParamInfo table[] = {
      "opacity correction; solids: beyond the paper, a solid estimated from each sprite's alpha, the light at its "
      "height, so canopies cast shadows and a higher light casts shorter ones; shapes: the manifest's own shapes the "
      "same way (every overlay needs one). Light and shadow modes.", obstacle_map, ISOLUX_FIELD(occluders)},
+    {"sprite_shading", "--sprite-shading", nullptr, "sprite shading", "", trace_group, ParamType::choice, 0, 3, false,
+     0, 3, false, {"none", "solids", "shapes", "luminance"}, "Beyond the paper: a sprite pixel's light from each light "
+     "times the Lambert term between its surface's normal and the direction to the light (at its height). none: flat "
+     "(the paper); solids: the normals of the solids estimated from the sprites; shapes: the manifest's shapes or "
+     "height maps (every overlay needs one); luminance: from the picture's brightness, as normal-map generators do.",
+     trace, ISOLUX_FIELD(sprite_shading)},
+    {"shading_strength", "--shading-strength", nullptr, "shading strength", "", trace_group, ParamType::real, 0, 1,
+     false, 0, 1, false, {}, "How much of the sprite shading applies: 0 the flat light, 1 the whole Lambert term, "
+     "between them a blend. With sprite_shading.", trace, ISOLUX_FIELD(shading_strength)},
     {"mode", "--mode", nullptr, "mode", "", trace_group, ParamType::choice, 0, 2, false, 0, 2, false,
      {"light", "shadow", "flat"}, "light: rays stop at obstacles (the paper). shadow: paint what lies beyond the "
      "first obstacle (paper 4). flat: no obstacles, falloff only (Figure 10b).", trace, ISOLUX_FIELD(mode)},

@@ -354,6 +354,16 @@ TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
     game.params = builtin_preset("game");
     FrameState cpu_game, gpu_game;
     expect_gpu_frames_are_cpu_frames(tracer, world(), game, cpu_game, gpu_game);
+    // Sprite shading from the solids, in light and shadow modes: the GPU's
+    // rays, then the shading on the CPU as each light is summed.
+    for (Mode mode : {Mode::light, Mode::shadow}) {
+        Scene shaded = game;
+        shaded.params.sprite_shading = SpriteShading::solids;
+        shaded.params.shading_strength = 0.75;
+        shaded.params.mode = mode;
+        FrameState cpu_shaded, gpu_shaded;
+        expect_gpu_frames_are_cpu_frames(tracer, world(), shaded, cpu_shaded, gpu_shaded);
+    }
     // A new frame state on another map, with the same tracer: its obstacle
     // map is uploaded again (revisions are unique in the process).
     Scene other;

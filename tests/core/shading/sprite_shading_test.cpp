@@ -1,0 +1,257 @@
+// Sprite shading: normals from the estimated solids, the shapes and the
+// picture's brightness, and each light's sprite pixels shaded by them
+// (core/src/shading/).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "isolux/frame.hpp"
+#include "isolux/map.hpp"
+#include "isolux/scene_file.hpp"
+#include "isolux/sprite_shading.hpp"
+#include "test_util.hpp"
+
+using namespace isolux;
+
+namespace {
+
+double angle_deg(Vec3 a, Vec3 b) { return std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * 180 / 3.14159265358979; }
+
+// The mean angle between two sources' normals over the pixels both show.
+double mean_angle(const SpriteNormals& a, const SpriteNormals& b) {
+    double sum = 0;
+    long n = 0;
+    for (std::size_t i = 0; i < a.normal.size(); ++i) {
+        if (glm::length(a.normal[i]) == 0 || glm::length(b.normal[i]) == 0) continue;
+        sum += angle_deg(a.normal[i], b.normal[i]);
+        ++n;
+    }
+    return n ? sum / double(n) : 0;
+}
+
+// A shading map of one pixel at (0, 0) showing a point `h` high with normal `n`.
+ShadingMap one_pixel(Vec3 n, float h) {
+    ShadingMap m;
+    m.rect = {0, 0, 1, 1};
+    m.normal = {{std::int8_t(std::lround(n.x * 127)), std::int8_t(std::lround(n.y * 127)), std::int8_t(std::lround(n.z * 127))}};
+    m.height = {h};
+    return m;
+}
+
+// A white light's mask over (0, 0) alone, value v there, centred at (cx, cy).
+LightMask mask_at(std::int64_t cx, std::int64_t cy, std::uint8_t v) {
+    LightMask m;
+    m.clip = {0, 0, 1, 1};
+    m.cx = cx, m.cy = cy;
+    m.value = {v};
+    return m;
+}
+
+}  // namespace
+
+// The screen's tangent space is orthonormal in the ground frame, its +Z
+// along the view line toward the viewer, and the ground tilts up the screen.
+TEST(SpriteShading, theScreensTangentSpaceIsTheViewsFrame) {
+    EXPECT_NEAR(glm::dot(screen_right, screen_up), 0, 1e-12);
+    EXPECT_NEAR(glm::dot(screen_right, toward_viewer), 0, 1e-12);
+    EXPECT_NEAR(glm::dot(screen_up, toward_viewer), 0, 1e-12);
+    for (Vec3 v : {screen_right, screen_up, toward_viewer}) EXPECT_NEAR(glm::length(v), 1, 1e-12);
+    // A step along the view line keeps the screen position.
+    const Vec3 a = ground_frame(3, 4, 5);
+    const Vec3 b = a + toward_viewer * 7.0;
+    EXPECT_NEAR(b.x - b.y, 3, 1e-9);
+    EXPECT_NEAR((b.x + b.y) / 2 - b.z, 4, 1e-9);
+    // Screen right raises screen x; screen up lowers screen y.
+    EXPECT_GT(screen_right.x - screen_right.y, 0);
+    EXPECT_LT((screen_up.x + screen_up.y) / 2 - screen_up.z, 0);
+    const Vec3 t = to_screen_tangent({0, 0, 1});
+    EXPECT_NEAR(t.x, 0, 1e-12);
+    EXPECT_GT(t.y, 0.8);
+    EXPECT_NEAR(glm::length(from_screen_tangent(t) - Vec3{0, 0, 1}), 0, 1e-12);
+}
+
+// Heights worked out by hand: flat ground faces up; the plane X = 20, a
+// wall facing +X, shows at h = 20 - y - x/2; the plane Y = -20, facing +Y,
+// at h = -20 - y + x/2 (ground_frame: X = y + h + x/2, Y = y + h - x/2).
+TEST(SpriteShading, normalsFromHeightsAreThoseOfPlanesWorkedOutByHand) {
+    const int w = 16, h = 12;
+    Mask shown(Rect{0, 0, w, h});
+    std::fill(shown.bits.begin(), shown.bits.end(), 1);
+    std::vector<float> flat(std::size_t(w) * h, 0.f), wall_x(flat.size()), wall_y(flat.size());
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            wall_x[std::size_t(y) * w + x] = float(20 - (y + 0.5) - (x + 0.5) / 2);
+            wall_y[std::size_t(y) * w + x] = float(-20 - (y + 0.5) + (x + 0.5) / 2 + 40);  // any constant: Y = 20
+        }
+    const auto n_flat = normals_from_heights(shown, flat), n_x = normals_from_heights(shown, wall_x),
+               n_y = normals_from_heights(shown, wall_y);
+    for (std::size_t i = 0; i < flat.size(); ++i) {  // every pixel, the edges' one-sided ones included
+        EXPECT_LT(angle_deg(n_flat[i], {0, 0, 1}), 1e-6);
+        EXPECT_LT(angle_deg(n_x[i], {1, 0, 0}), 1e-6);
+        EXPECT_LT(angle_deg(n_y[i], {0, 1, 0}), 1e-6);
+    }
+    // A pixel the sprite does not show has no normal; a lone pixel, no slope
+    // either way, faces up.
+    Mask lone(Rect{0, 0, 3, 3});
+    lone.set(1, 1);
+    const auto n_lone = normals_from_heights(lone, std::vector<float>(9, 5.f));
+    EXPECT_EQ(glm::length(n_lone[0]), 0);
+    EXPECT_LT(angle_deg(n_lone[4], {0, 0, 1}), 1e-6);
+    // The edge between two objects is not a slope: a step of 30 px between
+    // columns leaves both sides' normals those of their own planes.
+    std::vector<float> step(flat.size());
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) step[std::size_t(y) * w + x] = x < w / 2 ? 0.f : 30.f;
+    const auto n_step = normals_from_heights(shown, step);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) EXPECT_LT(angle_deg(n_step[std::size_t(y) * w + x], {0, 0, 1}), 1e-6) << x << "," << y;
+}
+
+// Lambert's cosine, and the blend with the flat light.
+TEST(SpriteShading, aLitPixelTakesLambertsCosineBlendedByTheStrength) {
+    Params p;
+    p.sprite_shading = SpriteShading::solids;
+    // Pixel (0, 0) shows a point 10 px up; the light 10 px up over screen
+    // pixel (cx, cy) far along +X of it faces a +X normal head on.
+    const Vec3 point = ground_frame(0.5, 0.5, 10);
+    const std::int64_t cx = 200, cy = 100;  // its foot (200.75, 0.25, 0): 190 px along +X of the point
+    const Vec3 light = ground_frame(cx + 0.5, cy + 0.5, 0) + Vec3{0, 0, 10};
+    const Vec3 to_light = glm::normalize(light - point);
+    const double cos_x = glm::dot(to_light, Vec3{1, 0, 0});
+    ASSERT_GT(cos_x, 0.5);
+    for (double s : {1.0, 0.5, 0.0}) {
+        p.shading_strength = s;
+        LightMask facing = mask_at(cx, cy, 200), away = mask_at(cx, cy, 200);
+        shade_sprites(facing, one_pixel({1, 0, 0}, 10), 10, p);
+        shade_sprites(away, one_pixel({-1, 0, 0}, 10), 10, p);
+        EXPECT_NEAR(facing.value[0], 200 * ((1 - s) + s * cos_x), 1.01) << s;
+        EXPECT_NEAR(away.value[0], 200 * (1 - s), 0.51) << s;
+    }
+    // The ground is never shaded; nor is anything with sprite_shading none.
+    p.shading_strength = 1;
+    ShadingMap ground = one_pixel({0, 0, 0}, 0);
+    LightMask g = mask_at(cx, cy, 200);
+    shade_sprites(g, ground, 10, p);
+    EXPECT_EQ(g.value[0], 200);
+    p.sprite_shading = SpriteShading::none;
+    LightMask a = mask_at(cx, cy, 200);
+    shade_sprites(a, one_pixel({-1, 0, 0}, 10), 10, p);
+    EXPECT_EQ(a.value[0], 200);
+}
+
+// On the default tileset, whose sprites were drawn from the shapes the
+// manifest gives: the estimated solids' normals lie nearer the shapes'
+// than the brightness gradient's do, sprite by sprite and overall.
+TEST(SpriteShading, theSolidsNormalsLieNearerTheShapesThanTheLuminancesOnTheDefaultTileset) {
+    const Tileset ts = test::default_tileset();
+    const Params p;
+    double sum_solids = 0, sum_luminance = 0;
+    int sprites = 0;
+    for (const Sprite& s : ts.sprites) {
+        if (s.kind != SpriteKind::overlay) continue;
+        const SpriteNormals truth = sprite_normals(ts, s, p, SpriteShading::shapes);
+        const double solids = mean_angle(sprite_normals(ts, s, p, SpriteShading::solids), truth);
+        const double luminance = mean_angle(sprite_normals(ts, s, p, SpriteShading::luminance), truth);
+        std::printf("%-12s mean angle to the shapes' normals: solids %5.1f deg, luminance %5.1f deg\n", s.name.c_str(),
+                    solids, luminance);
+        EXPECT_LT(solids, luminance) << s.name;
+        sum_solids += solids, sum_luminance += luminance, ++sprites;
+    }
+    ASSERT_GT(sprites, 3);
+    EXPECT_LT(sum_solids / sprites, 0.75 * sum_luminance / sprites);
+}
+
+// shapes needs a shape or a height map on every overlay, and says which lacks one.
+TEST(SpriteShading, shapesShadingNamesTheSpriteWithoutAShape) {
+    const Tileset ts = test::foreign_tileset();
+    Params p;
+    bool refused = false;
+    for (const Sprite& s : ts.sprites) {
+        if (s.kind != SpriteKind::overlay || !s.shape.empty() || !s.height.empty()) continue;
+        const std::string e = test::error_of([&] { sprite_normals(ts, s, p, SpriteShading::shapes); });
+        EXPECT_NE(e.find("\"" + s.name + "\""), std::string::npos) << e;
+        EXPECT_NE(e.find("sprite_shading shapes"), std::string::npos) << e;
+        refused = true;
+    }
+    EXPECT_TRUE(refused) << "the foreign tileset has an overlay with no shape";
+}
+
+// Whole frames of a seeded map: shading changes sprite pixels alone, never
+// brightens one, darkens those turned from the light, and at strength 0 is
+// the flat light's bytes; in shadow mode what a sprite pixel lacks becomes
+// shadow; a state that switches the shading gives a fresh state's bytes.
+TEST(SpriteShading, aFrameShadesItsSpritePixelsAloneAndStrengthZeroIsTheFlatLight) {
+    Scene s;
+    s.width = s.height = 10;
+    const World w = make_world(test::default_tileset(), s);
+    const Rect v = camera_view(s.camera, w);
+    Light lamp{v.x + v.w / 2.0 + 0.5, v.y + v.h / 2.0 + 0.5};
+    lamp.height = 40;
+    s.lights = {lamp};
+    s.params.area_a = s.params.area_b = 200;
+    s.params.falloff_scale = 30;
+    auto traced = [&](const Params& p, FrameState* reuse = nullptr) {
+        FrameState fresh;
+        FrameState& st = reuse ? *reuse : fresh;
+        Scene sc = s;
+        sc.params = p;
+        render_frame(st, w, sc, Camera{}, 0);
+        return std::make_pair(st.traced, st.shading);
+    };
+    for (Mode mode : {Mode::light, Mode::shadow, Mode::flat}) {
+        Params flat = s.params;
+        flat.mode = mode;
+        Params zero = flat, full = flat;
+        zero.sprite_shading = full.sprite_shading = SpriteShading::solids;
+        zero.shading_strength = 0;
+        const auto [t_flat, no_map] = traced(flat);
+        const auto [t_zero, map0] = traced(zero);
+        const auto [t_full, map] = traced(full);
+        EXPECT_TRUE(no_map.empty());
+        ASSERT_FALSE(map.empty());
+        EXPECT_EQ(t_zero.texels, t_flat.texels) << "strength 0, mode " << int(mode);
+        ASSERT_EQ(t_full.rect, t_flat.rect);
+        const Vec3 light = ground_frame(std::floor(lamp.x) + 0.5, std::floor(lamp.y) + 0.5, 0) + Vec3{0, 0, 40};
+        long sprite = 0, darker = 0, away_dark = 0, away = 0, facing = 0, facing_kept = 0;
+        for (int y = t_flat.rect.y; y < t_flat.rect.y + t_flat.rect.h; ++y)
+            for (int x = t_flat.rect.x; x < t_flat.rect.x + t_flat.rect.w; ++x) {
+                const int before = t_flat.value(x, y, 0), after = t_full.value(x, y, 0);
+                const std::size_t i = std::size_t(y - map.rect.y) * map.rect.w + std::size_t(x - map.rect.x);
+                const auto q = map.normal[i];
+                if (q[0] == 0 && q[1] == 0 && q[2] == 0) {
+                    ASSERT_EQ(after, before) << "a ground pixel at " << x << "," << y;
+                    continue;
+                }
+                ++sprite;
+                if (mode == Mode::shadow) {  // the shadow grows where the surface turns away
+                    ASSERT_GE(after, before) << x << "," << y;
+                    darker += after > before;
+                    continue;
+                }
+                ASSERT_LE(after, before) << x << "," << y;
+                darker += after < before;
+                if (before < 40) continue;
+                const double cosine = lambert(glm::normalize(Vec3{double(q[0]), double(q[1]), double(q[2])}),
+                                              ground_frame(x + 0.5, y + 0.5, map.height[i]), light);
+                if (cosine == 0) ++away, away_dark += after == 0;
+                if (cosine > 0.7) ++facing, facing_kept += after >= 0.7 * before - 1;
+            }
+        std::printf("mode %d: %ld sprite pixels, %ld darker; turned away %ld (dark %ld), facing %ld (kept %ld)\n",
+                    int(mode), sprite, darker, away, away_dark, facing, facing_kept);
+        EXPECT_GT(sprite, 1000);
+        EXPECT_GT(darker, sprite / 10) << "pixels changed";
+        if (mode == Mode::shadow) continue;
+        EXPECT_GT(away, 100);
+        EXPECT_EQ(away_dark, away);
+        EXPECT_GT(facing, 100);
+        EXPECT_EQ(facing_kept, facing);
+    }
+    // One state through none, solids, luminance and back: each frame a fresh state's bytes.
+    FrameState st;
+    for (SpriteShading from : {SpriteShading::none, SpriteShading::solids, SpriteShading::luminance, SpriteShading::none}) {
+        Params p = s.params;
+        p.sprite_shading = from;
+        EXPECT_EQ(traced(p, &st).first.texels, traced(p).first.texels) << int(from);
+    }
+}
