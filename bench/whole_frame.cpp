@@ -5,6 +5,7 @@
 #include <array>
 #include <chrono>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -42,13 +43,15 @@ struct ScreenScene {
     std::vector<std::uint8_t> floor_src, floor_dst;  // memcpy's bytes
 };
 
-std::unique_ptr<ScreenScene> make_screen(const std::string& map, int threads, int lights = 32) {
+std::unique_ptr<ScreenScene> make_screen(const std::string& map, int threads, int lights = 32,
+                                         const std::function<void(Params&)>& tune = nullptr) {
     auto s = std::make_unique<ScreenScene>();
     s->world = &world(map, 64);
     const Rect b = s->world->placed.bounds;
     s->camera = Camera{double(b.x + (b.w - 1920) / 2), double(b.y + (b.h - 1080) / 2), 1920, 1080};
     s->scene.params.area_a = s->scene.params.area_b = 128;
     s->scene.params.blur_radius = 2;
+    if (tune) tune(s->scene.params);
     Pcg32 rng(17);
     for (int i = 0; i < lights; ++i)
         s->scene.lights.push_back(Light{s->camera.x + rng.below(1920) + 0.5, s->camera.y + rng.below(1080) + 0.5});
@@ -385,6 +388,20 @@ void print_floor_ratios() {
         };
         auto rebuild = [&] { return seconds([&] { rebuild_occluders(rebuilt, w, p, region, &cache); }); };
         print_ratio("solids_edit_cost", interleaved_costs(edit, rebuild, pairs), "<= 0.05", 3);
+    }
+
+    // Beyond the paper: the whole frame with solids, its sprites shaded by
+    // the solids' normals, over the same frame unshaded (every light moved).
+    {
+        auto solids = [](Params& p) { p.occluders = Occluders::solids; };
+        auto shaded = [](Params& p) {
+            p.occluders = Occluders::solids;
+            p.sprite_shading = SpriteShading::solids;
+        };
+        auto flat_frame = make_screen("default", 1, 32, solids), shaded_frame = make_screen("default", 1, 32, shaded);
+        print_ratio("sprite_shading_cost",
+                    interleaved([&] { step(*shaded_frame, 32); }, 2, [&] { step(*flat_frame, 32); }, 2, pairs), "<= 1.1",
+                    3);
     }
 }
 

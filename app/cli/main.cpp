@@ -10,6 +10,7 @@
 #include "cli/args.hpp"
 #include "cli/check_tileset.hpp"
 #include "cli/export_tiled.hpp"
+#include "cli/normals.hpp"
 #include "cli/render.hpp"
 #include "cli/sweep.hpp"
 #include "isolux/error.hpp"
@@ -139,6 +140,20 @@ int isolux_cli_main(int argc, char** argv) {
                       "What the error is measured against: every_pixel (default; the model's own 4ab rays), "
                       "exact_line, 3d (the sprites' true shapes) or 3d_facing; a comma list measures each");
 
+    cli::NormalsArgs na;
+    CLI::App* normals = app.add_subcommand(
+        "normals", "Write each sprite's normal map (NAME.normal.png) and height map (NAME.height.png) for an engine's 2D lights");
+    normals->add_option("--tileset", na.tileset, "Tileset manifest")->required();
+    normals->add_option("--out", na.out, "Folder to write into (never over the tileset's own files)")->required();
+    normals->add_option("--from", na.from,
+                        "solids (default: the solids estimated from each sprite), shapes (the manifest's shapes or "
+                        "height maps) or luminance (the picture's brightness, as normal-map generators make them)")
+        ->check(CLI::IsMember({"solids", "shapes", "luminance"}));
+    normals->add_option("--convention", na.convention,
+                        "opengl (default: green is +Y up, as Godot reads it) or directx (green is +Y down)")
+        ->check(CLI::IsMember({"opengl", "directx"}));
+    cli::add_param_flags(*normals, na.params);
+
     cli::ExportArgs ea;
     CLI::App* export_tiled_cmd = app.add_subcommand("export-tiled", "Write a scene's level as a Tiled map (TMX, TSX, images)");
     export_tiled_cmd->add_option("--scene", ea.scene, "Scene JSON file")->required();
@@ -167,6 +182,7 @@ int isolux_cli_main(int argc, char** argv) {
         if (*render) return cli::run_render(ra);
         if (*sweep) return cli::run_sweep_command(sa);
         if (*check) return cli::run_check_tileset(ca);
+        if (*normals) return cli::run_normals(na);
         if (*export_tiled_cmd) {
             ea.chunk = export_tiled_cmd->count("--infinite") ? (ea.chunk > 0 ? ea.chunk : 16) : 0;
             return cli::run_export_tiled(ea);

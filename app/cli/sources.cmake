@@ -7,4 +7,5 @@ set(ISOLUX_CLI_SOURCES
   ${PROJECT_SOURCE_DIR}/app/cli/sweep.cpp
   ${PROJECT_SOURCE_DIR}/app/cli/sweep_chart.cpp
   ${PROJECT_SOURCE_DIR}/app/cli/contact_sheet.cpp
-  ${PROJECT_SOURCE_DIR}/app/cli/export_tiled.cpp)
+  ${PROJECT_SOURCE_DIR}/app/cli/export_tiled.cpp
+  ${PROJECT_SOURCE_DIR}/app/cli/normals.cpp)

@@ -29,6 +29,8 @@ struct Overlays {
     bool split_with_3d = false;  // the right side: the 3D reference instead of flat lighting
     float split = 0.5f;
     bool truth_light = false;       // the 3D reference's light texture instead of the final frame
+    bool normals = false;        // with sprite_shading: each sprite pixel's normal as a normal map's RGB
+    float normals_opacity = 1.0f;
     bool truth_difference = false;  // magenta: lit in 2.5D, dark in 3D; cyan: the reverse
     float truth_difference_opacity = 0.8f;
     friend bool operator==(const Overlays&, const Overlays&) = default;

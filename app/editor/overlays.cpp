@@ -6,6 +6,7 @@
 #include "isolux/light_texture.hpp"
 #include "isolux/obstacle_map.hpp"
 #include "isolux/opacity_correction.hpp"
+#include "isolux/sprite_shading.hpp"
 #include "isolux/truth.hpp"
 
 namespace isolux::app {
@@ -25,7 +26,8 @@ OverlayImage build_overlays(const World& world, const FrameState& frame, const S
                             Rect region, const LightTexture* truth) {
     OverlayImage out;
     const bool difference = o.truth_difference && truth && !truth->rect.empty();
-    if (!o.obstacles && !o.opacity_maps && !o.delta_y_bands && !difference) return out;
+    const bool normals = o.normals && !frame.shading.empty();
+    if (!o.obstacles && !o.opacity_maps && !o.delta_y_bands && !difference && !normals) return out;
     region = intersect(region, world.placed.bounds);
     if (region.empty()) return out;
     out.rect = region;
@@ -56,6 +58,18 @@ OverlayImage build_overlays(const World& world, const FrameState& frame, const S
                           255, o.delta_y_opacity);
                 }
         }
+    }
+    if (normals) {  // the shading's normals in the screen's tangent space, as a normal map draws them
+        const ShadingMap& m = frame.shading;
+        const Rect r = intersect(m.rect, region);
+        for (int y = r.y; y < r.y + r.h; ++y)
+            for (int x = r.x; x < r.x + r.w; ++x) {
+                const auto& q = m.normal[std::size_t(y - m.rect.y) * m.rect.w + std::size_t(x - m.rect.x)];
+                if (q[0] == 0 && q[1] == 0 && q[2] == 0) continue;
+                const Vec3 t = to_screen_tangent(Vec3{double(q[0]), double(q[1]), double(q[2])} / 127.0);
+                auto byte = [](double c) { return int(std::lround((std::clamp(c, -1.0, 1.0) + 1) / 2 * 255)); };
+                blend(out.image.at(x - region.x, y - region.y), byte(t.x), byte(t.y), byte(t.z), o.normals_opacity);
+            }
     }
     if (o.opacity_maps) {
         for (const Light& l : scene.lights) {

@@ -215,6 +215,9 @@ void overlays_panel(App& app) {
         "Blue: the Δy rows Algorithm 1 reads on each sprite; cyan: the run it chose.");
     row("light areas", &o.light_areas, &o.light_areas_opacity, "Each light's (2a+1) x (2b+1) area.");
     row("raw light texture", &o.raw_light, nullptr, "Show the light texture instead of the final frame.");
+    row("normals", &o.normals, &o.normals_opacity,
+        "Each sprite pixel's normal, as a normal map draws it (red right, green up, blue toward you), from the "
+        "sprite shading chosen in Parameters; nothing while sprite shading is none.");
     ImGui::TextDisabled("truth (the sprites' 3D shapes, lights at their height)");
     row("3D light texture", &o.truth_light, nullptr,
         "The light texture of the 3D reference: a pixel is lit when the segment from its surface point to the "

@@ -326,6 +326,25 @@ for wname, args in writers:
             path = T(f"link_{wname}_{sname}" + (".tmx" if wname == "export_tiled" else ".png"))
             os.symlink(target, path)
         case(f"out_special_{wname}_{sname}", args(path), 2, frag)
+# normals: the tileset read as any command reads it; its outputs, named by
+# isolux inside the folder chosen, never a special file, a link out of it,
+# one of the tileset's own files, or a path a sprite's name makes.
+case("normals_tileset_fifo", ["normals", "--tileset", T("fifo.json"), "--out", T("normals")], 2, "FIFO")
+case("normals_tileset_loop", ["normals", "--tileset", T("loop_a.json"), "--out", T("normals")], 2, "loop_a.json")
+os.makedirs(T("normals_special"), exist_ok=True)
+os.mkfifo(T("normals_special", "oak.normal.png"))
+keep_special.append((T("normals_special", "oak.normal.png"), _stat.S_ISFIFO))
+case("normals_out_fifo", ["normals", "--tileset", MANIFEST, "--out", T("normals_special")], 2, "FIFO")
+os.makedirs(T("normals_link"), exist_ok=True)
+os.symlink(T("elsewhere.png"), T("normals_link", "oak.height.png"))
+case("normals_out_link", ["normals", "--tileset", MANIFEST, "--out", T("normals_link")], 2, "symbolic link")
+case("normals_over_own_files", ["normals", "--tileset", MANIFEST, "--out", os.path.dirname(MANIFEST)], 2, "tileset's own files")
+grass = os.path.join(os.path.dirname(MANIFEST), "grass.png")
+for label, name in (("parent", ".."), ("slash", "../escape"), ("empty", "")):
+    m = write(f"normals_names/{label}/tileset.json", json.dumps({"schema_version": 1, "tile": {"width": 128, "height": 64},
+        "sprites": [{"name": name, "image": grass, "anchor": [64, 32], "kind": "floor", "tags": ["grass"]}]}))
+    case(f"normals_sprite_name_{label}", ["normals", "--tileset", m, "--out", T("normals_names", label, "out")], 2,
+         "sprite")
 # Outputs checked before the work: a missing folder or a wrong extension is
 # refused up front, naming the path.
 case("out_sweep_missing_folder", ["sweep", "--scene", SCENE, "--param", "ray_skip=1,2", "--out", T("no", "such", "s.csv")], 2, "does not exist")

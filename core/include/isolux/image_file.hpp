@@ -41,5 +41,8 @@ std::vector<std::uint16_t> load_gray16(const std::filesystem::path& path, int wi
 // Writes a single-channel 16-bit PNG (height maps).
 void save_gray16(const std::filesystem::path& path, int width, int height,
                  const std::vector<std::uint16_t>& values);
+// An 8-bit RGB PNG (a normal map), `rgb` 3 bytes a pixel row by row,
+// written as save_gray16 writes.
+void save_rgb8(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgb);
 
 }  // namespace isolux

@@ -70,6 +70,18 @@ inline const Vec3 toward_viewer{0.57735026918962576, 0.57735026918962576, 0.5773
 inline Vec3 to_screen_tangent(Vec3 n) { return {glm::dot(n, screen_right), glm::dot(n, screen_up), glm::dot(n, toward_viewer)}; }
 inline Vec3 from_screen_tangent(Vec3 t) { return t.x * screen_right + t.y * screen_up + t.z * toward_viewer; }
 
+// How a normal map's green channel points: opengl, +Y up the screen (Godot,
+// Blender); directx, +Y down (Unity's and Unreal's importers flip it).
+enum class NormalConvention { opengl, directx };
+// The sprite's normals as an 8-bit RGB normal map in the screen's tangent
+// space (+X right, +Y up or down by `convention`, +Z toward the viewer),
+// each component c as round((c + 1) / 2 * 255); pixels the sprite does not
+// show are flat, (128, 128, 255). 3 bytes a pixel, row by row.
+std::vector<std::uint8_t> normal_map_rgb(const SpriteNormals& n, NormalConvention convention);
+// The heights of the points the sprite shows, rounded to whole pixels (the
+// manifest's height_map format: 16-bit grey, pixels above the ground).
+std::vector<std::uint16_t> height_map_values(const SpriteNormals& n);
+
 // Lambert's cosine between unit normal `n` at `point` and the direction to
 // `light`, at least 0 (1 where the light stands at the point).
 double lambert(Vec3 n, Vec3 point, Vec3 light);
@@ -103,7 +115,8 @@ ShadingMap build_shading_map(const World& world, const Params& p, Rect region, N
 
 // Multiplies each lit sprite pixel of `mask` (value > 0, inside `map`) by
 // its shading factor for the light at the mask's centre, `light_height`
-// above the ground, rounded to the nearest byte. With
+// above the ground, rounded to the nearest byte (in single precision, the
+// map's normal taken as stored, its components / 127). With
 // sprite_shading none or shading_strength 0, nothing changes.
 void shade_sprites(LightMask& mask, const ShadingMap& map, double light_height, const Params& p);
 

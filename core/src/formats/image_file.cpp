@@ -150,26 +150,41 @@ std::vector<std::uint16_t> load_gray16(const fs::path& path, int width, int heig
     return values;
 }
 
-void save_gray16(const fs::path& link, int width, int height, const std::vector<std::uint16_t>& values) {
+namespace {
+
+// A PNG of `channels` channels of `T`, written atomically and read back
+// whole before it replaces the target.
+template <class T>
+void save_png(const fs::path& link, int width, int height, int channels, OIIO::TypeDesc type, const std::vector<T>& values) {
     const fs::path path = write_target(link);
     auto out = OIIO::ImageOutput::create("png");
     if (!out) throw Error(quoted(path) + ": no PNG writer (" + OIIO::geterror() + ")");
-    OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::UINT16);
+    OIIO::ImageSpec spec(width, height, channels, type);
     AtomicWrite w(path);
     const fs::path& tmp = w.temp();
-    bool ok = out->open(tmp.string(), spec) && out->write_image(OIIO::TypeDesc::UINT16, values.data());
+    bool ok = out->open(tmp.string(), spec) && out->write_image(type, values.data());
     ok = out->close() && ok;
     if (ok) {  // read back whole, as save_image does (the PNG writer misses a full disk)
         auto in = OIIO::ImageInput::open(tmp.string());
-        std::vector<std::uint16_t> back(values.size());
-        ok = in && in->spec().width == width && in->spec().height == height &&
-             in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, back.data()) && back == values;
+        std::vector<T> back(values.size());
+        ok = in && in->spec().width == width && in->spec().height == height && in->spec().nchannels == channels &&
+             in->read_image(0, 0, 0, channels, type, back.data()) && back == values;
         if (in) in->close();
     }
     if (!ok)
         throw Error(quoted(path) + ": cannot write (the written file does not read back whole: is the disk full?); "
                     "the old file is kept");
     w.commit();
+}
+
+}  // namespace
+
+void save_gray16(const fs::path& link, int width, int height, const std::vector<std::uint16_t>& values) {
+    save_png(link, width, height, 1, OIIO::TypeDesc::UINT16, values);
+}
+
+void save_rgb8(const fs::path& link, int width, int height, const std::vector<std::uint8_t>& rgb) {
+    save_png(link, width, height, 3, OIIO::TypeDesc::UINT8, rgb);
 }
 
 }  // namespace isolux

@@ -51,19 +51,30 @@ ShadingMap build_shading_map(const World& world, const Params& p, Rect region, N
 void shade_sprites(LightMask& mask, const ShadingMap& map, double light_height, const Params& p) {
     if (p.sprite_shading == SpriteShading::none || p.shading_strength <= 0 || map.empty()) return;
     const Rect r = intersect(mask.clip, map.rect);
-    const double s = p.shading_strength;
-    const Vec3 light = ground_frame(double(mask.cx) + 0.5, double(mask.cy) + 0.5, 0) + Vec3{0, 0, light_height};
+    // Single precision, one square root a pixel: lambert() written out for
+    // the map's stored normals (q / 127, unit within a rounding), the point
+    // ground_frame(x + 0.5, y + 0.5, h) and the light L. Floats round the
+    // same on every machine (no contraction: core's -ffp-contract=off).
+    const float s = float(p.shading_strength), flat = 1 - s;
+    const Vec3 light = ground_frame(double(mask.cx) + 0.5, double(mask.cy) + 0.5, 0);
+    const float lx = float(light.x), ly = float(light.y), lz = float(light_height);
     for (int y = r.y; y < r.y + r.h; ++y) {
         std::uint8_t* v = &mask.value[std::size_t(y - mask.clip.y) * mask.clip.w + std::size_t(r.x - mask.clip.x)];
         const std::size_t row = std::size_t(y - map.rect.y) * map.rect.w + std::size_t(r.x - map.rect.x);
+        const std::array<std::int8_t, 3>* q = &map.normal[row];
+        const float* h = &map.height[row];
+        const float row_y = float(y) + 0.5f;
         for (int x = 0; x < r.w; ++x) {
             if (v[x] == 0) continue;
-            const std::array<std::int8_t, 3>& q = map.normal[row + std::size_t(x)];
-            if (q[0] == 0 && q[1] == 0 && q[2] == 0) continue;  // the ground: not shaded
-            const Vec3 n = glm::normalize(Vec3{double(q[0]), double(q[1]), double(q[2])});
-            const Vec3 point = ground_frame(r.x + x + 0.5, y + 0.5, map.height[row + std::size_t(x)]);
-            const double factor = (1 - s) + s * lambert(n, point, light);
-            v[x] = std::uint8_t(std::min(double(v[x]), std::floor(v[x] * factor + 0.5)));
+            const int qx = q[x][0], qy = q[x][1], qz = q[x][2];
+            if ((qx | qy | qz) == 0) continue;  // the ground: not shaded
+            const float half_x = (float(r.x + x) + 0.5f) * 0.5f, up = row_y + h[x];
+            const float dx = lx - (up + half_x), dy = ly - (up - half_x), dz = lz - h[x];
+            const float len2 = dx * dx + dy * dy + dz * dz;
+            const float along = float(qx) * dx + float(qy) * dy + float(qz) * dz;
+            const float cosine = len2 > 1e-12f ? std::max(0.0f, along / (127.0f * std::sqrt(len2))) : 1.0f;
+            const float lit = float(v[x]) * (flat + s * cosine);
+            v[x] = std::uint8_t(std::min(float(v[x]), std::floor(lit + 0.5f)));
         }
     }
 }

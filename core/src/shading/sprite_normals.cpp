@@ -35,6 +35,33 @@ double slope(const Mask& shown, const std::vector<float>& h, int x, int y, int d
     return before ? rise_before : after ? rise_after : 0;
 }
 
+// Normals averaged over the shown pixels within `smooth_radius` whose
+// points lie within `smooth_rise` of the pixel's height: the estimate's
+// heights rise in steps of its cross-sections (and a height map's in whole
+// pixels), which differenced alone draw stripes; the edge between two
+// objects stays an edge.
+constexpr int smooth_radius = 2;
+constexpr double smooth_rise = 3;
+std::vector<Vec3> smoothed(const Mask& shown, const std::vector<float>& h, const std::vector<Vec3>& n) {
+    const int w = shown.width, hgt = shown.height;
+    std::vector<Vec3> out(n.size(), Vec3{0.0});
+    for (int y = 0; y < hgt; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = std::size_t(y) * w + x;
+            if (!shown.bits[i]) continue;
+            Vec3 sum{0.0};
+            for (int yy = std::max(0, y - smooth_radius); yy <= std::min(hgt - 1, y + smooth_radius); ++yy)
+                for (int xx = std::max(0, x - smooth_radius); xx <= std::min(w - 1, x + smooth_radius); ++xx) {
+                    const std::size_t j = std::size_t(yy) * w + xx;
+                    if (shown.bits[j] && std::abs(double(h[j]) - double(h[i])) <= smooth_rise + std::abs(yy - y) + std::abs(xx - x))
+                        sum += n[j];
+                }
+            const double len = glm::length(sum);
+            out[i] = len > 0 ? sum / len : n[i];
+        }
+    return out;
+}
+
 // The sprite's pixels that show a surface (opaque at the preset's threshold).
 Mask shown_pixels(const Sprite& s, const Params& p) { return opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)); }
 
@@ -124,7 +151,26 @@ std::vector<Vec3> normals_from_heights(const Mask& shown, const std::vector<floa
             const double len = glm::length(c);
             n[std::size_t(y) * w + x] = len > 0 ? c / len : toward_viewer;
         }
-    return n;
+    return smoothed(shown, heights, n);
+}
+
+std::vector<std::uint8_t> normal_map_rgb(const SpriteNormals& n, NormalConvention convention) {
+    std::vector<std::uint8_t> rgb(n.normal.size() * 3);
+    auto byte = [](double c) { return std::uint8_t(std::lround((std::clamp(c, -1.0, 1.0) + 1) / 2 * 255)); };
+    for (std::size_t i = 0; i < n.normal.size(); ++i) {
+        Vec3 t = glm::length(n.normal[i]) > 0 ? to_screen_tangent(n.normal[i]) : Vec3{0, 0, 1};
+        if (convention == NormalConvention::directx) t.y = -t.y;
+        rgb[i * 3 + 0] = byte(t.x);
+        rgb[i * 3 + 1] = byte(t.y);
+        rgb[i * 3 + 2] = byte(t.z);
+    }
+    return rgb;
+}
+
+std::vector<std::uint16_t> height_map_values(const SpriteNormals& n) {
+    std::vector<std::uint16_t> h(n.heights.size());
+    for (std::size_t i = 0; i < h.size(); ++i) h[i] = std::uint16_t(std::lround(std::clamp(double(n.heights[i]), 0.0, 65535.0)));
+    return h;
 }
 
 double lambert(Vec3 n, Vec3 point, Vec3 light) {

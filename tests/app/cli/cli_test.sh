@@ -157,6 +157,37 @@ then pass=$((pass + 1)); else echo "FAIL check-tileset --json: the town's models
 [ -s "$tmp/town_sheet.png" ] && pass=$((pass + 1)) || { echo "FAIL no town contact sheet"; fail=$((fail + 1)); }
 check check_tileset_bad 2 "tileset.json" -- check-tileset "$tmp/nowhere/tileset.json"
 
+# normals: a normal map (8-bit RGB) and a height map (16-bit grey) per sprite, never over the tileset's files.
+check normals 0 "" -- normals --tileset "$src/assets/default/tileset.json" --out "$tmp/normals"
+check normals_directx 0 "" -- normals --tileset "$src/assets/default/tileset.json" --out "$tmp/normals_dx" --convention directx
+check normals_luminance 0 "" -- normals --tileset "$src/tests/data/foreign_tileset/tileset.json" --out "$tmp/normals_l" --from luminance
+if python3 - "$tmp" "$src/assets/default/tileset.json" <<'PY'
+import json, os, subprocess, sys
+tmp, manifest = sys.argv[1], sys.argv[2]
+names = [s["name"] for s in json.load(open(manifest))["sprites"]]
+for n in names:
+    for kind, want in (("normal", "3 channel, uint8"), ("height", "1 channel, uint16")):
+        info = subprocess.run(["oiiotool", "--info", f"{tmp}/normals/{n}.{kind}.png"], capture_output=True, text=True).stdout
+        assert want in info, (n, kind, info)
+# DirectX's green is OpenGL's upside down; red and blue are the same.
+def pixels(path):
+    out = subprocess.run(["oiiotool", path, "--ch", "R,G,B", "-d", "uint8", "-o", f"{tmp}/raw.bmp"], capture_output=True)
+    data = open(f"{tmp}/raw.bmp", "rb").read()
+    return data[-128 * 128 * 3:]
+a, b = pixels(f"{tmp}/normals/oak.normal.png"), pixels(f"{tmp}/normals_dx/oak.normal.png")
+for i in range(0, len(a), 3):  # BMP stores b, g, r
+    assert a[i] == b[i] and a[i + 2] == b[i + 2], i
+    assert abs(a[i + 1] + b[i + 1] - 255) <= 1, (i, a[i + 1], b[i + 1])
+assert any(a[i + 1] != 128 for i in range(0, len(a), 3))
+PY
+then pass=$((pass + 1)); else echo "FAIL normals: the files' formats or the conventions"; fail=$((fail + 1)); fi
+check normals_over_input 2 "tileset's own files" -- normals --tileset "$src/assets/default/tileset.json" --out "$src/assets/default"
+check normals_no_shapes 2 "sprite_shading shapes" -- normals --tileset "$src/tests/data/foreign_tileset/tileset.json" --out "$tmp/normals_s" --from shapes
+[ ! -e "$tmp/normals_s" ] && pass=$((pass + 1)) || { echo "FAIL normals --from shapes wrote before it refused"; fail=$((fail + 1)); }
+touch "$tmp/afile"
+check normals_out_file 2 "is not a folder" -- normals --tileset "$src/assets/default/tileset.json" --out "$tmp/afile"
+check normals_bad_from 2 "from" -- normals --tileset "$src/assets/default/tileset.json" --out "$tmp/n" --from hand
+
 # Bad paths and hostile files: a clear refusal naming the file, never a crash or a hang.
 mkfifo "$tmp/fifo.json"
 ln -s "$tmp/loop_b.json" "$tmp/loop_a.json"; ln -s "$tmp/loop_a.json" "$tmp/loop_b.json"

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "editor/editor.hpp"
+#include "editor/overlays.hpp"
 #include "test_util.hpp"
 #include "isolux/isolux.hpp"
 
@@ -382,4 +383,42 @@ TEST(Character, walksOnTheMapAroundObstaclesAndNeverIntoTheVoid) {
     }
     EXPECT_EQ(off_map, 0);
     EXPECT_EQ(steps_on_obstacles, 0);
+}
+
+// The normals overlay draws the shading's normals as a normal map does, on
+// sprite pixels only, and nothing while sprite shading is none.
+TEST(Editor, theNormalsOverlayDrawsTheShadingsNormalsOnSpritePixels) {
+    Scene s = small_scene();
+    s.lights = {Light{200.5, 150.5}};
+    const World w = make_world(test::default_tileset(), s);
+    Overlays o;
+    o.light_areas = false;
+    o.normals = true;
+    FrameState flat;
+    render_frame(flat, w, s, Camera{}, 0);
+    const Rect region = camera_view(s.camera, w);
+    EXPECT_TRUE(build_overlays(w, flat, s, o, region).image.rgba.empty()) << "no shading, no normals";
+    s.params.sprite_shading = SpriteShading::solids;
+    FrameState shaded;
+    render_frame(shaded, w, s, Camera{}, 0);
+    const OverlayImage img = build_overlays(w, shaded, s, o, region);
+    ASSERT_EQ(img.rect, intersect(region, w.placed.bounds));
+    long sprite = 0, ground_drawn = 0, wrong = 0;
+    const ShadingMap& m = shaded.shading;
+    for (int y = img.rect.y; y < img.rect.y + img.rect.h; ++y)
+        for (int x = img.rect.x; x < img.rect.x + img.rect.w; ++x) {
+            const std::uint8_t* c = img.image.at(x - img.rect.x, y - img.rect.y);
+            if (!m.rect.contains(x, y)) continue;
+            const auto& q = m.normal[std::size_t(y - m.rect.y) * m.rect.w + std::size_t(x - m.rect.x)];
+            if (q[0] == 0 && q[1] == 0 && q[2] == 0) {
+                ground_drawn += c[3] != 0;
+                continue;
+            }
+            ++sprite;
+            const Vec3 t = to_screen_tangent(Vec3{double(q[0]), double(q[1]), double(q[2])} / 127.0);
+            for (int k = 0; k < 3; ++k) wrong += std::abs(c[k] - (t[k] + 1) / 2 * 255) > 1.5;
+        }
+    EXPECT_GT(sprite, 1000);
+    EXPECT_EQ(ground_drawn, 0);
+    EXPECT_EQ(wrong, 0);
 }

@@ -10,6 +10,7 @@
 #include "isolux/map.hpp"
 #include "isolux/scene_file.hpp"
 #include "isolux/sprite_shading.hpp"
+#include "isolux/tileset_file.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -140,26 +141,34 @@ TEST(SpriteShading, aLitPixelTakesLambertsCosineBlendedByTheStrength) {
     EXPECT_EQ(a.value[0], 200);
 }
 
-// On the default tileset, whose sprites were drawn from the shapes the
-// manifest gives: the estimated solids' normals lie nearer the shapes'
-// than the brightness gradient's do, sprite by sprite and overall.
-TEST(SpriteShading, theSolidsNormalsLieNearerTheShapesThanTheLuminancesOnTheDefaultTileset) {
-    const Tileset ts = test::default_tileset();
+// On the default and town tilesets, whose sprites were drawn from the
+// shapes their manifests give: the estimated solids' normals lie nearer the
+// shapes' than the brightness gradient's do, on each tileset as a whole by
+// a quarter at least. (Sprite by sprite too, but for the town's grove,
+// where the estimate finds half the trees: docs/beyond.md.)
+TEST(SpriteShading, theSolidsNormalsLieNearerTheShapesThanTheLuminancesOnEveryTilesetWithShapes) {
     const Params p;
-    double sum_solids = 0, sum_luminance = 0;
-    int sprites = 0;
-    for (const Sprite& s : ts.sprites) {
-        if (s.kind != SpriteKind::overlay) continue;
-        const SpriteNormals truth = sprite_normals(ts, s, p, SpriteShading::shapes);
-        const double solids = mean_angle(sprite_normals(ts, s, p, SpriteShading::solids), truth);
-        const double luminance = mean_angle(sprite_normals(ts, s, p, SpriteShading::luminance), truth);
-        std::printf("%-12s mean angle to the shapes' normals: solids %5.1f deg, luminance %5.1f deg\n", s.name.c_str(),
-                    solids, luminance);
-        EXPECT_LT(solids, luminance) << s.name;
-        sum_solids += solids, sum_luminance += luminance, ++sprites;
+    for (const char* name : {"default", "town"}) {
+        const Tileset ts = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/" + name + "/tileset.json");
+        double sum_solids = 0, sum_luminance = 0;
+        int sprites = 0;
+        for (const Sprite& s : ts.sprites) {
+            if (s.kind != SpriteKind::overlay) continue;
+            const SpriteNormals truth = sprite_normals(ts, s, p, SpriteShading::shapes);
+            const double solids = mean_angle(sprite_normals(ts, s, p, SpriteShading::solids), truth);
+            const double luminance = mean_angle(sprite_normals(ts, s, p, SpriteShading::luminance), truth);
+            std::printf("%-8s %-14s mean angle to the shapes' normals: solids %5.1f deg, luminance %5.1f deg\n", name,
+                        s.name.c_str(), solids, luminance);
+            if (s.name != "grove") {
+                EXPECT_LT(solids, luminance) << name << " " << s.name;
+            }
+            sum_solids += solids, sum_luminance += luminance, ++sprites;
+        }
+        ASSERT_GT(sprites, 3) << name;
+        std::printf("%-8s mean over %d overlays: solids %.1f deg, luminance %.1f deg\n", name, sprites,
+                    sum_solids / sprites, sum_luminance / sprites);
+        EXPECT_LT(sum_solids / sprites, 0.75 * sum_luminance / sprites) << name;
     }
-    ASSERT_GT(sprites, 3);
-    EXPECT_LT(sum_solids / sprites, 0.75 * sum_luminance / sprites);
 }
 
 // shapes needs a shape or a height map on every overlay, and says which lacks one.
