@@ -71,7 +71,7 @@ int isolux_cli_main(int argc, char** argv) {
         ->check(CLI::IsMember(cli::render_layer_names()));
     render->add_option("--reference", ra.reference,
                        "For --layer truth and difference: 3d (default; the sprites' true shapes, lights at their "
-                       "height), 3d_facing, exact_line or every_pixel");
+                       "height), 3d_facing, 3d_shaded, exact_line or every_pixel");
     render->add_option("--light", ra.lights,
                        "A light X,Y[,A,B[,RRGGBB]][,h=HEIGHT] in world pixels: its ground point, own half-extents, "
                        "colour and height above the ground (default --light-height) (repeatable)");
@@ -138,7 +138,8 @@ int isolux_cli_main(int argc, char** argv) {
                     "Measure the model without its opacity correction (the paper's Figure 6)");
     sweep->add_option("--reference", sa.references,
                       "What the error is measured against: every_pixel (default; the model's own 4ab rays), "
-                      "exact_line, 3d (the sprites' true shapes) or 3d_facing; a comma list measures each");
+                      "exact_line, 3d (the sprites' true shapes), 3d_facing or 3d_shaded (3d with Lambert's cosine on sprites); a "
+                      "comma list measures each");
 
     cli::NormalsArgs na;
     CLI::App* normals = app.add_subcommand(

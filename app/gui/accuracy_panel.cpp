@@ -142,10 +142,10 @@ void accuracy_panel(App& app, AccuracyPanel& panel) {
                        "with the camera moving. 3d: the sprites' true shapes, lights at their height; every_pixel: "
                        "the model's own 4ab rays; exact_line: each pixel's own Bresenham line.");
     {
-        static const char* names[] = {"every_pixel", "exact_line", "3d", "3d_facing"};
+        static const char* names[] = {"every_pixel", "exact_line", "3d", "3d_facing", "3d_shaded"};
         int r = int(panel.reference);
         ImGui::SetNextItemWidth(160);
-        if (ImGui::Combo("reference", &r, names, 4)) {
+        if (ImGui::Combo("reference", &r, names, 5)) {
             panel.reference = Reference(r);
             panel.heatmap_stale = true;
         }

@@ -10,7 +10,7 @@ out=docs/accuracy
 # Each sweep says what it starts (the CLI refuses one beyond the work budget, with its estimate).
 # The town tileset's object kinds, each swept alone (below).
 kinds=$(python3 -c 'import json; print(" ".join(s["name"] for s in json.load(open("assets/town/tileset.json"))["sprites"] if s["kind"] == "overlay"))')
-sweeps_total=$((17 + $(wc -w <<< "$kinds")))
+sweeps_total=$((20 + $(wc -w <<< "$kinds")))
 sweeps_done=0
 sweep() {
   local said
@@ -52,6 +52,13 @@ for kind in $kinds; do
   python3 $out/kind_scene.py "$kind" "$scenes/$kind.json"
   sweep --scene "$scenes/$kind.json" --param occluders=footprints,solids,shapes --param light_height=4,16,32,64 \
     --reference 3d --frames 8 --repeats 1 --out $out/town_kind_$kind.csv
+done
+# Beyond the paper: sprite shading against the 3D reference with Lambert's term, on the default, forest and
+# town scenes, for the occluders it is used with.
+for scene in default forest town; do
+  sweep --scene assets/scenes/$scene.json --param occluders=footprints,solids,shapes \
+    --param sprite_shading=none,solids,shapes,luminance --param light_height=16,32,64 --reference 3d_shaded \
+    --allow-huge --frames 8 --repeats 1 --out $out/${scene}_shading.csv
 done
 # The CPU the times come from, for the page.
 lscpu | sed -n 's/^Model name: *//p' | head -1 > $out/machine.txt

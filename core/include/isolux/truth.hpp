@@ -5,7 +5,10 @@
 //                light's centre is clear of obstacles (2D, exact);
 //   3d:          the true shapes: a pixel's 3D surface point is lit when the
 //                segment to the light (at its height) clears every solid;
-//   3d_facing:   3d, and the surface faces the light.
+//   3d_facing:   3d, and the surface faces the light;
+//   3d_shaded:   3d, each sprite pixel's light times Lambert's cosine between
+//                its true surface's normal and the direction to the light
+//                (what sprite_shading models; the ground as in 3d).
 // Every reference uses the model's intensity (shaped_falloff: its falloff,
 // shape and edge fade), so only visibility differs.
 #pragma once
@@ -19,8 +22,8 @@
 
 namespace isolux {
 
-enum class Reference { every_pixel, exact_line, three_d, three_d_facing };
-std::string_view to_string(Reference r);  // "every_pixel", "exact_line", "3d", "3d_facing"
+enum class Reference { every_pixel, exact_line, three_d, three_d_facing, three_d_shaded };
+std::string_view to_string(Reference r);  // "every_pixel", "exact_line", "3d", "3d_facing", "3d_shaded"
 Reference parse_reference(std::string_view s, std::string_view source);  // throws Error naming source
 
 // What each pixel of `rect` shows: the ground (height 0) or the topmost
@@ -62,8 +65,11 @@ double light_height(const Light& light, const Params& p);
 // ground) against the true shapes: value = shaped_falloff(dx, dy, dy_scale) where the
 // pixel's surface point sees the light, 0 elsewhere. `surface` must cover
 // `clip`. With `facing`, a surface turned away from the light is dark too.
+// With `shaded`, a lit sprite pixel's value is multiplied by Lambert's
+// cosine between its solid's normal and the direction to the light, rounded.
 LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::int64_t cx, std::int64_t cy,
-                      double height, int a, int b, const Params& p, Rect clip, bool facing, double dy_scale);
+                      double height, int a, int b, const Params& p, Rect clip, bool facing, double dy_scale,
+                      bool shaded = false);
 
 // One light, exact in 2D: a pixel is lit when no pixel of its own Bresenham
 // line from the centre (both ends included) is an obstacle.

@@ -40,8 +40,8 @@ double slope(const Mask& shown, const std::vector<float>& h, int x, int y, int d
 // heights rise in steps of its cross-sections (and a height map's in whole
 // pixels), which differenced alone draw stripes; the edge between two
 // objects stays an edge.
-constexpr int smooth_radius = 2;
-constexpr double smooth_rise = 3;
+constexpr int smooth_radius = 1;
+constexpr double smooth_rise = 1.5;
 std::vector<Vec3> smoothed(const Mask& shown, const std::vector<float>& h, const std::vector<Vec3>& n) {
     const int w = shown.width, hgt = shown.height;
     std::vector<Vec3> out(n.size(), Vec3{0.0});

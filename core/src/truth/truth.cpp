@@ -49,15 +49,17 @@ std::string_view to_string(Reference r) {
         case Reference::exact_line: return "exact_line";
         case Reference::three_d: return "3d";
         case Reference::three_d_facing: return "3d_facing";
+        case Reference::three_d_shaded: return "3d_shaded";
     }
     return "3d";
 }
 
 Reference parse_reference(std::string_view s, std::string_view source) {
-    for (Reference r : {Reference::every_pixel, Reference::exact_line, Reference::three_d, Reference::three_d_facing})
+    for (Reference r : {Reference::every_pixel, Reference::exact_line, Reference::three_d, Reference::three_d_facing,
+                        Reference::three_d_shaded})
         if (s == to_string(r)) return r;
     throw Error(std::string(source) + ": reference \"" + std::string(s) +
-                "\" is not one of every_pixel, exact_line, 3d, 3d_facing");
+                "\" is not one of every_pixel, exact_line, 3d, 3d_facing, 3d_shaded");
 }
 
 double light_height(const Light& l, const Params& p) { return l.height.value_or(p.light_height); }
@@ -146,7 +148,8 @@ WorldSolids world_solids(const World& world, Rect region) {
 }
 
 LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::int64_t cx, std::int64_t cy,
-                      double height, int a, int b, const Params& p, Rect clip, bool facing, double dy_scale) {
+                      double height, int a, int b, const Params& p, Rect clip, bool facing, double dy_scale,
+                      bool shaded) {
     LightMask m = unlit_mask(cx, cy, a, b, p, clip, dy_scale);
     if (m.clip.empty()) return m;
     // The light stands `height` above the ground point shown at its centre pixel.
@@ -155,7 +158,7 @@ LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::in
     std::vector<std::size_t> candidates;
     for (int y = m.clip.y; y < m.clip.y + m.clip.h; ++y)
         for (int x = m.clip.x; x < m.clip.x + m.clip.w; ++x) {
-            const std::uint8_t v = shaped_falloff(x - cx, y - cy, a, b, p, dy_scale);  // the model's intensity, shape and fade
+            std::uint8_t v = shaped_falloff(x - cx, y - cy, a, b, p, dy_scale);  // the model's intensity, shape and fade
             if (v == 0) continue;
             std::size_t si = 0;
             std::int32_t owner = -1;
@@ -190,6 +193,10 @@ LightMask truth_light(const Surface& surface, const WorldSolids& solids, std::in
             const Vec3 to_light = light - point;
             if (facing && glm::dot(n, to_light) <= 0) continue;
             const double len = glm::length(to_light);
+            if (shaded && owner >= 0) {
+                v = std::uint8_t(std::floor(v * lambert(n, point, light) + 0.5));
+                if (v == 0) continue;
+            }
             if (len <= surface_epsilon) {
                 m.value[std::size_t(y - m.clip.y) * m.clip.w + (x - m.clip.x)] = v;
                 continue;
@@ -319,7 +326,7 @@ LightTexture reference_texture(const World& world, const Scene& scene, Rect rect
         LightMask m = ref == Reference::exact_line
                           ? exact_line_light(obstacles, cx, cy, a, b, p, rect, dy_scale)
                           : truth_light(surface, solids, cx, cy, light_height(*l, p), a, b, p, rect,
-                                        ref == Reference::three_d_facing, dy_scale);
+                                        ref == Reference::three_d_facing, dy_scale, ref == Reference::three_d_shaded);
         accumulate_light(tex, m, *l, p);
     }
     return tex;

@@ -10,6 +10,8 @@
 #include "isolux/light_trace.hpp"
 #include "isolux/tileset_generator.hpp"
 #include "isolux/truth.hpp"
+#include "isolux/sprite_shading.hpp"
+#include "isolux/map.hpp"
 #include "test_util.hpp"
 #include "frame/trace_hooks.hpp"
 
@@ -131,6 +133,58 @@ TEST(Truth, facingDarkensWhatTheLightSeesFromBehind) {
     const LightMask b = truth_light(s, none, 0, 0, 20, 30, 30, wide(), area, true, 1.0);
     EXPECT_EQ(a.value, b.value);
     for (std::uint8_t v : a.value) ASSERT_NE(v, 0);
+}
+
+// 3d_shaded: the ground as 3d gives it; on sprites never brighter than 3d,
+// dark wherever 3d_facing is (a surface turned away has a cosine of 0), and
+// elsewhere 3d's light times the cosine between the true normal and the
+// direction to the light, which the shapes' normals give (sprite_normals).
+TEST(Truth, theShadedReferenceIsThe3dLightTimesLambertsCosineOnSprites) {
+    Scene s;
+    s.width = s.height = 8;
+    const World w = make_world(test::default_tileset(), s);
+    const Rect v = camera_view(s.camera, w);
+    Light l{v.x + v.w / 2.0 + 0.5, v.y + v.h / 2.0 + 0.5};
+    l.height = 48;
+    s.lights = {l};
+    s.params.area_a = s.params.area_b = 200;
+    s.params.falloff_scale = 40;
+    const LightTexture flat = reference_texture(w, s, v, Reference::three_d),
+                       facing = reference_texture(w, s, v, Reference::three_d_facing),
+                       shaded = reference_texture(w, s, v, Reference::three_d_shaded);
+    const Surface surface = build_surface(w, v, s.params.opacity_threshold);
+    Params shapes = s.params;
+    shapes.sprite_shading = SpriteShading::shapes;
+    NormalsCache cache;
+    const ShadingMap normals = build_shading_map(w, shapes, v, cache);
+    const Vec3 light = ground_frame(std::floor(l.x) + 0.5, std::floor(l.y) + 0.5, 0) + Vec3{0, 0, 48};
+    long sprite = 0, lit = 0, dimmed = 0, near_cosine = 0, compared = 0;
+    for (int y = v.y; y < v.y + v.h; ++y)
+        for (int x = v.x; x < v.x + v.w; ++x) {
+            const int f = flat.value(x, y, 0), sh = shaded.value(x, y, 0);
+            const std::size_t i = std::size_t(y - v.y) * v.w + std::size_t(x - v.x);
+            if (surface.instance[i] < 0) {
+                ASSERT_EQ(sh, f) << "ground at " << x << "," << y;
+                continue;
+            }
+            ++sprite;
+            ASSERT_LE(sh, f) << x << "," << y;
+            if (facing.value(x, y, 0) == 0) {
+                ASSERT_EQ(sh, 0) << x << "," << y;
+            }
+            lit += f > 0;
+            dimmed += sh < f;
+            if (f < 40) continue;
+            const auto& q = normals.normal[i];
+            const double cosine = lambert(glm::normalize(Vec3{double(q[0]), double(q[1]), double(q[2])}),
+                                          ground_frame(x + 0.5, y + 0.5, normals.height[i]), light);
+            ++compared;
+            near_cosine += std::abs(sh - f * cosine) <= 0.05 * f + 1;
+        }
+    EXPECT_GT(sprite, 1000);
+    EXPECT_GT(dimmed, lit / 2) << dimmed << " of " << lit << " lit sprite pixels";
+    ASSERT_GT(compared, 1000);
+    EXPECT_GT(near_cosine, 0.95 * compared) << near_cosine << " of " << compared;
 }
 
 TEST(Truth, exactLineEqualsAlgorithm2TracedToEachPixel) {
