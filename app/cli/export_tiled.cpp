@@ -20,6 +20,7 @@ int run_export_tiled(const ExportArgs& a) {
     opt.images = a.images;
     opt.chunk = a.chunk;
     opt.allow_huge = a.allow_huge;
+    opt.normal_maps = a.normal_maps;
     World world;
     std::string region;
     if (scene.endless) {

@@ -9,6 +9,7 @@ struct ExportArgs {
     std::string scene, out, view;  // view: X,Y,W,H in an endless world's pixels
     bool images = false;
     bool allow_huge = false;
+    bool normal_maps = false;
     int chunk = 0;  // > 0: an infinite map, chunks of that many tiles a side
 };
 

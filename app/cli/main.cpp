@@ -161,6 +161,10 @@ int isolux_cli_main(int argc, char** argv) {
     export_tiled_cmd->add_option("--out", ea.out, "The map to write: DIR/NAME.tmx")->required();
     export_tiled_cmd->add_flag("--images", ea.images, "Also the light texture and the final frame as (hidden) image layers");
     export_tiled_cmd->add_flag("--allow-huge", ea.allow_huge, "Run even when the export would hold over 1 GiB at once");
+    export_tiled_cmd->add_flag("--normal-maps", ea.normal_maps,
+                               "Also each sprite's normal map and height map beside its image (NAME.normal.png, "
+                               "NAME.height.png), named in its tile's properties (normal_map): from the scene's "
+                               "sprite_shading, or the estimated solids when it is none");
     export_tiled_cmd->add_option("--view", ea.view,
                                  "An endless world's view, X,Y,W,H: the window of chunks it needs is the map written");
     export_tiled_cmd->add_option("--infinite", ea.chunk,

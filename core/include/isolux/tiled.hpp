@@ -25,6 +25,11 @@ struct TiledExport {
     // Run even when export_memory is beyond huge_render_bytes (isolux-cli's
     // --allow-huge); otherwise such an export is refused before any file.
     bool allow_huge = false;
+    // Each sprite's normal map and height map (sprite_shading.hpp) beside its
+    // image (NAME.normal.png, NAME.height.png, opengl's convention), named in
+    // its tile's properties `normal_map` and `isolux_height_map`; from the
+    // scene's sprite_shading, or the estimated solids when that is none.
+    bool normal_maps = false;
 };
 
 // The memory an export holds at its peak, estimated from the map's pixels:

@@ -10,6 +10,7 @@
 #include "isolux/frame.hpp"
 #include "isolux/tiled.hpp"
 #include "isolux/world.hpp"
+#include "isolux/sprite_shading.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -96,6 +97,56 @@ TEST(TiledExport, spriteNamesNeverBecomePathsAndSameNamesGetImagesOfTheirOwn) {
     ASSERT_EQ(a.width, b.width);
     ASSERT_EQ(a.height, b.height);
     EXPECT_TRUE(a.rgba == b.rgba);
+}
+
+// With normal_maps each sprite's normal map and height map lie beside its
+// image, named in its tile's properties, their pixels those of
+// sprite_normals; a sprite named after another's normal map ("oak.normal")
+// gets files of its own.
+TEST(TiledExport, normalMapsLieBesideTheSpritesNamedInTheirTiles) {
+    TempDir d;
+    Scene scene = small_scene();
+    World w = make_world(test::default_tileset(), scene);
+    std::set<int> used;
+    for (const SpriteInstance& in : w.placed.instances)
+        if (in.sprite >= 0) used.insert(in.sprite);
+    // Two floors the map shows, the second named after the first's normal map.
+    std::vector<int> floors;
+    for (int s : used)
+        if (w.tileset.sprites[std::size_t(s)].kind == SpriteKind::floor) floors.push_back(s);
+    ASSERT_GE(floors.size(), 2u);
+    w.tileset.sprites[std::size_t(floors[1])].name = w.tileset.sprites[std::size_t(floors[0])].name + ".normal";
+    const Tileset& ts = w.tileset;
+    const fs::path tmx = d.path / "map.tmx";
+    TiledExport opt;
+    opt.normal_maps = true;
+    export_tiled(w, scene, tmx, opt);
+    std::size_t normals = 0, heights = 0, images = 0;
+    for (const auto& f : fs::directory_iterator(d.path / "map_images")) {
+        const std::string n = f.path().filename().string();
+        const bool normal = n.size() > 11 && n.substr(n.size() - 11) == ".normal.png";
+        const bool height = n.size() > 11 && n.substr(n.size() - 11) == ".height.png";
+        normals += normal, heights += height, images += !normal && !height;
+    }
+    EXPECT_EQ(images, used.size());
+    EXPECT_EQ(normals, used.size()) << "one normal map a sprite, none written over another's image";
+    EXPECT_EQ(heights, used.size());
+    // Each tile names its maps; the oak's are sprite_normals' bytes.
+    const std::string tsx = read_text_file(d.path / "map_overlays.tsx");
+    EXPECT_NE(tsx.find("name=\"normal_map\" type=\"file\" value=\"map_images/oak.normal.png\""), std::string::npos);
+    EXPECT_NE(tsx.find("name=\"isolux_height_map\" type=\"file\" value=\"map_images/oak.height.png\""), std::string::npos);
+    const Sprite& oak = ts.sprites[std::size_t(ts.find(SpriteKind::overlay, "tree").front())];
+    ASSERT_EQ(oak.name, "oak");
+    const SpriteNormals n = sprite_normals(ts, oak, scene.params, SpriteShading::solids);
+    const Image normal = load_image(d.path / "map_images" / "oak.normal.png");
+    const std::vector<std::uint8_t> want = normal_map_rgb(n, NormalConvention::opengl);
+    ASSERT_EQ(normal.width, n.width);
+    for (std::size_t i = 0; i < want.size() / 3; ++i)
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(normal.rgba[i * 4 + std::size_t(c)], want[i * 3 + std::size_t(c)]) << i;
+    EXPECT_EQ(load_gray16(d.path / "map_images" / "oak.height.png", n.width, n.height), height_map_values(n));
+    // Read back, the level draws as it did: the maps change nothing isolux reads.
+    const TiledMap back = load_tiled(tmx);
+    EXPECT_TRUE(final_frame(w, scene).rgba == final_frame(back.world, back.scene).rgba);
 }
 
 // A first export beside files of the user's that bear the export's names

@@ -5,6 +5,7 @@
 #include <pugixml.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <functional>
 #include <cstdio>
@@ -49,9 +50,15 @@ std::string colour_text(const Light& l) {
 
 // An image-collection tileset of `sprites`, written as a TSX; returns the
 // gid of each sprite (0 when not in it).
+// A sprite's normal map and height map beside its image: "oak.png" gives
+// "oak.normal.png" and "oak.height.png".
+std::string beside(const std::string& image_file, const char* kind) {
+    return fs::path(image_file).stem().string() + "." + kind + ".png";
+}
+
 void write_tsx(const fs::path& path, const std::string& name, const Tileset& ts, const std::vector<int>& sprites,
                const std::vector<std::string>& image_files, const fs::path& image_dir, int offset_x, int offset_y,
-               const char* alignment) {
+               const char* alignment, bool normal_maps) {
     pugi::xml_document doc;
     add_declaration(doc);
     pugi::xml_node t = doc.append_child("tileset");
@@ -92,6 +99,11 @@ void write_tsx(const fs::path& path, const std::string& name, const Tileset& ts,
         if (s.opacity_threshold) add_property(props, "isolux_opacity_threshold", "float", number(*s.opacity_threshold));
         const std::string fp = footprint_to_json(s.footprint);
         if (!fp.empty()) add_property(props, "isolux_footprint", nullptr, fp);
+        if (normal_maps) {
+            const std::string& file = image_files[std::size_t(sprites[i])];
+            add_property(props, "normal_map", "file", (image_dir.filename() / beside(file, "normal")).string());
+            add_property(props, "isolux_height_map", "file", (image_dir.filename() / beside(file, "height")).string());
+        }
         pugi::xml_node img = tile.append_child("image");
         img.append_attribute("width") = s.image.width;
         img.append_attribute("height") = s.image.height;
@@ -258,7 +270,7 @@ std::string safe_file_stem(const std::string& name) {
 
 // One PNG name per sprite used, distinct even where names are the same or
 // differ only in case or in characters made safe ("oak", "oak_2", ...), so
-// no image is written twice or over another.
+// no image (nor normal or height map) is written twice or over another.
 std::vector<std::string> image_file_names(const Tileset& ts, const std::vector<int>& floors, const std::vector<int>& overlays) {
     std::vector<std::string> files(ts.sprites.size());
     std::vector<std::string> taken;  // lower-cased
@@ -269,11 +281,20 @@ std::vector<std::string> image_file_names(const Tileset& ts, const std::vector<i
     for (const std::vector<int>* list : {&floors, &overlays})
         for (int s : *list) {
             const std::string stem = safe_file_stem(ts.sprites[std::size_t(s)].name);
-            std::string file = stem + ".png";
-            for (int k = 2; std::find(taken.begin(), taken.end(), lower(file)) != taken.end(); ++k)
-                file = stem + "_" + std::to_string(k) + ".png";
-            taken.push_back(lower(file));
-            files[std::size_t(s)] = file;
+            // A name holds its normal and height maps' names too (--normal-maps):
+            // a sprite "oak.normal" never takes the file of "oak"'s normal map.
+            auto names = [](const std::string& st) {
+                return std::array<std::string, 3>{st + ".png", st + ".normal.png", st + ".height.png"};
+            };
+            auto clash = [&](const std::string& st) {
+                for (const std::string& n : names(st))
+                    if (std::find(taken.begin(), taken.end(), lower(n)) != taken.end()) return true;
+                return false;
+            };
+            std::string chosen = stem;
+            for (int k = 2; clash(chosen); ++k) chosen = stem + "_" + std::to_string(k);
+            for (const std::string& n : names(chosen)) taken.push_back(lower(n));
+            files[std::size_t(s)] = chosen + ".png";
         }
     return files;
 }
@@ -557,13 +578,34 @@ std::pair<int, int> export_tiled(const World& world, const Scene& scene, const f
 
     const ExportTilesets e = collect_tilesets(world, g, floors_as_objects, tmx);
     for (const std::vector<int>* list : {&e.floors, &e.overlays})  // an images folder that was there may hold links
-        for (int s : *list) check_own_name(images / e.image_files[std::size_t(s)]);
+        for (int s : *list) {
+            check_own_name(images / e.image_files[std::size_t(s)]);
+            if (options.normal_maps)
+                for (const char* kind : {"normal", "height"}) check_own_name(images / beside(e.image_files[std::size_t(s)], kind));
+        }
+    // The normal maps first: a sprite refused (shapes it lacks) stops the export before any file.
+    std::vector<SpriteNormals> normals(options.normal_maps ? ts.sprites.size() : 0);
+    if (options.normal_maps) {
+        const SpriteShading from =
+            scene.params.sprite_shading == SpriteShading::none ? SpriteShading::solids : scene.params.sprite_shading;
+        for (const std::vector<int>* list : {&e.floors, &e.overlays})
+            for (int s : *list) normals[std::size_t(s)] = sprite_normals(ts, ts.sprites[std::size_t(s)], scene.params, from);
+    }
     for (const std::vector<int>* list : {&e.floors, &e.overlays})
-        for (int s : *list) save_image(images / e.image_files[std::size_t(s)], ts.sprites[std::size_t(s)].image);
+        for (int s : *list) {
+            const Sprite& sp = ts.sprites[std::size_t(s)];
+            save_image(images / e.image_files[std::size_t(s)], sp.image);
+            if (!options.normal_maps) continue;
+            const SpriteNormals& n = normals[std::size_t(s)];
+            save_rgb8(images / beside(e.image_files[std::size_t(s)], "normal"), n.width, n.height,
+                      normal_map_rgb(n, NormalConvention::opengl));
+            save_gray16(images / beside(e.image_files[std::size_t(s)], "height"), n.width, n.height, height_map_values(n));
+        }
     if (!e.floors.empty())
         write_tsx(dir / files.floors_tsx, base + "_floors", ts, e.floors, e.image_files, images, e.floor_offset_x,
-                  e.floor_offset_y, nullptr);
-    write_tsx(dir / files.overlays_tsx, base + "_overlays", ts, e.overlays, e.image_files, images, 0, 0, "topleft");
+                  e.floor_offset_y, nullptr, options.normal_maps);
+    write_tsx(dir / files.overlays_tsx, base + "_overlays", ts, e.overlays, e.image_files, images, 0, 0, "topleft",
+              options.normal_maps);
 
     pugi::xml_document doc;
     pugi::xml_node m = start_map(doc, world.map, g, options.chunk > 0);
