@@ -20,6 +20,13 @@ the test suite's Xvfb), with the add-on in engines/godot/addons/isolux:
    light for a few frames in godot3-server; its last frame has the bytes of
    `isolux-cli render` with that light.
 
+6. Normal maps (export-tiled --normal-maps): every overlay Sprite gets its
+   normal map, and godot3 draws a Light2D over them; the share of sprite
+   pixels where Godot and isolux's own `solids` shading agree on whether the
+   surface faces the light is measured with the importer's green flipped and
+   not: the flipped one, the convention the importer uses, agrees more
+   (normal_light.gd).
+
 5. The importer against hostile maps (a sheet declaring two million
    columns, too many, too few and non-numeric CSV values, truncated files,
    data outside a layer, a layer of width 0, oversized maps, gids beyond 32
@@ -63,7 +70,7 @@ p = run(["cmake", "--install", build, "--prefix", prefix])
 if not p or p.returncode:
     sys.exit("godot: cmake --install failed")
 project = os.path.join(prefix, "share/isolux/godot")
-for script in ("import_level.gd", "lighting_bytes.gd", "import_refusals.gd"):
+for script in ("import_level.gd", "lighting_bytes.gd", "import_refusals.gd", "normal_light.gd"):
     shutil.copy(os.path.join(src, "tests/godot", script), project)
 # No ISOLUX_ASSETS: the library finds the default tileset beside itself.
 godot_env = {"HOME": tmp, "ISOLUX_ASSETS": ""}
@@ -206,6 +213,56 @@ else:
     print(f"demo: frame {f}, the walking light at ({lx}, {ly}): "
           f"{'the same bytes as' if same else 'NOT the bytes of'} isolux-cli")
     check(same, "the demo's frame differs from isolux-cli's")
+
+# ------------------------------------------------------------ 6: normal maps
+# One white light 40 px up over the default map, flat mode (no shadows on
+# either side, so only the shading differs), no blur.
+lit_scene = {"schema_version": 1, "seed": "isolux", "width": 12, "height": 12, "layout": "diamond",
+             "preset": {"mode": "flat", "blur_radius": 0, "area_a": 300, "area_b": 300, "falloff_scale": 60,
+                        "ambient_clarity": 0.3, "light_height": 40},
+             "lights": [{"x": 700, "y": 420, "color": "ffffff", "intensity": 0.5}],
+             "camera": {"x": 0, "y": 0, "width": 0, "height": 0}}
+normal_dir = os.path.join(tmp, "normals")
+os.makedirs(normal_dir)
+lit_path = os.path.join(normal_dir, "scene.json")
+json.dump(lit_scene, open(lit_path, "w"))
+NVIEW = "450,270,500,300"
+p = run([cli, "export-tiled", "--scene", lit_path, "--out", os.path.join(normal_dir, "level.tmx"), "--normal-maps"])
+shaded = cli_png(["--scene", lit_path, "--layer", "light", "--view", NVIEW, "--sprite-shading", "solids"], "normals.shaded")
+flat_light = cli_png(["--scene", lit_path, "--layer", "light", "--view", NVIEW], "normals.flat")
+agreement = {}
+for flip in ("1", "0"):
+    prefix = os.path.join(normal_dir, f"flip{flip}_")
+    q = godot("godot3", "normal_light.gd", {"ISOLUX_TMX": os.path.join(normal_dir, "level.tmx"), "ISOLUX_VIEW": NVIEW,
+                                            "ISOLUX_OUT_PREFIX": prefix, "ISOLUX_FLIP": flip})
+    if not p or p.returncode or not q or q.returncode or not shaded or not flat_light:
+        check(False, "normal maps: the export or godot3's drawing failed (needs a display: the suite runs under Xvfb)")
+        break
+    said = [l for l in q.stdout.splitlines() if l.startswith("overlays with a normal map")]
+    counts = said[0].split(":")[1].split(" of ") if said else ["0", "1"]
+    check(int(counts[0]) == int(counts[1]) > 100, f"normal maps: {said}")
+    pics = {k: png_rgba(prefix + k + ".png")[2] for k in ("mask", "dark", "normals", "flat")}
+    w, h = 500, 300
+    agree = total = 0
+    for i in range(0, w * h * 4, 4):
+        if not any(pics["mask"][i:i + 3]):
+            continue  # no overlay drawn here (the background is cleared to black)
+        lum = {k: sum(pics[k][i:i + 3]) for k in ("dark", "normals", "flat")}
+        if lum["flat"] - lum["dark"] < 30 or max(pics["flat"][i:i + 3]) >= 250 or max(pics["normals"][i:i + 3]) >= 250:
+            continue  # too little light to tell, or clipped
+        if flat_light[2][i] < 20:
+            continue
+        faces_isolux = shaded[2][i] > 0
+        faces_godot = (lum["normals"] - lum["dark"]) > 0.05 * (lum["flat"] - lum["dark"])
+        agree += faces_isolux == faces_godot
+        total += 1
+    agreement[flip] = agree / max(total, 1)
+    print(f"normal maps, green {'flipped' if flip == '1' else 'as written'}: Godot and isolux agree on which side "
+          f"faces the light on {agreement[flip]:.1%} of {total} sprite pixels")
+if len(agreement) == 2:
+    check(total > 10000, f"normal maps: only {total} sprite pixels measured")
+    check(agreement["1"] > agreement["0"] + 0.05,
+          f"normal maps: the flipped green agrees {agreement['1']:.1%}, as written {agreement['0']:.1%}")
 
 # ------------------------------------------------------------ 5: hostile maps
 # The importer keeps isolux's reader's limits and messages; none crashes Godot.

@@ -16,10 +16,17 @@
 # height gids, a sheet cut only where it has pixels, and a file that is
 # malformed or ends early refused; every refusal returns null with `error`
 # naming the file and the element.
+#
+# A tile whose properties name a `normal_map` (isolux-cli export-tiled
+# --normal-maps: OpenGL's convention, green up) gives its overlay Sprites
+# that normal map, its green flipped when `flip_normal_green` (Godot 3.2's 2D
+# lights read green as down the screen: tests/godot/run.py checks it in
+# Godot). Floors keep none: isolux does not shade the ground.
 tool
 extends Reference
 
 var error := ""
+var flip_normal_green := true
 
 var _map := {}            # the map element's attributes
 var _props := {}          # the map's properties
@@ -281,6 +288,7 @@ func _read_tileset(map_path: String, attrs: Dictionary, map_parser: XMLParser) -
 	if _nil(cut):
 		return false
 	var tile_id = -1
+	var normals := {}  # tile id -> its normal map's path
 	var sheet: Texture = null
 	var depth = 0
 	while p.read() == OK:
@@ -303,6 +311,9 @@ func _read_tileset(map_path: String, attrs: Dictionary, map_parser: XMLParser) -
 					tile_id = _int_attr(where, name, a, "id", 0, 1 << 28)
 					if _nil(tile_id):
 						return false
+				"property":
+					if tile_id >= 0 and a.get("name", "") == "normal_map" and a.get("value", "") != "":
+						normals[tile_id] = base_dir.plus_file(a["value"])
 				"image":
 					var tex = _texture(base_dir.plus_file(a.get("source", "")))
 					if tex == null:
@@ -334,6 +345,13 @@ func _read_tileset(map_path: String, attrs: Dictionary, map_parser: XMLParser) -
 				break
 			_tiles[first + i] = {"texture": sheet, "region": r}
 			i += 1
+	for id in normals.keys():
+		if not _tiles.has(first + id):
+			continue
+		var n = _normal_texture(normals[id])
+		if n == null:
+			return _fail(where, "normal_map \"%s\" cannot be read" % normals[id])
+		_tiles[first + id]["normal"] = n
 	for gid in _tiles.keys():
 		if gid >= first and not _tiles[gid].has("offset"):
 			_tiles[gid]["offset"] = offset
@@ -362,6 +380,25 @@ func _texture(path: String) -> ImageTexture:
 	var img = Image.new()
 	if img.load(path) != OK:
 		return null
+	var tex = ImageTexture.new()
+	tex.create_from_image(img, 0)
+	return tex
+
+
+# A normal map in the convention Godot 3.2's 2D lights read: green flipped
+# from the file's OpenGL convention when flip_normal_green.
+func _normal_texture(path: String) -> ImageTexture:
+	var img = Image.new()
+	if img.load(path) != OK:
+		return null
+	if flip_normal_green:
+		img.lock()
+		for y in range(img.get_height()):
+			for x in range(img.get_width()):
+				var c = img.get_pixel(x, y)
+				c.g = 1.0 - c.g
+				img.set_pixel(x, y, c)
+		img.unlock()
 	var tex = ImageTexture.new()
 	tex.create_from_image(img, 0)
 	return tex
@@ -466,6 +503,8 @@ func _build_sprite(o: Dictionary):
 	var t: Dictionary = _tiles[gid]
 	var s = Sprite.new()
 	s.texture = t["texture"]
+	if t.has("normal"):
+		s.normal_map = t["normal"]
 	s.centered = false
 	s.region_enabled = true
 	s.region_rect = t["region"]
