@@ -18,12 +18,13 @@ cd build/asan
 # (label "hosted") run in scripts/test.sh only. Python's do run here, with the
 # sanitizer's runtime preloaded (tests/capi/run.py).
 # The tests labelled heavy (judges and timing loops, tests/CMakeLists.txt)
-# and the accuracy scenes of the solids (the same passes as the smaller
-# SolidsPass tests, over whole maps) run in scripts/test.sh only: under the
-# sanitizers they would take a third of CI for no path of their own.
+# and the accuracy scenes of the solids and of the sprite shading (the same
+# passes as the smaller SolidsPass and SpriteShading tests, over whole maps)
+# run in scripts/test.sh only: under the sanitizers they would take a third
+# of CI for no path of their own.
 # So do the front ends' end-to-end scripts (app, cli): their code runs under
 # the sanitizers through the editor's and the GL unit tests, the bad-input
 # corpus (isolux-cli on every hostile input) and fuzz_cli.
-left_out='^(app|cli)$|SolidsPass\.solids(HalveThePapersErrorOnTheAccuracyScenes|MislightAtMostHalfWhatFootprintsDoAgainst3d|NeverWorseThanFootprintsOnTheTownScene|NeverWorseThanFootprintsOnDrawnTownSeeds)'
+left_out='^(app|cli)$|SolidsPass\.solids(HalveThePapersErrorOnTheAccuracyScenes|MislightAtMostHalfWhatFootprintsDoAgainst3d|NeverWorseThanFootprintsOnTheTownScene|NeverWorseThanFootprintsOnDrawnTownSeeds)|SpriteShading\.solidsShadingHalvesTheSpritesErrorAgainstTheShadedTruth'
 echo "sanitize: leaving out the tests labelled hosted or heavy, the front ends' scripts and the accuracy scenes: $(ctest -N -L 'hosted|heavy' | sed -n 's/^ *Test *#[0-9]*: //p' | tr '\n' ' ')$(ctest -N -R "$left_out" | sed -n 's/^ *Test *#[0-9]*: //p' | tr '\n' ' ')"
 xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure --timeout 1200 -j "$(nproc)" -LE 'hosted|heavy' -E "$left_out"

@@ -20,7 +20,7 @@ PanelLayout panel_layout(int w, int h, int top, int bottom) {
     };
     // Parameters takes what is left, at least about half the column: its
     // every control within one scroll at 1280x720 (tests/app/gui/app_test.sh).
-    static const Slot left[] = {{"Map", 0.22, 130, 210}, {"Parameters", 0, 0, 0}, {"Overlays", 0.25, 140, 250}};
+    static const Slot left[] = {{"Map", 0.20, 130, 210}, {"Parameters", 0, 0, 0}, {"Overlays", 0.25, 140, 250}};
     static const Slot right[] = {{"Tools", 0.42, 200, 340}, {"Lights", 0.30, 150, 300}, {"Stats", 0, 0, 0}};
     auto stack = [&](const Slot (&slots)[3], int x) {
         int fixed = 0;

@@ -264,3 +264,57 @@ TEST(SpriteShading, aFrameShadesItsSpritePixelsAloneAndStrengthZeroIsTheFlatLigh
         EXPECT_EQ(traced(p, &st).first.texels, traced(p).first.texels) << int(from);
     }
 }
+
+// The accuracy page's targets where they hold (docs/accuracy.md): with
+// occluders solids, at light heights 16 and 32 px, solids shading leaves at
+// most half the sprite pixels' RMSE against 3d_shaded that no shading does,
+// and at most three quarters of what the brightness gradient's normals
+// leave; on the default and forest scenes (the page's 8 frames) and a drawn
+// seed (2 frames).
+TEST(SpriteShading, solidsShadingHalvesTheSpritesErrorAgainstTheShadedTruth) {
+    struct Case {
+        std::string name;
+        Scene scene;
+        int frames;
+    };
+    std::vector<Case> cases;
+    for (const char* name : {"default", "forest"})
+        cases.push_back({name, load_scene(std::string(ISOLUX_ASSETS_DIR) + "/scenes/" + name + ".json"), 8});
+    Scene drawn;
+    drawn.seed = "drawn-shading-7";
+    drawn.width = drawn.height = 10;
+    drawn.params.area_a = drawn.params.area_b = 160;
+    drawn.params.falloff_scale = 8;
+    {
+        const World w = make_world(test::default_tileset(), drawn);
+        const Rect b = w.placed.bounds;
+        Pcg32 rng(7);
+        for (int i = 0; i < 2; ++i)
+            drawn.lights.push_back(Light{double(b.x + 150 + int(rng.below(std::uint32_t(b.w - 300)))) + 0.5,
+                                         double(b.y + 100 + int(rng.below(std::uint32_t(b.h - 200)))) + 0.5});
+        drawn.camera = {double(b.x), double(b.y), b.w, b.h};
+    }
+    cases.push_back({drawn.seed, drawn, 2});
+    for (Case& c : cases) {
+        c.scene.params.occluders = Occluders::solids;
+        const World w = make_world(test::default_tileset(), c.scene);
+        SweepOptions o;
+        o.frames = c.frames;
+        o.repeats = 1;
+        o.references = {Reference::three_d_shaded};
+        const auto points = run_sweep(w, c.scene, {{"sprite_shading", {"none", "solids", "luminance"}}, {"light_height", {"16", "32"}}}, o);
+        for (const char* h : {"16", "32"}) {
+            auto rmse = [&](const char* shading) {
+                for (const SweepPoint& pt : points)
+                    if (pt.values[0] == shading && pt.values[1] == h) return pt.sprite.rmse;
+                ADD_FAILURE() << "no point " << shading << " " << h;
+                return 0.0;
+            };
+            const double none = rmse("none"), solids = rmse("solids"), luminance = rmse("luminance");
+            std::printf("%s at %s px: sprites' RMSE against 3d_shaded: none %.2f, solids %.2f, luminance %.2f\n",
+                        c.name.c_str(), h, none, solids, luminance);
+            EXPECT_LE(solids, none / 2) << c.name << " at " << h;
+            EXPECT_LE(solids, 0.75 * luminance) << c.name << " at " << h;
+        }
+    }
+}
