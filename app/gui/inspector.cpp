@@ -11,8 +11,10 @@
 #include "gui/app.hpp"
 #include "common/model_colours.hpp"
 #include "gui/inspector.hpp"
+#include "gui/widgets.hpp"
 #include "isolux/footprint.hpp"
 #include "isolux/solid_estimate.hpp"
+#include "isolux/sprite_shading.hpp"
 
 namespace isolux::app {
 
@@ -40,10 +42,35 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
     auto px = [&](int x, int y, ImU32 c) {
         dl->AddRectFilled(ImVec2(o.x + x * z, o.y + y * z), ImVec2(o.x + (x + 1) * z, o.y + (y + 1) * z), c);
     };
+    // With "normal map": the sprite's normals as a normal map draws them,
+    // made once for the sprite, its source and the parameters.
+    static struct {
+        int index = -1;
+        Params p;
+        SpriteShading from = SpriteShading::none;
+        std::uint64_t built = 0;
+        std::vector<std::uint8_t> rgb;
+    } normals;
+    const SpriteShading from = p.sprite_shading == SpriteShading::none ? SpriteShading::solids : p.sprite_shading;
+    if (ui.inspector.normals && (normals.index != index || !(normals.p == p) || normals.from != from ||
+                                 normals.built != app.editor.world.built_revision)) {
+        normals.rgb.clear();
+        try {
+            normals.rgb = normal_map_rgb(sprite_normals(app.editor.world.tileset, s, p, from), NormalConvention::opengl);
+        } catch (const Error&) {  // shapes on a sprite without them: its colours, and the reason below
+        }
+        normals.index = index, normals.p = p, normals.from = from, normals.built = app.editor.world.built_revision;
+    }
+    const bool show_normals = ui.inspector.normals && !normals.rgb.empty();
     for (int y = 0; y < s.image.height; ++y)
         for (int x = 0; x < s.image.width; ++x) {
             const std::uint8_t* c = s.image.at(x, y);
             if (c[3] == 0) continue;
+            if (show_normals) {
+                const std::uint8_t* n = &normals.rgb[(std::size_t(y) * s.image.width + x) * 3];
+                px(x, y, IM_COL32(n[0], n[1], n[2], 255));
+                continue;
+            }
             const bool read = r.estimate.get(x, y);
             // What the estimate left out (a baked ground or shadow) is dimmed.
             const int k = read ? 255 : 90;
@@ -87,6 +114,8 @@ void draw_sprite(App& app, int index, const Sprite& s, FootprintSpec& spec, bool
         changed = true;
     }
     ImGui::EndChild();
+    if (ui.inspector.normals && !show_normals)
+        ImGui::TextWrapped("no normal map: sprite_shading shapes needs a shape or a height map on this sprite");
     double cx = 0, cy = 0;
     Rect box;
     if (mask_centre(obstacle, cx, cy, box))
@@ -204,6 +233,12 @@ void inspector_panel(App& app) {
             spec.shadow_alpha = v[0], spec.shadow_luminance = v[1], spec.ground_tolerance = v[2];
         }
         ImGui::Checkbox("Δy lines", &ui.inspector.lines);
+        ImGui::SameLine();
+        ImGui::Checkbox("normal map", &ui.inspector.normals);
+        help("The sprite's normal map (red right, green up, blue toward you) in place of its colours, from the "
+             "sprite shading chosen in Parameters, or the estimated solids while it is none; the solid's outline "
+             "over it.");
+        record_control(app, "Inspector", "normal_map");
         ImGui::SameLine();
         ImGui::SetNextItemWidth(100);
         ImGui::SliderFloat("zoom", &ui.inspector.zoom, 1, 6, "%.0f");

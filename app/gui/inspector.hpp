@@ -11,6 +11,7 @@ struct InspectorState {
     int sprite = -1;
     float zoom = 2;
     bool lines = true;  // draw the Δy lines
+    bool normals = false;  // the sprite's normal map in place of its colours (sprite shading's source)
 };
 
 void inspector_panel(App& app);

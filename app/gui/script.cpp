@@ -378,6 +378,7 @@ void run_script_step(App& app) {
         else if (n == "delta_y_bands") o.delta_y_bands = on;
         else if (n == "light_areas") o.light_areas = on;
         else if (n == "normals") o.normals = on;
+        else if (n == "inspector_normals") app.ui.inspector.normals = on;
         else if (n == "raw_light") o.raw_light = on;
         else if (n == "split_view") o.split_view = on;
         else if (n == "split_with_3d") o.split_with_3d = on;

@@ -8,7 +8,8 @@
 //   param NAME VALUE (a slider moved: one undo step) | save-preset PATH |
 //   save-scene PATH | load-scene PATH | load-preset PATH | quit |
 //   overlay NAME on|off (obstacles, opacity_maps, delta_y_bands, light_areas, normals,
-//   raw_light, split_view, split_with_3d, truth_light, truth_difference, heatmap) | sweep NAME=V1,V2... [...] (the Accuracy
+//   raw_light, split_view, split_with_3d, truth_light, truth_difference, heatmap,
+//   inspector_normals: the tileset inspector's normal map) | sweep NAME=V1,V2... [...] (the Accuracy
 //   panel's sweep) | wait-sweep | apply-point K | save-sweep PATH (its CSV) |
 //   tool NAME (lights, floor, rectangle, fill, place, remove, eraser, eyedropper) |
 //   brush floor|overlay SPRITE | brush tag TAG | view X Y ZOOM (the camera) |

@@ -289,7 +289,8 @@ std::string builtin_preset_summary(std::string_view name) {
     if (name == "quality") return "quality: a ray to every pixel, traced every frame";
     if (name == "game")
         return "game: round lights on the ground fading smoothly to their border, shadows from solids estimated from the "
-               "sprites, sprites keep their colour, bright pools rolled off instead of burnt to white, soft blur";
+               "sprites, sprites shaded by the way those solids face each light and keeping their colour, bright pools "
+               "rolled off instead of burnt to white, soft blur";
     return "";
 }
 
@@ -323,6 +324,10 @@ Params builtin_preset(std::string_view name) {
         // Bright pools roll off toward their colour instead of clipping each
         // channel to white (composite.hpp's tone_knee).
         p.tone_map = ToneMap::reinhard_knee;
+        // Sprites shaded by the way the estimated solids face each light:
+        // of none, solids and luminance the nearest to the shaded 3D truth
+        // on every scene of docs/accuracy.md (shapes needs the manifest's).
+        p.sprite_shading = SpriteShading::solids;
         return p;
     }
     if (name == "quality") {

@@ -301,6 +301,11 @@ wait 2
 footprint oak {"run":[50,100,20],"object":{"foot":[64,108],"height":30}}
 wait 3
 window-shot $tmp/i_shot.png
+overlay inspector_normals on
+wait 3
+window-shot $tmp/i_normals.png
+overlay inspector_normals off
+wait 1
 inspect rock
 wait 2
 footprint rock {"object":{"model":"prism"}}
@@ -317,6 +322,31 @@ timeout 120 "$app" --scene "$tmp/ts_scene.json" --script "$tmp/inspect.script" >
 # The inspector draws the oak's estimated solid as a yellow outline (255, 220, 0): dozens of pixels.
 yellow=$(oiiotool "$tmp/i_shot.png" --colorcount "1,0.8627,0,1" 2>/dev/null | awk '{print $1}')
 [ "${yellow:-0}" -gt 50 ] && ok || bad "the inspector shows no estimated solid (yellow pixels: ${yellow:-none})"
+# With "normal map" the inspector draws the oak's normal map (as isolux-cli normals writes it, with the
+# corrected solid's foot and height): hundreds of the window's pixels take its colours, few before.
+"$cli" normals --tileset "$tmp/ts/tileset.json" --out "$tmp/ts_normals" >/dev/null 2>&1
+python3 - "$tmp/ts_normals/oak.normal.png" "$tmp/i_normals.png" "$tmp/i_shot.png" >"$tmp/check" 2>&1 <<'PY' && ok || { bad "the inspector's normal map"; cat "$tmp/check"; }
+import subprocess, sys
+def colours(path):  # the picture's pixels, each its 3 bytes (binary PPM: "P6 W H 255" then the bytes)
+    subprocess.run(["oiiotool", path, "--ch", "R,G,B", "-d", "uint8", "-o", path + ".ppm"], check=True)
+    data = open(path + ".ppm", "rb").read()
+    fields, at = [], 0
+    while len(fields) < 4:
+        while data[at:at + 1].isspace():
+            at += 1
+        start = at
+        while not data[at:at + 1].isspace():
+            at += 1
+        fields.append(data[start:at])
+    w, h = int(fields[1]), int(fields[2])
+    px = data[at + 1:at + 1 + w * h * 3]
+    return [px[i:i + 3] for i in range(0, len(px), 3)]
+oak = {c for c in colours(sys.argv[1]) if c != b"\x80\x80\xff"}
+now = sum(1 for c in colours(sys.argv[2]) if c in oak)
+before = sum(1 for c in colours(sys.argv[3]) if c in oak)
+print("pixels in the oak normal map's colours:", now, "with it on,", before, "before")
+assert now > 2000 and now > 5 * before, (now, before)
+PY
 # The rock's model, picked as a prism: saved in its footprint's object, read back by check-tileset, and
 # outlined in the prism's magenta (255, 80, 255) where the oak's revolution showed none of it.
 [ "$(json "$tmp/ts/tileset.json" "[s['footprint'] for s in d['sprites'] if s['name'] == 'rock']")" = "[{'object': {'model': 'prism'}}]" ] && ok || bad "the picked model was not saved: $(head -c 300 "$tmp/ts/tileset.json")"
