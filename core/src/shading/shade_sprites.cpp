@@ -52,24 +52,27 @@ void shade_sprites(LightMask& mask, const ShadingMap& map, double light_height, 
     if (p.sprite_shading == SpriteShading::none || p.shading_strength <= 0 || map.empty()) return;
     const Rect r = intersect(mask.clip, map.rect);
     // Single precision, one square root a pixel: lambert() written out for
-    // the map's stored normals (q / 127, unit within a rounding), the point
-    // ground_frame(x + 0.5, y + 0.5, h) and the light L. Floats round the
+    // the map's stored normals (q / 127, unit within a rounding). The
+    // direction to the light, from the point ground_frame(x + 0.5, y + 0.5,
+    // h) to L = ground_frame(cx + 0.5, cy + 0.5, 0) + (0, 0, H), is by
+    // ground_frame's linearity (-(oy + h + ox / 2), -(oy + h - ox / 2), H - h)
+    // with (ox, oy) = (x - cx, y - cy): small numbers however far out the
+    // light stands (an endless world's pixels pass 2^36). Floats round the
     // same on every machine (no contraction: core's -ffp-contract=off).
     const float s = float(p.shading_strength), flat = 1 - s;
-    const Vec3 light = ground_frame(double(mask.cx) + 0.5, double(mask.cy) + 0.5, 0);
-    const float lx = float(light.x), ly = float(light.y), lz = float(light_height);
+    const float lz = float(light_height);
     for (int y = r.y; y < r.y + r.h; ++y) {
         std::uint8_t* v = &mask.value[std::size_t(y - mask.clip.y) * mask.clip.w + std::size_t(r.x - mask.clip.x)];
         const std::size_t row = std::size_t(y - map.rect.y) * map.rect.w + std::size_t(r.x - map.rect.x);
         const std::array<std::int8_t, 3>* q = &map.normal[row];
         const float* h = &map.height[row];
-        const float row_y = float(y) + 0.5f;
+        const float oy = float(std::int64_t(y) - mask.cy);
         for (int x = 0; x < r.w; ++x) {
             if (v[x] == 0) continue;
             const int qx = q[x][0], qy = q[x][1], qz = q[x][2];
             if ((qx | qy | qz) == 0) continue;  // the ground: not shaded
-            const float half_x = (float(r.x + x) + 0.5f) * 0.5f, up = row_y + h[x];
-            const float dx = lx - (up + half_x), dy = ly - (up - half_x), dz = lz - h[x];
+            const float half_ox = float(std::int64_t(r.x + x) - mask.cx) * 0.5f, up = oy + h[x];
+            const float dx = -(up + half_ox), dy = -(up - half_ox), dz = lz - h[x];
             const float len2 = dx * dx + dy * dy + dz * dz;
             const float along = float(qx) * dx + float(qy) * dy + float(qz) * dz;
             const float cosine = len2 > 1e-12f ? std::max(0.0f, along / (127.0f * std::sqrt(len2))) : 1.0f;

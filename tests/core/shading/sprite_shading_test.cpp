@@ -129,6 +129,19 @@ TEST(SpriteShading, aLitPixelTakesLambertsCosineBlendedByTheStrength) {
         EXPECT_NEAR(facing.value[0], 200 * ((1 - s) + s * cos_x), 1.01) << s;
         EXPECT_NEAR(away.value[0], 200 * (1 - s), 0.51) << s;
     }
+    // The same pixel and light 2^30 pixels out (the frame's rectangles are
+    // ints, an endless world's windows far out): the same byte.
+    p.shading_strength = 1;
+    for (const Vec3 n : {Vec3{1, 0, 0}, glm::normalize(Vec3{1, 1, 1}), glm::normalize(Vec3{0.3, -0.5, 0.8})}) {
+        LightMask near = mask_at(cx, cy, 200), far = mask_at(cx + (1 << 30), cy + (1 << 30), 200);
+        ShadingMap far_map = one_pixel(n, 10);
+        far_map.rect = {1 << 30, 1 << 30, 1, 1};
+        far.clip = far_map.rect;
+        shade_sprites(near, one_pixel(n, 10), 10, p);
+        shade_sprites(far, far_map, 10, p);
+        EXPECT_EQ(far.value[0], near.value[0]);
+        EXPECT_GT(near.value[0], 0);
+    }
     // The ground is never shaded; nor is anything with sprite_shading none.
     p.shading_strength = 1;
     ShadingMap ground = one_pixel({0, 0, 0}, 0);
@@ -226,8 +239,10 @@ TEST(SpriteShading, aFrameShadesItsSpritePixelsAloneAndStrengthZeroIsTheFlatLigh
         for (int y = t_flat.rect.y; y < t_flat.rect.y + t_flat.rect.h; ++y)
             for (int x = t_flat.rect.x; x < t_flat.rect.x + t_flat.rect.w; ++x) {
                 const int before = t_flat.value(x, y, 0), after = t_full.value(x, y, 0);
-                const std::size_t i = std::size_t(y - map.rect.y) * map.rect.w + std::size_t(x - map.rect.x);
-                const auto q = map.normal[i];
+                // Beyond the map (the texture's margin past its edge) nothing is shaded.
+                const bool inside = map.rect.contains(x, y);
+                const std::size_t i = inside ? std::size_t(y - map.rect.y) * map.rect.w + std::size_t(x - map.rect.x) : 0;
+                const std::array<std::int8_t, 3> q = inside ? map.normal[i] : std::array<std::int8_t, 3>{0, 0, 0};
                 if (q[0] == 0 && q[1] == 0 && q[2] == 0) {
                     ASSERT_EQ(after, before) << "a ground pixel at " << x << "," << y;
                     continue;
