@@ -4,7 +4,8 @@
 # into $ISOLUX_OUT_PREFIX + "<name>.png": `mask` (the overlays alone, the
 # background transparent), `dark` (no light), `normals` (the lights over the
 # sprites' normal maps) and `flat` (the same lights, the normal maps taken
-# off). $ISOLUX_FLIP "0" imports the normal maps without flipping green.
+# off), the normal maps imported in the frame $ISOLUX_NORMALS names (the
+# importer's normal_frame: ground, screen or as_written).
 extends SceneTree
 
 var frames := 0
@@ -16,7 +17,7 @@ const STAGES := ["mask", "dark", "normals", "flat"]
 
 func _init():
 	var importer = load("res://addons/isolux/tmx_importer.gd").new()
-	importer.flip_normal_green = OS.get_environment("ISOLUX_FLIP") != "0"
+	importer.normal_frame = OS.get_environment("ISOLUX_NORMALS")
 	level = importer.import_tmx(OS.get_environment("ISOLUX_TMX"))
 	if level == null:
 		printerr("import: ", importer.error)

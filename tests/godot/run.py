@@ -23,14 +23,18 @@ the test suite's Xvfb), with the add-on in engines/godot/addons/isolux:
 6. Normal maps (export-tiled --normal-maps): every overlay Sprite gets its
    normal map, and godot3 draws a Light2D over them; the share of sprite
    pixels where Godot and isolux's own `solids` shading agree on whether the
-   surface faces the light is measured with the importer's green flipped and
-   not: the flipped one, the convention the importer uses, agrees more
-   (normal_light.gd).
+   surface faces the light is at least 90 % with the importer's maps (its
+   normal_frame "ground") and below 90 % without normal maps; the maps as a
+   light over the screen reads them ("screen", green flipped) are measured
+   beside them (normal_light.gd).
 
 5. The importer against hostile maps (a sheet declaring two million
    columns, too many, too few and non-numeric CSV values, truncated files,
    data outside a layer, a layer of width 0, oversized maps, gids beyond 32
-   bits, lights of area 0 and of areas that are not numbers): each is
+   bits, lights of area 0 and of areas that are not numbers, height maps
+   that are missing, 8-bit, of another size than their sprite, cut short,
+   short of rows or with an unknown row filter; one that uses all five of
+   PNG's row filters imports): each is
    refused with isolux's reader's message, or imported, and Godot neither
    crashes nor prints a script error (import_refusals.gd).
 
@@ -231,10 +235,11 @@ p = run([cli, "export-tiled", "--scene", lit_path, "--out", os.path.join(normal_
 shaded = cli_png(["--scene", lit_path, "--layer", "light", "--view", NVIEW, "--sprite-shading", "solids"], "normals.shaded")
 flat_light = cli_png(["--scene", lit_path, "--layer", "light", "--view", NVIEW], "normals.flat")
 agreement = {}
-for flip in ("1", "0"):
-    prefix = os.path.join(normal_dir, f"flip{flip}_")
+FRAMES = {"ground": "re-expressed for a light over the ground", "screen": "green flipped"}
+for frame in FRAMES:
+    prefix = os.path.join(normal_dir, f"{frame}_")
     q = godot("godot3", "normal_light.gd", {"ISOLUX_TMX": os.path.join(normal_dir, "level.tmx"), "ISOLUX_VIEW": NVIEW,
-                                            "ISOLUX_OUT_PREFIX": prefix, "ISOLUX_FLIP": flip})
+                                            "ISOLUX_OUT_PREFIX": prefix, "ISOLUX_NORMALS": frame})
     if not p or p.returncode or not q or q.returncode or not shaded or not flat_light:
         check(False, "normal maps: the export or godot3's drawing failed (needs a display: the suite runs under Xvfb)")
         break
@@ -243,7 +248,8 @@ for flip in ("1", "0"):
     check(int(counts[0]) == int(counts[1]) > 100, f"normal maps: {said}")
     pics = {k: png_rgba(prefix + k + ".png")[2] for k in ("mask", "dark", "normals", "flat")}
     w, h = 500, 300
-    agree = total = 0
+    agree = {"normals": 0, "flat": 0}
+    total = 0
     for i in range(0, w * h * 4, 4):
         if not any(pics["mask"][i:i + 3]):
             continue  # no overlay drawn here (the background is cleared to black)
@@ -253,16 +259,17 @@ for flip in ("1", "0"):
         if flat_light[2][i] < 20:
             continue
         faces_isolux = shaded[2][i] > 0
-        faces_godot = (lum["normals"] - lum["dark"]) > 0.05 * (lum["flat"] - lum["dark"])
-        agree += faces_isolux == faces_godot
+        for k in agree:  # the side Godot lights: more than 5 % of its flat light
+            agree[k] += faces_isolux == ((lum[k] - lum["dark"]) > 0.05 * (lum["flat"] - lum["dark"]))
         total += 1
-    agreement[flip] = agree / max(total, 1)
-    print(f"normal maps, green {'flipped' if flip == '1' else 'as written'}: Godot and isolux agree on which side "
-          f"faces the light on {agreement[flip]:.1%} of {total} sprite pixels")
-if len(agreement) == 2:
+    agreement[frame] = agree["normals"] / max(total, 1)
+    agreement["none"] = agree["flat"] / max(total, 1)
+    print(f"normal maps {FRAMES[frame]}: Godot and isolux agree on which side faces the light on "
+          f"{agreement[frame]:.1%} of {total} sprite pixels (without normal maps: {agreement['none']:.1%})")
+if len(agreement) == 3:
     check(total > 10000, f"normal maps: only {total} sprite pixels measured")
-    check(agreement["1"] > agreement["0"] + 0.05,
-          f"normal maps: the flipped green agrees {agreement['1']:.1%}, as written {agreement['0']:.1%}")
+    check(agreement["ground"] >= 0.90 > agreement["none"],
+          f"normal maps: the importer's maps agree on {agreement['ground']:.1%}, none on {agreement['none']:.1%}")
 
 # ------------------------------------------------------------ 5: hostile maps
 # The importer keeps isolux's reader's limits and messages; none crashes Godot.
@@ -286,6 +293,26 @@ def lights(*props):
                    for i, a in enumerate(props))
     return f'<objectgroup name="lights">{objs}</objectgroup>'
 good = MAP.format(w=2, h=2) + GOOD_SHEET + layer("1,2,3,4")
+# A tile with a normal map and a height map (16-bit grey, decoded by the
+# importer itself): each row's filter byte cycles through PNG's five, or is
+# `filt` for every row; `rows` of the `h` are written.
+def png16(w, h, filt=None, rows=None):
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+    raw = b"".join(bytes([y % 5 if filt is None else filt]) + bytes((x * 7 + y) % 256 for x in range(w * 2))
+                   for y in range(h if rows is None else rows))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 16, 0, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+for name, data in {"h_filters.png": png16(64, 64), "h_small.png": png16(32, 32), "h_cut.png": png16(64, 64)[:100],
+                   "h_filter7.png": png16(64, 64, filt=7), "h_rows.png": png16(64, 64, rows=10)}.items():
+    open(os.path.join(hostile, name), "wb").write(data)
+def relief(height_map):
+    return (MAP.format(w=2, h=2) + GOOD_SHEET + '<tileset firstgid="5" name="o" tilewidth="64" tileheight="64" tilecount="1" '
+            'columns="0"><tile id="0"><properties><property name="normal_map" type="file" value="sheet.png"/>'
+            f'<property name="isolux_height_map" type="file" value="{height_map}"/></properties>'
+            '<image source="sheet.png" width="64" height="64"/></tile></tileset>' + layer("1,2,3,4") +
+            '<objectgroup name="o"><object id="1" gid="5" x="10" y="10" width="64" height="64"/></objectgroup>' +
+            lights("0", "64") + "</map>")
 cases = {
     "two_million_columns": (MAP.format(w=2, h=2) + SHEET.format(tw=32, cols=2000000) + layer("1,1,1,1") + "</map>", 'columns="2000000"'),
     "tile_width_zero": (MAP.format(w=2, h=2) + SHEET.format(tw=0, cols=2) + layer("1,1,1,1") + "</map>", 'tilewidth="0"'),
@@ -304,6 +331,13 @@ cases = {
     "object_gid_beyond_32_bits": (good + '<objectgroup name="o"><object id="1" gid="4294967296" x="1" y="1"/></objectgroup></map>', 'gid="4294967296"'),
     "object_far": (good + '<objectgroup name="o"><object id="1" gid="1" x="1e12" y="1"/></objectgroup></map>', 'x="1e12"'),
     "light_area_zero": (good + lights("0", "64") + "</map>", ""),
+    "height_map_every_filter": (relief("h_filters.png"), ""),
+    "height_map_8_bit": (relief("sheet.png"), 'sheet.png" is not 16-bit grey'),
+    "height_map_missing": (relief("none.png"), 'none.png" cannot be read'),
+    "height_map_other_size": (relief("h_small.png"), "is 32x32, its sprite 64x64"),
+    "height_map_cut": (relief("h_cut.png"), "ends inside a chunk"),
+    "height_map_bad_filter": (relief("h_filter7.png"), "has a row filter 7"),
+    "height_map_few_rows": (relief("h_rows.png"), "holds fewer rows than its height"),
 }
 entries = []
 for name, (text, want) in cases.items():

@@ -18,15 +18,24 @@
 # naming the file and the element.
 #
 # A tile whose properties name a `normal_map` (isolux-cli export-tiled
-# --normal-maps: OpenGL's convention, green up) gives its overlay Sprites
-# that normal map, its green flipped when `flip_normal_green` (Godot 3.2's 2D
-# lights read green as down the screen: tests/godot/run.py checks it in
-# Godot). Floors keep none: isolux does not shade the ground.
+# --normal-maps: the screen's tangent space, OpenGL's convention, green up)
+# gives its overlay Sprites that normal map in the frame `normal_frame`
+# names (_normal_texture). Floors keep none: isolux does not shade the
+# ground.
 tool
 extends Reference
 
 var error := ""
-var flip_normal_green := true
+# How normal maps are handed to Godot 3.2's Light2D, which stands its light
+# `range_height` px toward the viewer over the screen's plane and reads red
+# as right and green as DOWN the screen (blue ignored: z = sqrt(1 - r² - g²)):
+#   "ground" (the default): re-expressed, and with the tile's height map
+#       (`isolux_height_map`) a light() shader, so that the Light2D at the
+#       isolux light's centre and height lights the side of each sprite
+#       pixel that faces isolux's light, standing over the isometric ground;
+#   "screen": the file's normal, green flipped (a light over the screen);
+#   "as_written": the file's bytes.
+var normal_frame := "ground"
 
 var _map := {}            # the map element's attributes
 var _props := {}          # the map's properties
@@ -35,7 +44,8 @@ var _floors := []         # [width, height, [gids]]
 var _overlays := []       # [{gid, x, y, w, h}]
 var _lights := []         # [{name, x, y, props}]
 var _obstacles := []      # [{x, y, points}]
-var _light_texture: ImageTexture = null
+var _height_shader_made: Shader = null
+var _light_textures := {}  # "WxH" -> a round light texture of that size
 
 const MAX_SIDE := 4096          # max_tiled_side
 const MAX_TILES := 1048576      # a map's cells, as isolux's own maps
@@ -289,6 +299,7 @@ func _read_tileset(map_path: String, attrs: Dictionary, map_parser: XMLParser) -
 		return false
 	var tile_id = -1
 	var normals := {}  # tile id -> its normal map's path
+	var heights := {}  # tile id -> its height map's path
 	var sheet: Texture = null
 	var depth = 0
 	while p.read() == OK:
@@ -314,6 +325,8 @@ func _read_tileset(map_path: String, attrs: Dictionary, map_parser: XMLParser) -
 				"property":
 					if tile_id >= 0 and a.get("name", "") == "normal_map" and a.get("value", "") != "":
 						normals[tile_id] = base_dir.plus_file(a["value"])
+					if tile_id >= 0 and a.get("name", "") == "isolux_height_map" and a.get("value", "") != "":
+						heights[tile_id] = base_dir.plus_file(a["value"])
 				"image":
 					var tex = _texture(base_dir.plus_file(a.get("source", "")))
 					if tex == null:
@@ -352,6 +365,18 @@ func _read_tileset(map_path: String, attrs: Dictionary, map_parser: XMLParser) -
 		if n == null:
 			return _fail(where, "normal_map \"%s\" cannot be read" % normals[id])
 		_tiles[first + id]["normal"] = n
+		# The light's height over each point (normal_frame ground): only for a
+		# tile that is its own image, which the height map's pixels match.
+		if normal_frame == "ground" and heights.has(id):
+			var t: Dictionary = _tiles[first + id]
+			var hm = _height_texture(heights[id], t["texture"].get_size())
+			if hm is String:
+				return _fail(where, "isolux_height_map \"%s\" %s" % [heights[id], hm])
+			if t["region"] == Rect2(Vector2.ZERO, t["texture"].get_size()):
+				var m = ShaderMaterial.new()
+				m.shader = _height_shader()
+				m.set_shader_param("height_map", hm)
+				t["material"] = m
 	for gid in _tiles.keys():
 		if gid >= first and not _tiles[gid].has("offset"):
 			_tiles[gid]["offset"] = offset
@@ -385,20 +410,152 @@ func _texture(path: String) -> ImageTexture:
 	return tex
 
 
-# A normal map in the convention Godot 3.2's 2D lights read: green flipped
-# from the file's OpenGL convention when flip_normal_green.
+# A normal map in `normal_frame`. For "ground": with t the file's normal
+# (right, up, toward the viewer) and n = t.x R + t.y U + t.z V the same
+# normal in isolux's ground frame (core/include/isolux/solid.hpp: screen
+# x = X - Y, y = (X + Y) / 2 - Z; R, U, V the screen's right, up and
+# toward-the-viewer unit vectors of sprite_shading.hpp), a pixel at screen
+# offset (dx, dy) from where the lamp shows (y down), h - z below it, has
+#   n . (light - point) = dx (nX - nY) / 2 + dy (nX + nY) + (h - z) (nX + nY + nZ)
+# so g = ((nX - nY) / 2, nX + nY, nX + nY + nZ)
+#      = (t.x / sqrt(2), (2 t.z - sqrt(2) t.y) / sqrt(3), sqrt(3) t.z),
+# normalised, has with (dx, dy, h - z) (HEIGHT_SHADER's light()) a cosine
+# of the sign of isolux's.
 func _normal_texture(path: String) -> ImageTexture:
 	var img = Image.new()
 	if img.load(path) != OK:
 		return null
-	if flip_normal_green:
+	if normal_frame != "as_written":
+		img.convert(Image.FORMAT_RGBA8)
 		img.lock()
 		for y in range(img.get_height()):
 			for x in range(img.get_width()):
 				var c = img.get_pixel(x, y)
-				c.g = 1.0 - c.g
-				img.set_pixel(x, y, c)
+				var t = Vector3(c.r * 2.0 - 1.0, c.g * 2.0 - 1.0, c.b * 2.0 - 1.0)
+				var g = Vector3(t.x, -t.y, t.z)
+				if normal_frame == "ground":
+					g = Vector3(t.x / sqrt(2.0), (2.0 * t.z - sqrt(2.0) * t.y) / sqrt(3.0), sqrt(3.0) * t.z)
+				g = g.normalized() if g.length() > 0 else Vector3(0, 0, 1)
+				img.set_pixel(x, y, Color((g.x + 1.0) / 2.0, (g.y + 1.0) / 2.0, (g.z + 1.0) / 2.0, c.a))
 		img.unlock()
+	var tex = ImageTexture.new()
+	tex.create_from_image(img, 0)
+	return tex
+
+
+# Godot's Light2D stands range_height over the screen's plane, at its node;
+# isolux's light stands that high over its ground point, where the node is,
+# and shows range_height px above it on the screen. So from each pixel the
+# light() below measures the direction to the lamp as it shows (LIGHT_VEC,
+# pixel minus light, moved down by the height) and its height over the point
+# the pixel shows (z, the tile's height map): range_height - z. With the
+# normal map re-expressed (_normal_texture), Godot's cosine then has the
+# sign of isolux's. The node stays on the ground point, so Godot's shadows
+# and the light's texture are unchanged. (Godot 3.2 runs a light() only when
+# it writes LIGHT: it keeps its value.)
+const HEIGHT_SHADER := """shader_type canvas_item;
+uniform sampler2D height_map;
+void light() {
+	LIGHT_VEC.y += LIGHT_HEIGHT;
+	LIGHT_HEIGHT -= texture(height_map, UV).r;
+	LIGHT = LIGHT;
+}
+"""
+
+
+func _height_shader() -> Shader:
+	if _height_shader_made == null:
+		_height_shader_made = Shader.new()
+		_height_shader_made.code = HEIGHT_SHADER
+	return _height_shader_made
+
+
+const MAX_HEIGHT_MAP := 1048576  # pixels: decoded here in script, a few seconds at most
+
+
+# An isolux height map (16-bit grey PNG, pixels above the ground) of `size`
+# as a float texture, or why not (a String). Godot 3.2's own PNG loader
+# narrows 16 bits to 8 through sRGB, which keeps no height under about 20 px
+# apart, so the file is decoded here: zlib by Godot, the rows' filters below.
+func _height_texture(path: String, size: Vector2):
+	var f = File.new()
+	if f.open(path, File.READ) != OK:
+		return "cannot be read"
+	var length = f.get_len()
+	if length > 64 * 1048576:
+		f.close()
+		return "is over 64 MiB"
+	var data: PoolByteArray = f.get_buffer(length)
+	f.close()
+	var signature = [137, 80, 78, 71, 13, 10, 26, 10]
+	for i in range(8):
+		if data.size() < 8 or data[i] != signature[i]:
+			return "is not a PNG"
+	var w = 0
+	var h = 0
+	var idat = PoolByteArray()
+	var pos = 8
+	while pos + 12 <= data.size():
+		var n = (data[pos] << 24) | (data[pos + 1] << 16) | (data[pos + 2] << 8) | data[pos + 3]
+		if pos + 12 + n > data.size():
+			return "ends inside a chunk"
+		var kind = data.subarray(pos + 4, pos + 7).get_string_from_ascii()
+		if kind == "IHDR" and n >= 13:
+			w = (data[pos + 8] << 24) | (data[pos + 9] << 16) | (data[pos + 10] << 8) | data[pos + 11]
+			h = (data[pos + 12] << 24) | (data[pos + 13] << 16) | (data[pos + 14] << 8) | data[pos + 15]
+			if data[pos + 16] != 16 or data[pos + 17] != 0 or data[pos + 20] != 0:
+				return "is not 16-bit grey without interlacing"
+		elif kind == "IDAT" and n > 0:
+			idat.append_array(data.subarray(pos + 8, pos + 7 + n))
+		elif kind == "IEND":
+			break
+		pos += 12 + n
+	if w != int(size.x) or h != int(size.y):
+		return "is %dx%d, its sprite %dx%d" % [w, h, size.x, size.y]
+	if w * h > MAX_HEIGHT_MAP:
+		return "has over %d pixels" % MAX_HEIGHT_MAP
+	var stride = w * 2
+	var raw = idat.decompress((stride + 1) * h, File.COMPRESSION_DEFLATE)
+	if raw.size() != (stride + 1) * h:
+		return "holds fewer rows than its height"
+	var img = Image.new()
+	img.create(w, h, false, Image.FORMAT_RF)
+	img.lock()
+	var prev = PoolByteArray()
+	prev.resize(stride)
+	for i in range(stride):
+		prev[i] = 0
+	var row = PoolByteArray()
+	row.resize(stride)
+	for y in range(h):
+		var at = y * (stride + 1)
+		var filter = raw[at]
+		if filter > 4:
+			img.unlock()
+			return "has a row filter %d" % filter
+		for i in range(stride):
+			var a = row[i - 2] if i >= 2 else 0
+			var b = prev[i]
+			var v = raw[at + 1 + i]
+			if filter == 1:
+				v += a
+			elif filter == 2:
+				v += b
+			elif filter == 3:
+				v += (a + b) >> 1
+			elif filter == 4:
+				var c = prev[i - 2] if i >= 2 else 0
+				var pa = abs(b - c)
+				var pb = abs(a - c)
+				var pc = abs(a + b - 2 * c)
+				v += a if pa <= pb and pa <= pc else (b if pb <= pc else c)
+			row[i] = v & 255
+		for x in range(w):
+			img.set_pixel(x, y, Color(float((row[2 * x] << 8) | row[2 * x + 1]), 0, 0))
+		prev = row
+		row = PoolByteArray()
+		row.resize(stride)
+	img.unlock()
 	var tex = ImageTexture.new()
 	tex.create_from_image(img, 0)
 	return tex
@@ -505,6 +662,8 @@ func _build_sprite(o: Dictionary):
 	s.texture = t["texture"]
 	if t.has("normal"):
 		s.normal_map = t["normal"]
+	if t.has("material"):
+		s.material = t["material"]
 	s.centered = false
 	s.region_enabled = true
 	s.region_rect = t["region"]
@@ -561,8 +720,10 @@ func _build_light(l: Dictionary) -> Light2D:
 			r = _tw() / _th()
 		var across = min(a, r * b)
 		var down = min(b, a / r)
+		# The ellipse lives in the texture, the node unscaled: Godot measures
+		# a normal-mapped pixel's direction to the light in the node's frame.
+		light.texture = _round_light(across / max(across, down), down / max(across, down))
 		light.texture_scale = 2.0 * max(across, down) / 256.0
-		light.scale = Vector2(across / max(across, down), down / max(across, down))
 	light.color = _colour(props.get("color", ""), Color(1, 1, 1))
 	light.energy = float(props.get("intensity", "1"))
 	light.range_height = float(props.get("height", _props.get("light_height", "0")))
@@ -571,21 +732,25 @@ func _build_light(l: Dictionary) -> Light2D:
 	return light
 
 
-func _round_light() -> ImageTexture:
-	if _light_texture != null:
-		return _light_texture
+func _round_light(sx := 1.0, sy := 1.0) -> ImageTexture:
+	var w = max(1, int(round(256 * sx)))
+	var h = max(1, int(round(256 * sy)))
+	var key = "%dx%d" % [w, h]
+	if _light_textures.has(key):
+		return _light_textures[key]
 	var img = Image.new()
-	img.create(256, 256, false, Image.FORMAT_RGBA8)
+	img.create(w, h, false, Image.FORMAT_RGBA8)
 	img.lock()
-	for y in range(256):
-		for x in range(256):
-			var d = Vector2(x + 0.5 - 128, y + 0.5 - 128).length() / 128.0
+	for y in range(h):
+		for x in range(w):
+			var d = Vector2((x + 0.5) / (w / 2.0) - 1.0, (y + 0.5) / (h / 2.0) - 1.0).length()
 			var v = clamp(1.0 - d, 0.0, 1.0)
 			img.set_pixel(x, y, Color(v, v, v, 1))
 	img.unlock()
-	_light_texture = ImageTexture.new()
-	_light_texture.create_from_image(img)
-	return _light_texture
+	var tex = ImageTexture.new()
+	tex.create_from_image(img)
+	_light_textures[key] = tex
+	return tex
 
 
 # An obstacle: its polygon's points projected, relative to its own point.
