@@ -66,9 +66,8 @@ OverlayImage build_overlays(const World& world, const FrameState& frame, const S
             for (int x = r.x; x < r.x + r.w; ++x) {
                 const auto& q = m.normal[std::size_t(y - m.rect.y) * m.rect.w + std::size_t(x - m.rect.x)];
                 if (q[0] == 0 && q[1] == 0 && q[2] == 0) continue;
-                const Vec3 t = to_screen_tangent(Vec3{double(q[0]), double(q[1]), double(q[2])} / 127.0);
-                auto byte = [](double c) { return int(std::lround((std::clamp(c, -1.0, 1.0) + 1) / 2 * 255)); };
-                blend(out.image.at(x - region.x, y - region.y), byte(t.x), byte(t.y), byte(t.z), o.normals_opacity);
+                const auto c = normal_map_colour(Vec3{double(q[0]), double(q[1]), double(q[2])} / 127.0);
+                blend(out.image.at(x - region.x, y - region.y), c[0], c[1], c[2], o.normals_opacity);
             }
     }
     if (o.opacity_maps) {

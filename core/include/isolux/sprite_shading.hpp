@@ -78,9 +78,14 @@ enum class NormalConvention { opengl, directx };
 // each component c as round((c + 1) / 2 * 255); pixels the sprite does not
 // show are flat, (128, 128, 255). 3 bytes a pixel, row by row.
 std::vector<std::uint8_t> normal_map_rgb(const SpriteNormals& n, NormalConvention convention);
+// One ground-frame unit normal as a normal map's colour (as normal_map_rgb).
+std::array<std::uint8_t, 3> normal_map_colour(Vec3 n, NormalConvention convention = NormalConvention::opengl);
 // The heights of the points the sprite shows, rounded to whole pixels (the
 // manifest's height_map format: 16-bit grey, pixels above the ground).
 std::vector<std::uint16_t> height_map_values(const SpriteNormals& n);
+
+// Whether `p` shades sprite pixels at all (a source, and a strength above 0).
+inline bool shades_sprites(const Params& p) { return p.sprite_shading != SpriteShading::none && p.shading_strength > 0; }
 
 // Lambert's cosine between unit normal `n` at `point` and the direction to
 // `light`, at least 0 (1 where the light stands at the point).

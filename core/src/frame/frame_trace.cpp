@@ -166,7 +166,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     if (!traced_elsewhere && n > 0) rep.tracer = "cpu";
 
     const double dy_scale = falloff_dy_scale(p, world.tileset.tile_width, world.tileset.tile_height);
-    const bool shade = p.sprite_shading != SpriteShading::none && p.shading_strength > 0;
+    const bool shade = shades_sprites(p);
     const TraceControl& control = st.options.control;
     const TraceControl* ctl = control.cancel || control.done ? &control : nullptr;
     // One light, its passes against solids walked on `light_threads` threads.

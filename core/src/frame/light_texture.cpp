@@ -8,6 +8,7 @@
 
 #include "base/cpu_dispatch.hpp"
 #include "base/cpu.hpp"
+#include "isolux/sprite_shading.hpp"
 #if ISOLUX_X86_DISPATCH
 #include <immintrin.h>
 #endif
@@ -137,7 +138,7 @@ void accumulate_light(LightTexture& tex, const LightMask& mask, const Light& lig
     const bool shadow = p.mode == Mode::shadow;
     // With sprite shading a lit sprite pixel may hold less than its light:
     // what it lacks is the shadow its own surface casts (sprite_shading.hpp).
-    const bool shaded = p.sprite_shading != SpriteShading::none && p.shading_strength > 0;
+    const bool shaded = shades_sprites(p);
     std::vector<std::uint8_t> by_x;
     if (shadow) {
         // Shadow pixels are not lit: their falloff comes from their distance,

@@ -49,7 +49,7 @@ ShadingMap build_shading_map(const World& world, const Params& p, Rect region, N
 }
 
 void shade_sprites(LightMask& mask, const ShadingMap& map, double light_height, const Params& p) {
-    if (p.sprite_shading == SpriteShading::none || p.shading_strength <= 0 || map.empty()) return;
+    if (!shades_sprites(p) || map.empty()) return;
     const Rect r = intersect(mask.clip, map.rect);
     // Single precision, one square root a pixel: lambert() written out for
     // the map's stored normals (q / 127, unit within a rounding). The

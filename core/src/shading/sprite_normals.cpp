@@ -154,15 +154,18 @@ std::vector<Vec3> normals_from_heights(const Mask& shown, const std::vector<floa
     return smoothed(shown, heights, n);
 }
 
+std::array<std::uint8_t, 3> normal_map_colour(Vec3 n, NormalConvention convention) {
+    Vec3 t = glm::length(n) > 0 ? to_screen_tangent(n) : Vec3{0, 0, 1};
+    if (convention == NormalConvention::directx) t.y = -t.y;
+    auto byte = [](double c) { return std::uint8_t(std::lround((std::clamp(c, -1.0, 1.0) + 1) / 2 * 255)); };
+    return {byte(t.x), byte(t.y), byte(t.z)};
+}
+
 std::vector<std::uint8_t> normal_map_rgb(const SpriteNormals& n, NormalConvention convention) {
     std::vector<std::uint8_t> rgb(n.normal.size() * 3);
-    auto byte = [](double c) { return std::uint8_t(std::lround((std::clamp(c, -1.0, 1.0) + 1) / 2 * 255)); };
     for (std::size_t i = 0; i < n.normal.size(); ++i) {
-        Vec3 t = glm::length(n.normal[i]) > 0 ? to_screen_tangent(n.normal[i]) : Vec3{0, 0, 1};
-        if (convention == NormalConvention::directx) t.y = -t.y;
-        rgb[i * 3 + 0] = byte(t.x);
-        rgb[i * 3 + 1] = byte(t.y);
-        rgb[i * 3 + 2] = byte(t.z);
+        const auto c = normal_map_colour(n.normal[i], convention);
+        std::copy(c.begin(), c.end(), rgb.begin() + std::ptrdiff_t(i * 3));
     }
     return rgb;
 }
