@@ -96,6 +96,27 @@ inline std::vector<std::uint8_t> lit_of(const LightMask& m) {
 }
 
 inline Tileset default_tileset() { return load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/default/tileset.json"); }
+
+// A seeded side x side map of the default tileset and one light `height` px
+// up at the centre of its camera's view, over an area of 200 x 200 with
+// `falloff_scale`: the scene of the shading and shaded-reference tests.
+struct CentredLight {
+    Scene scene;
+    World world;
+    Rect view;
+};
+inline CentredLight centred_light(int side, double height, double falloff_scale) {
+    Scene s;
+    s.width = s.height = side;
+    World w = make_world(default_tileset(), s);
+    const Rect v = camera_view(s.camera, w);
+    Light l{v.x + v.w / 2.0 + 0.5, v.y + v.h / 2.0 + 0.5};
+    l.height = height;
+    s.lights = {l};
+    s.params.area_a = s.params.area_b = 200;
+    s.params.falloff_scale = falloff_scale;
+    return {s, std::move(w), v};
+}
 inline Tileset foreign_tileset() {
     return load_tileset(std::string(ISOLUX_TEST_DATA) + "/foreign_tileset/tileset.json");
 }

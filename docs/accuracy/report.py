@@ -36,6 +36,12 @@ def out(*lines):
         print(line)
 
 
+def scene_table(scene, name, columns):
+    """The scene's title and the header of a table of `columns`; returns the rows of its sweep `name`."""
+    out(f"**{scene}**:", "", "| " + " | ".join(columns) + " |", "|" + "---|" * len(columns))
+    return rows(f"{scene}_{name}")
+
+
 def truth_table(scene, name):
     rs = rows(f"{scene}_{name}")
     out("| light height | vs 3D: ground | vs 3D: sprites | vs 3D facing: ground | vs 3D facing: sprites | vs exact line | vs every pixel |",
@@ -168,9 +174,9 @@ out("**town** (`assets/scenes/town.json`) is measured here only: the town tilese
     "dark outlines and another palette), 10x10 tiles, four lights among them, the whole map in view. `check-tileset",
     "--json` names each object's model (docs/beyond.md).", "")
 for scene in list(SCENES) + ["town"]:
-    rs = rows(f"{scene}_occluders")
-    out(f"**{scene}**:", "", "| light height | ground: footprints | ground: solids | ground: shapes | sprites: footprints | "
-        "sprites: solids | sprites: shapes | app CPU ms: footprints | solids | shapes |", "|---|---|---|---|---|---|---|---|---|---|")
+    rs = scene_table(scene, "occluders", ["light height", "ground: footprints", "ground: solids", "ground: shapes",
+                                          "sprites: footprints", "sprites: solids", "sprites: shapes",
+                                          "app CPU ms: footprints", "solids", "shapes"])
     for h in ["4", "16", "32", "64"]:
         f, so, sh = (one(rs, light_height=h, occluders=o) for o in ("footprints", "solids", "shapes"))
         out(f"| {h} px | {pct(f['floor_lit_mismatch'])} | {pct(so['floor_lit_mismatch'])} | {pct(sh['floor_lit_mismatch'])} | "
@@ -206,9 +212,8 @@ out("## Beyond the paper: sprites that turn toward the light (sprite_shading)", 
     "`shapes` occluders is what the tracer's own visibility errors leave. The target for `solids` shading: at most",
     "max(half of `none`'s, 1.2 times `shapes` with `shapes`), and at most three quarters of `luminance`'s.", "")
 for scene in list(SCENES) + ["town"]:
-    rs = rows(f"{scene}_shading")
-    out(f"**{scene}**:", "", "| occluders | light height | none | solids | luminance | shapes | bound for solids | "
-        "solids within it | solids ≤ ¾ luminance |", "|---|---|---|---|---|---|---|---|---|")
+    rs = scene_table(scene, "shading", ["occluders", "light height", "none", "solids", "luminance", "shapes",
+                                        "bound for solids", "solids within it", "solids ≤ ¾ luminance"])
     met, total = 0, 0
     for occ in ("footprints", "solids", "shapes"):
         for h in ["16", "32", "64"]:
@@ -250,9 +255,8 @@ out("## Beyond the paper: rays over low obstacles", "",
     "opaque rows less its footprint's depth), and a ray from a light at its height passes over obstacles lower",
     "than the ray there (`core/src/solids/height_rays.cpp`). Lit mismatch against 3D inside the lights' areas:", "")
 for scene in SCENES:
-    rs = rows(f"{scene}_height_rays")
-    out(f"**{scene}**:", "", "| light height | paper: ground | option: ground | paper: sprites | option: sprites | paper: light RMSE | option: light RMSE |",
-        "|---|---|---|---|---|---|---|")
+    rs = scene_table(scene, "height_rays", ["light height", "paper: ground", "option: ground", "paper: sprites",
+                                            "option: sprites", "paper: light RMSE", "option: light RMSE"])
     better, worse = [], []
     for h in ["4", "16", "32", "64"]:
         p = one(rs, light_height=h, rays_over_obstacles="false")

@@ -47,17 +47,8 @@ func _init():
 		level.free()
 		quit(0)
 		return
-	var v = OS.get_environment("ISOLUX_VIEW").split(",")
-	view = Rect2(float(v[0]), float(v[1]), float(v[2]), float(v[3]))
 	level.get_node("Lights").visible = false
-	level.remove_child(level.get_node("Ambient"))
-	OS.window_size = view.size
-	get_root().size = view.size
-	get_root().canvas_transform = Transform2D(0, -view.position)
-	# isolux's map layer leaves what no sprite covers transparent.
-	get_root().transparent_bg = true
-	VisualServer.set_default_clear_color(Color(0, 0, 0, 0))
-	get_root().add_child(level)
+	view = preload("res://view.gd").show(self, level)
 
 
 func _idle(_delta):

@@ -29,15 +29,7 @@ func _init():
 	print("overlays with a normal map: %d of %d" % [with_normal, level.get_node("Overlays").get_child_count()])
 	for l in level.get_node("Lights").get_children():
 		l.shadow_enabled = false
-	level.remove_child(level.get_node("Ambient"))
-	var v = OS.get_environment("ISOLUX_VIEW").split(",")
-	view = Rect2(float(v[0]), float(v[1]), float(v[2]), float(v[3]))
-	OS.window_size = view.size
-	get_root().size = view.size
-	get_root().canvas_transform = Transform2D(0, -view.position)
-	get_root().transparent_bg = true
-	VisualServer.set_default_clear_color(Color(0, 0, 0, 0))
-	get_root().add_child(level)
+	view = preload("res://view.gd").show(self, level)
 	_arrange()
 
 

@@ -74,7 +74,7 @@ p = run(["cmake", "--install", build, "--prefix", prefix])
 if not p or p.returncode:
     sys.exit("godot: cmake --install failed")
 project = os.path.join(prefix, "share/isolux/godot")
-for script in ("import_level.gd", "lighting_bytes.gd", "import_refusals.gd", "normal_light.gd"):
+for script in ("import_level.gd", "lighting_bytes.gd", "import_refusals.gd", "normal_light.gd", "view.gd"):
     shutil.copy(os.path.join(src, "tests/godot", script), project)
 # No ISOLUX_ASSETS: the library finds the default tileset beside itself.
 godot_env = {"HOME": tmp, "ISOLUX_ASSETS": ""}

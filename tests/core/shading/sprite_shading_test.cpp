@@ -204,15 +204,10 @@ TEST(SpriteShading, shapesShadingNamesTheSpriteWithoutAShape) {
 // the flat light's bytes; in shadow mode what a sprite pixel lacks becomes
 // shadow; a state that switches the shading gives a fresh state's bytes.
 TEST(SpriteShading, aFrameShadesItsSpritePixelsAloneAndStrengthZeroIsTheFlatLight) {
-    Scene s;
-    s.width = s.height = 10;
-    const World w = make_world(test::default_tileset(), s);
-    const Rect v = camera_view(s.camera, w);
-    Light lamp{v.x + v.w / 2.0 + 0.5, v.y + v.h / 2.0 + 0.5};
-    lamp.height = 40;
-    s.lights = {lamp};
-    s.params.area_a = s.params.area_b = 200;
-    s.params.falloff_scale = 30;
+    test::CentredLight scene = test::centred_light(10, 40, 30);
+    Scene& s = scene.scene;
+    const World& w = scene.world;
+    const Light& lamp = s.lights[0];
     auto traced = [&](const Params& p, FrameState* reuse = nullptr) {
         FrameState fresh;
         FrameState& st = reuse ? *reuse : fresh;

@@ -140,15 +140,11 @@ TEST(Truth, facingDarkensWhatTheLightSeesFromBehind) {
 // elsewhere 3d's light times the cosine between the true normal and the
 // direction to the light, which the shapes' normals give (sprite_normals).
 TEST(Truth, theShadedReferenceIsThe3dLightTimesLambertsCosineOnSprites) {
-    Scene s;
-    s.width = s.height = 8;
-    const World w = make_world(test::default_tileset(), s);
-    const Rect v = camera_view(s.camera, w);
-    Light l{v.x + v.w / 2.0 + 0.5, v.y + v.h / 2.0 + 0.5};
-    l.height = 48;
-    s.lights = {l};
-    s.params.area_a = s.params.area_b = 200;
-    s.params.falloff_scale = 40;
+    test::CentredLight scene = test::centred_light(8, 48, 40);
+    Scene& s = scene.scene;
+    const World& w = scene.world;
+    const Rect v = scene.view;
+    const Light& l = s.lights[0];
     const LightTexture flat = reference_texture(w, s, v, Reference::three_d),
                        facing = reference_texture(w, s, v, Reference::three_d_facing),
                        shaded = reference_texture(w, s, v, Reference::three_d_shaded);
