@@ -371,21 +371,42 @@ void surface_ids_step(FrameState& st, const Params& p, FrameReport& rep) {
 }
 
 // Beyond the paper: the normals and points sprite shading reads, over the
-// obstacle map's region; remade with it (and when the shading's source
-// changes), and timed with the trace that reads it (which a change of
-// either re-runs).
-void shading_step(FrameState& st, const World& world, const Params& p, FrameReport& rep) {
+// obstacle map's region, timed with the trace that reads it (which a change
+// of either re-runs). The map is exact per region (each pixel is the topmost
+// overlay over it), so as the obstacle map it keeps what it can: after an
+// edit only the obstacle map's rebuilt part is remade, after a pan only the
+// strips that came in; a change of source, parameters or world remakes it.
+void copy_shading_part(ShadingMap& into, const ShadingMap& part) {
+    for (int y = 0; y < part.rect.h; ++y) {
+        const std::size_t from = std::size_t(y) * part.rect.w,
+                          to = std::size_t(part.rect.y + y - into.rect.y) * into.rect.w + std::size_t(part.rect.x - into.rect.x);
+        std::copy_n(&part.normal[from], part.rect.w, &into.normal[to]);
+        std::copy_n(&part.height[from], part.rect.w, &into.height[to]);
+    }
+}
+
+void shading_step(FrameState& st, const World& world, const Params& p, const ObstacleChange& obstacles, FrameReport& rep) {
     FrameCache& c = *st.cache;
     if (p.sprite_shading == SpriteShading::none) {
         st.shading = ShadingMap{};
         st.shading_revision = 0;
         return;
     }
-    if (st.shading_revision == st.obstacles_revision && c.normals.from == p.sprite_shading &&
-        st.shading.rect == c.obstacle_region && !st.shading.empty())
-        return;
+    const Rect region = c.obstacle_region, old = st.shading.rect;
+    const bool kept_source = c.normals.from == p.sprite_shading && !st.shading.empty();
+    if (kept_source && st.shading_revision == st.obstacles_revision && old == region) return;
     Timer t{rep, Stage::trace};
-    st.shading = build_shading_map(world, p, c.obstacle_region, c.normals);
+    const Rect kept = intersect(old, region);
+    if (kept_source && !obstacles.all && !obstacles.part.empty() && old == region) {
+        copy_shading_part(st.shading, build_shading_map(world, p, obstacles.part, c.normals));
+    } else if (kept_source && !obstacles.all && obstacles.part.empty() && !kept.empty() && old != region) {
+        move_grid(st.shading.normal, old, region);
+        move_grid(st.shading.height, old, region);
+        st.shading.rect = region;
+        for (const Rect& r : outside(region, kept)) copy_shading_part(st.shading, build_shading_map(world, p, r, c.normals));
+    } else {
+        st.shading = build_shading_map(world, p, region, c.normals);
+    }
     st.shading_revision = st.obstacles_revision;
 }
 
@@ -430,7 +451,7 @@ FrameReport render_frame(FrameState& st, const World& world, const Scene& scene_
     draw_view_sprites(st, world, view, delta, rep);
     const Rect needed = region_lights_need(world, scene, tex_rect);
     const ObstacleChange obstacles = update_obstacle_map(st, world, scene.params, needed, delta, rep);
-    shading_step(st, world, scene.params, rep);
+    shading_step(st, world, scene.params, obstacles, rep);
     const TraceDecision trace = decide_retrace(st, scene, view, frame, obstacles);
     if (trace.retrace) trace_step(st, world, scene, tex_rect, trace, obstacles, rep);
     surface_ids_step(st, scene.params, rep);

@@ -328,3 +328,47 @@ TEST(SpriteShading, solidsShadingHalvesTheSpritesErrorAgainstTheShadedTruth) {
         }
     }
 }
+
+// The frame keeps its shading map as it keeps the obstacle map: after pans
+// (only the strips that came in remade) and tile edits (only the rebuilt
+// part) it holds the bytes of the map built whole over its region.
+TEST(SpriteShading, aPannedAndEditedFramesShadingMapIsTheMapBuiltWhole) {
+    Scene s;
+    s.width = s.height = 12;
+    s.params.sprite_shading = SpriteShading::solids;
+    World w = make_world(test::default_tileset(), s);
+    const Rect b = w.placed.bounds;
+    s.lights = {Light{b.x + b.w / 2.0 + 0.5, b.y + b.h / 2.0 + 0.5}};
+    s.params.area_a = s.params.area_b = 120;
+    FrameState st;
+    auto matches_whole = [&](const std::string& what) {
+        ASSERT_FALSE(st.shading.empty()) << what;
+        NormalsCache fresh;
+        const ShadingMap whole = build_shading_map(w, s.params, st.shading.rect, fresh);
+        EXPECT_EQ(st.shading.normal, whole.normal) << what;
+        EXPECT_EQ(st.shading.height, whole.height) << what;
+    };
+    auto sprite = [&](const char* name) {
+        for (std::size_t i = 0; i < w.tileset.sprites.size(); ++i)
+            if (w.tileset.sprites[i].name == name) return int(i);
+        return -1;
+    };
+    Camera cam{double(b.x + 60), double(b.y + 40), 500, 300};
+    render_frame(st, w, s, cam, 0);
+    matches_whole("first frame");
+    for (int f = 1; f <= 4; ++f) {
+        cam.x += 170, cam.y += f % 2 ? 90 : -40;  // beyond the region's margin: strips come in
+        render_frame(st, w, s, cam, f);
+        matches_whole("pan " + std::to_string(f));
+    }
+    const int floor = sprite("grass"), oak = sprite("oak"), rock = sprite("rock");
+    ASSERT_GE(floor, 0);
+    ASSERT_GE(oak, 0);
+    ASSERT_GE(rock, 0);
+    for (int k = 0; k < 6; ++k) {
+        set_tile(w, 2 + k, 3 + k, floor, k % 2 ? std::vector<int>{oak} : std::vector<int>{rock, oak});
+        s.edits = w.edits;
+        render_frame(st, w, s, cam, 10 + k);
+        matches_whole("edit " + std::to_string(k));
+    }
+}
