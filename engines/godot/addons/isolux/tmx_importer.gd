@@ -450,9 +450,9 @@ func _normal_texture(path: String) -> ImageTexture:
 # pixel minus light, moved down by the height) and its height over the point
 # the pixel shows (z, the tile's height map): range_height - z. With the
 # normal map re-expressed (_normal_texture), Godot's cosine then has the
-# sign of isolux's. The node stays on the ground point, so Godot's shadows
-# and the light's texture are unchanged. (Godot 3.2 runs a light() only when
-# it writes LIGHT: it keeps its value.)
+# sign of isolux's. The node stands on the ground point, so Godot's shadows
+# and the light's texture are placed from there. (Godot 3.2 runs a light()
+# only when it writes LIGHT: it keeps its value.)
 const HEIGHT_SHADER := """shader_type canvas_item;
 uniform sampler2D height_map;
 void light() {
@@ -475,8 +475,9 @@ const MAX_HEIGHT_MAP := 1048576  # pixels: decoded here in script, a few seconds
 
 # An isolux height map (16-bit grey PNG, pixels above the ground) of `size`
 # as a float texture, or why not (a String). Godot 3.2's own PNG loader
-# narrows 16 bits to 8 through sRGB, which keeps no height under about 20 px
-# apart, so the file is decoded here: zlib by Godot, the rows' filters below.
+# narrows 16 bits to 8 through sRGB, which keeps heights only in steps of
+# about 20 px, so the file is decoded here: zlib by Godot, the row filters
+# below.
 func _height_texture(path: String, size: Vector2):
 	var f = File.new()
 	if f.open(path, File.READ) != OK:
