@@ -121,6 +121,8 @@ struct SolidsCache {
     std::vector<char> made;
     void clear() { sprites.clear(), made.clear(); }
 };
+// Sprite `index`'s solids, estimated into `cache` when missing.
+const SpriteSolids& cached_solids(SolidsCache& cache, const Tileset& tileset, std::size_t index, const Params& p);
 
 // The most pixels an occluder map's region may hold: the map takes about 35
 // bytes a pixel (two spans, the surface, the sprite points' index), so this

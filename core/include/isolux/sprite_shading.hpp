@@ -32,6 +32,9 @@
 
 namespace isolux {
 
+struct SolidsCache;
+struct SpriteSolids;
+
 // Pixels of height from black to white when brightness is read as relief
 // (sprite_shading luminance): the slope a normal-map generator gives a
 // sprite's shading at its default strength.
@@ -49,9 +52,12 @@ struct SpriteNormals {
 
 // The normals of tileset sprite `s` from `from` (not none) under preset `p`
 // (its opacity threshold and, for solids and luminance, the estimate's
-// parameters). Throws Error naming the tileset and the sprite when `from`
-// is shapes and the sprite has neither a shape nor a height map.
-SpriteNormals sprite_normals(const Tileset& tileset, const Sprite& s, const Params& p, SpriteShading from);
+// parameters: `estimate`, the sprite's solids under `p`, when the caller
+// has them, else they are estimated here). Throws Error naming the tileset
+// and the sprite when `from` is shapes and the sprite has neither a shape
+// nor a height map.
+SpriteNormals sprite_normals(const Tileset& tileset, const Sprite& s, const Params& p, SpriteShading from,
+                             const SpriteSolids* estimate = nullptr);
 
 // The normals of the height field a w x h sprite's `shown` pixels show
 // (`heights` per pixel): the cross product of the 3D points' differences
@@ -110,13 +116,16 @@ struct NormalsCache {
     void clear() { sprites.clear(), made.clear(); }
 };
 // Sprite `index`'s normals from `p.sprite_shading`, made into `cache` when
-// missing.
-const SpriteNormals& cached_normals(NormalsCache& cache, const World& world, std::size_t index, const Params& p);
+// missing; from the estimates in `solids` (made there when missing) when
+// given, so that a frame tracing against solids estimates each sprite once.
+const SpriteNormals& cached_normals(NormalsCache& cache, const World& world, std::size_t index, const Params& p,
+                                    SolidsCache* solids = nullptr);
 
 // The shading map of `region` from `p.sprite_shading` (not none): the
 // topmost overlay each pixel shows, as the 3D reference finds it, and its
 // normals. Error as sprite_normals (shapes) for an overlay meeting the region.
-ShadingMap build_shading_map(const World& world, const Params& p, Rect region, NormalsCache& cache);
+ShadingMap build_shading_map(const World& world, const Params& p, Rect region, NormalsCache& cache,
+                             SolidsCache* solids = nullptr);
 
 // Multiplies each lit sprite pixel of `mask` (value > 0, inside `map`) by
 // its shading factor for the light at the mask's centre, `light_height`

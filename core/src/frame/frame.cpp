@@ -398,14 +398,14 @@ void shading_step(FrameState& st, const World& world, const Params& p, const Obs
     Timer t{rep, Stage::trace};
     const Rect kept = intersect(old, region);
     if (kept_source && !obstacles.all && !obstacles.part.empty() && old == region) {
-        copy_shading_part(st.shading, build_shading_map(world, p, obstacles.part, c.normals));
+        copy_shading_part(st.shading, build_shading_map(world, p, obstacles.part, c.normals, &c.solids));
     } else if (kept_source && !obstacles.all && obstacles.part.empty() && !kept.empty() && old != region) {
         move_grid(st.shading.normal, old, region);
         move_grid(st.shading.height, old, region);
         st.shading.rect = region;
-        for (const Rect& r : outside(region, kept)) copy_shading_part(st.shading, build_shading_map(world, p, r, c.normals));
+        for (const Rect& r : outside(region, kept)) copy_shading_part(st.shading, build_shading_map(world, p, r, c.normals, &c.solids));
     } else {
-        st.shading = build_shading_map(world, p, region, c.normals);
+        st.shading = build_shading_map(world, p, region, c.normals, &c.solids);
     }
     st.shading_revision = st.obstacles_revision;
 }

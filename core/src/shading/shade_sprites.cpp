@@ -3,24 +3,28 @@
 #include <algorithm>
 #include <cmath>
 
+#include "isolux/occluder_map.hpp"
 #include "isolux/sprite_shading.hpp"
 
 namespace isolux {
 
-const SpriteNormals& cached_normals(NormalsCache& cache, const World& world, std::size_t index, const Params& p) {
+const SpriteNormals& cached_normals(NormalsCache& cache, const World& world, std::size_t index, const Params& p,
+                                    SolidsCache* solids) {
     if (cache.from != p.sprite_shading || cache.made.size() != world.tileset.sprites.size()) {
         cache.from = p.sprite_shading;
         cache.sprites.assign(world.tileset.sprites.size(), SpriteNormals{});
         cache.made.assign(world.tileset.sprites.size(), 0);
     }
     if (!cache.made[index]) {
-        cache.sprites[index] = sprite_normals(world.tileset, world.tileset.sprites[index], p, p.sprite_shading);
+        const bool estimated = p.sprite_shading == SpriteShading::solids || p.sprite_shading == SpriteShading::luminance;
+        const SpriteSolids* estimate = solids && estimated ? &cached_solids(*solids, world.tileset, index, p) : nullptr;
+        cache.sprites[index] = sprite_normals(world.tileset, world.tileset.sprites[index], p, p.sprite_shading, estimate);
         cache.made[index] = 1;
     }
     return cache.sprites[index];
 }
 
-ShadingMap build_shading_map(const World& world, const Params& p, Rect region, NormalsCache& cache) {
+ShadingMap build_shading_map(const World& world, const Params& p, Rect region, NormalsCache& cache, SolidsCache* solids) {
     ShadingMap m;
     m.rect = region;
     // Each overlay meeting the region gets its normals (and their heights) first.
@@ -29,7 +33,7 @@ ShadingMap build_shading_map(const World& world, const Params& p, Rect region, N
     std::vector<std::vector<float>> heights(world.tileset.sprites.size());
     for (std::uint32_t k : near) {
         const std::size_t si = std::size_t(world.placed.instances[k].sprite);
-        if (heights[si].empty()) heights[si] = cached_normals(cache, world, si, p).heights;
+        if (heights[si].empty()) heights[si] = cached_normals(cache, world, si, p, solids).heights;
     }
     const Surface surface = build_surface(world, region, p.opacity_threshold, &heights);
     m.height = surface.height;

@@ -183,7 +183,8 @@ double lambert(Vec3 n, Vec3 point, Vec3 light) {
     return std::max(0.0, glm::dot(n, d) / len);
 }
 
-SpriteNormals sprite_normals(const Tileset& ts, const Sprite& s, const Params& p, SpriteShading from) {
+SpriteNormals sprite_normals(const Tileset& ts, const Sprite& s, const Params& p, SpriteShading from,
+                             const SpriteSolids* estimate) {
     SpriteNormals out;
     out.width = s.image.width;
     out.height = s.image.height;
@@ -199,11 +200,11 @@ SpriteNormals sprite_normals(const Tileset& ts, const Sprite& s, const Params& p
     switch (from) {
         case SpriteShading::none:
         case SpriteShading::solids:
-            out.heights = estimated_heights(ts, s, p);
+            out.heights = estimate ? estimate->heights : estimated_heights(ts, s, p);
             out.normal = normals_from_heights(shown, out.heights);
             break;
         case SpriteShading::luminance:
-            out.heights = estimated_heights(ts, s, p);
+            out.heights = estimate ? estimate->heights : estimated_heights(ts, s, p);
             out.normal = luminance_normals(s, shown);
             break;
         case SpriteShading::shapes:

@@ -80,18 +80,10 @@ bool vertical_span(const Solid& s, double X, double Y, double& lo, double& hi) {
 
 void fill_estimated(OccluderMap& m, const World& world, const Params& p, const std::vector<std::uint32_t>& near,
                     SolidsCache& cache, std::vector<std::vector<float>>& heights) {
-    if (cache.made.size() != world.tileset.sprites.size()) {
-        cache.sprites.assign(world.tileset.sprites.size(), SpriteSolids{});
-        cache.made.assign(world.tileset.sprites.size(), 0);
-    }
     for (std::uint32_t k : near) {
         const SpriteInstance& in = world.placed.instances[k];
         const std::size_t si = std::size_t(in.sprite);
-        if (!cache.made[si]) {
-            cache.sprites[si] = sprite_solids(world.tileset, world.tileset.sprites[si], p);
-            cache.made[si] = 1;
-        }
-        const SpriteSolids& ss = cache.sprites[si];
+        const SpriteSolids& ss = cached_solids(cache, world.tileset, si, p);
         if (heights[si].empty()) heights[si] = ss.heights;
         for (const SpanStamp& stamp : ss.stamps) {
             const Rect box = intersect(Rect{in.x + stamp.rect.x, in.y + stamp.rect.y, stamp.rect.w, stamp.rect.h}, m.rect);
@@ -232,6 +224,18 @@ void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
 }
 
 }  // namespace
+
+const SpriteSolids& cached_solids(SolidsCache& cache, const Tileset& tileset, std::size_t index, const Params& p) {
+    if (cache.made.size() != tileset.sprites.size()) {
+        cache.sprites.assign(tileset.sprites.size(), SpriteSolids{});
+        cache.made.assign(tileset.sprites.size(), 0);
+    }
+    if (!cache.made[index]) {
+        cache.sprites[index] = sprite_solids(tileset, tileset.sprites[index], p);
+        cache.made[index] = 1;
+    }
+    return cache.sprites[index];
+}
 
 void index_occluders(OccluderMap& m) {
     m.flags.resize(m.surface.instance.size());
