@@ -97,6 +97,15 @@ inline std::vector<std::uint8_t> lit_of(const LightMask& m) {
 
 inline Tileset default_tileset() { return load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/default/tileset.json"); }
 
+// The index of the tileset's sprite named `name` (a test failure and -1
+// when there is none).
+inline int sprite_index(const Tileset& tileset, const char* name) {
+    for (std::size_t i = 0; i < tileset.sprites.size(); ++i)
+        if (tileset.sprites[i].name == name) return int(i);
+    ADD_FAILURE() << "no sprite " << name;
+    return -1;
+}
+
 // A seeded side x side map of the default tileset and one light `height` px
 // up at the centre of its camera's view, over an area of 200 x 200 with
 // `falloff_scale`: the scene of the shading and shaded-reference tests.

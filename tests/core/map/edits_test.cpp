@@ -25,12 +25,7 @@ const Tileset& tiles() {
     return t;
 }
 
-int sprite(const char* name) {
-    for (std::size_t i = 0; i < tiles().sprites.size(); ++i)
-        if (tiles().sprites[i].name == name) return int(i);
-    ADD_FAILURE() << "no sprite " << name;
-    return -1;
-}
+int sprite(const char* name) { return test::sprite_index(tiles(), name); }
 
 Scene small_scene() {
     Scene s;

@@ -348,11 +348,6 @@ TEST(SpriteShading, aPannedAndEditedFramesShadingMapIsTheMapBuiltWhole) {
         EXPECT_EQ(st.shading.normal, whole.normal) << what;
         EXPECT_EQ(st.shading.height, whole.height) << what;
     };
-    auto sprite = [&](const char* name) {
-        for (std::size_t i = 0; i < w.tileset.sprites.size(); ++i)
-            if (w.tileset.sprites[i].name == name) return int(i);
-        return -1;
-    };
     Camera cam{double(b.x + 60), double(b.y + 40), 500, 300};
     render_frame(st, w, s, cam, 0);
     matches_whole("first frame");
@@ -361,7 +356,8 @@ TEST(SpriteShading, aPannedAndEditedFramesShadingMapIsTheMapBuiltWhole) {
         render_frame(st, w, s, cam, f);
         matches_whole("pan " + std::to_string(f));
     }
-    const int floor = sprite("grass"), oak = sprite("oak"), rock = sprite("rock");
+    const int floor = test::sprite_index(w.tileset, "grass"), oak = test::sprite_index(w.tileset, "oak"),
+              rock = test::sprite_index(w.tileset, "rock");
     ASSERT_GE(floor, 0);
     ASSERT_GE(oak, 0);
     ASSERT_GE(rock, 0);
