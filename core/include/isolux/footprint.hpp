@@ -30,6 +30,13 @@ std::vector<TrunkFoot> find_trunks(const Image& image);
 // at (ax, ay), pieces of one trunk merged (footprint.cpp says how), by column.
 std::vector<TrunkFoot> trunks_on_tile(const std::vector<TrunkFoot>& found, int ax, int ay, int tw, int th);
 
+// The crowns of a grove painted as one sprite: the regions of `object`'s
+// pixels (no bark, no dark outline) that each hold one smoothly shaded
+// colour, of 5 % of its pixels or more, in row-major order of their first
+// pixel (footprint.cpp says how). A crown partly hidden behind another
+// keeps its visible part.
+std::vector<Mask> crown_regions(const Image& sprite, const Mask& object);
+
 // A part of an object that stands apart on its tile (a rock of a scatter,
 // a hut of a hamlet): its pixels, and Algorithm 1's footprint of them.
 struct ObjectPart {
@@ -52,6 +59,8 @@ struct FootprintReport {
     // a tree grows from its tile's ground; bark higher up is a branch
     // (FreedroidRPG's trees show a dozen).
     std::vector<TrunkFoot> trunks;
+    // With two trunks or more (a grove), its crowns (crown_regions).
+    std::vector<Mask> crowns;
     // The object's parts standing apart on the tile: its 8-connected
     // components of 2 % of its pixels or more whose lowest pixel lies on the
     // floor diamond, when there are two or more (else none). Not for a

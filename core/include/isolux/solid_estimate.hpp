@@ -90,13 +90,15 @@ bool hidden_below_widest(const Mask& object, const EstimatedObject& o);
 // and the solid's height (`object_height`), as a user set them in the
 // tileset inspector. With the sprite's `trunks` (FootprintReport::trunks),
 // a grove (two or more trunks standing on the tile, each a tree's foot)
-// gives one object per tree. With
-// `whole_base` (FootprintReport::whole_base: the footprint is the object's
-// whole base), one object stands on its base's centre.
+// gives one object per tree; with its `crowns` (FootprintReport::crowns)
+// too, one per crown, the trees whose trunks the trees in front hide among
+// them. With `whole_base` (FootprintReport::whole_base: the footprint is
+// the object's whole base), one object stands on its base's centre.
 std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint,
                                               const FootprintSpec* correction = nullptr,
                                               const std::vector<TrunkFoot>* trunks = nullptr,
-                                              bool whole_base = false);
+                                              bool whole_base = false,
+                                              const std::vector<Mask>* crowns = nullptr);
 // The objects of a sprite whose footprint estimate saw `report` and whose
 // footprint is `footprint`: where the sprite holds parts standing apart on
 // its tile (FootprintReport::parts), no grove of trunks and no correction

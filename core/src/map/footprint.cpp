@@ -159,16 +159,17 @@ void for_each_component(std::vector<std::uint8_t> set, int w, int h, Fn fn) {
 // stone walls in shade, as red, 18-20.
 constexpr int bark_saturation_min = 30, bark_saturation_max = 65;
 
+bool is_bark(const std::uint8_t* p) {
+    return p[3] >= 128 && p[0] > p[1] + 6 && p[0] >= p[2] && p[0] < 200 &&
+           (p[0] - std::min(p[1], p[2])) * 100 <= bark_saturation_max * p[0] &&
+           (p[0] - std::min(p[1], p[2])) * 100 >= bark_saturation_min * p[0];
+}
+
 std::vector<TrunkFoot> find_trunks(const Image& image) {
     const int w = image.width, h = image.height;
     std::vector<std::uint8_t> bark(std::size_t(w) * h, 0);
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const std::uint8_t* p = image.at(x, y);
-            bark[std::size_t(y) * w + x] = p[3] >= 128 && p[0] > p[1] + 6 && p[0] >= p[2] && p[0] < 200 &&
-                                            (p[0] - std::min(p[1], p[2])) * 100 <= bark_saturation_max * p[0] &&
-                                            (p[0] - std::min(p[1], p[2])) * 100 >= bark_saturation_min * p[0];
-        }
+        for (int x = 0; x < w; ++x) bark[std::size_t(y) * w + x] = is_bark(image.at(x, y));
     std::vector<TrunkFoot> feet;
     for_each_component(std::move(bark), w, h, [&](const std::vector<int>& component) {
         int x0 = w, x1 = -1, y0 = h, y1 = -1;
@@ -218,6 +219,54 @@ std::vector<TrunkFoot> trunks_on_tile(const std::vector<TrunkFoot>& found, int a
     }
     std::stable_sort(trunks.begin(), trunks.end(), [](const TrunkFoot& p, const TrunkFoot& q) { return p.x < q.x; });
     return trunks;
+}
+
+// A grove's crowns (footprint.hpp). Crowns touch and overlap, but each is
+// painted in one colour that shades smoothly across it, and two crowns meet
+// at a jump in colour or a dark outline: a region grows over 4-neighbours
+// whose colours differ by less than crown_colour_step (the sum of the
+// channels' differences), through no bark and no outline (darker than
+// crown_outline_luminance). The town's crowns change by 2-20 a step inside
+// and 40 or more between them; a region under crown_share of the object's
+// pixels is a highlight, a seam or a leaf, not a crown.
+constexpr int crown_colour_step = 30;
+constexpr double crown_outline_luminance = 40.0 / 255.0, crown_share = 0.05;
+
+std::vector<Mask> crown_regions(const Image& sprite, const Mask& object) {
+    const int w = object.width, h = object.height;
+    auto pixel = [&](int i) { return sprite.at(object.x0 + i % w, object.y0 + i / w); };
+    std::vector<std::uint8_t> open(std::size_t(w) * h, 0);
+    for (int i = 0; i < w * h; ++i)
+        open[std::size_t(i)] = object.bits[std::size_t(i)] && !is_bark(pixel(i)) && luminance(pixel(i)) >= crown_outline_luminance;
+    const long least = std::max(16L, long(std::ceil(crown_share * double(object.count()))));
+    std::vector<Mask> crowns;
+    std::vector<int> stack, region;
+    for (int start = 0; start < w * h; ++start) {  // row-major seeds: the same regions on every machine
+        if (!open[std::size_t(start)]) continue;
+        open[std::size_t(start)] = 0;
+        stack.assign(1, start);
+        region.clear();
+        while (!stack.empty()) {
+            const int i = stack.back();
+            stack.pop_back();
+            region.push_back(i);
+            const std::uint8_t* p = pixel(i);
+            const int x = i % w, y = i / w;
+            for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+                const int nx = x + dx, ny = y + dy, n = ny * w + nx;
+                if (nx < 0 || ny < 0 || nx >= w || ny >= h || !open[std::size_t(n)]) continue;
+                const std::uint8_t* q = pixel(n);
+                if (std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]) >= crown_colour_step) continue;
+                open[std::size_t(n)] = 0;
+                stack.push_back(n);
+            }
+        }
+        if (long(region.size()) < least) continue;
+        Mask crown(object.rect());
+        for (int i : region) crown.bits[std::size_t(i)] = 1;
+        crowns.push_back(std::move(crown));
+    }
+    return crowns;
 }
 
 std::string_view to_string(FootprintMode m) {
@@ -286,6 +335,7 @@ Mask sprite_footprint(const Image& sprite, const Mask& opacity, int ax, int ay, 
     rep = FootprintReport{};
     Mask footprint = footprint_by_mode(sprite, opacity, ax, ay, tw, th, delta_y, mode, spec, rep);
     rep.trunks = trunks_on_tile(find_trunks(sprite), ax, ay, tw, th);
+    if (rep.trunks.size() >= 2 && !rep.whole_base) rep.crowns = crown_regions(sprite, rep.estimate);
     // A footprint the manifest draws, or a whole base, is the object's own.
     if ((mode == FootprintMode::automatic || mode == FootprintMode::paper) && !rep.whole_base)
         rep.parts = standing_parts(rep.estimate, ax, ay, tw, th, delta_y);

@@ -324,6 +324,169 @@ std::vector<EstimatedObject> grove_objects(const Mask& object, const std::vector
     return out;
 }
 
+// Whether any pixel of `part` has its centre inside the ellipse a disc of
+// radius r shows as at screen centre (fx, yc).
+bool disc_touches(const Mask& part, double fx, double yc, double r) {
+    const double a = r * sqrt2, b = r / sqrt2;
+    for (int y = int(std::floor(yc - b - 0.5)); y <= int(std::ceil(yc + b - 0.5)); ++y) {
+        const double v = (y + 0.5 - yc) / b;
+        if (v * v > 1) continue;
+        const double hw = a * std::sqrt(1 - v * v);
+        for (int x = int(std::ceil(fx - hw - 0.5)); x <= int(std::floor(fx + hw - 0.5)); ++x)
+            if (part.get(x, y)) return true;
+    }
+    return false;
+}
+
+// A tree of a grove: where it stands, and the pixels that show it.
+struct GroveTree {
+    double x = 0;  // the foot's pixel column (its centre is x + 0.5)
+    int y = 0;     // the foot's pixel row
+    bool hidden = false;  // no trunk shows: its foot was inferred from its crown
+    Mask part;
+};
+
+// The share of a hidden trunk's column, from its crown down to its foot,
+// that must be opaque: a trunk that would show is not hidden.
+constexpr double hidden_trunk_cover = 0.8;
+
+// A grove's trees from its crowns (crown_regions) and the trunks that show
+// (docs/beyond.md, *Groves*). Each trunk takes the crown its column meets
+// first going up from its foot. A crown no trunk takes is a tree whose
+// trunk is hidden behind the trees in front, when its column is opaque from
+// the crown down to where the trunk's foot would be: its crown's top row
+// plus the median of the trunk trees' (foot row - crown top row), in the
+// middle of its columns; a foot within a quarter of the crown's width of
+// another tree's on the ground is that tree's (one crown in two colours).
+// The object's other pixels (outlines, trunks, seams) go to the tree of
+// the nearest crown or trunk pixel. Empty where a trunk meets no crown of
+// its own, so the caller keeps what the trunks alone give.
+std::vector<GroveTree> grove_trees(const Mask& object, const std::vector<TrunkFoot>& feet, const std::vector<Mask>& crowns) {
+    const int w = object.width, h = object.height;
+    std::vector<int> owner(std::size_t(w) * h, -1);  // per object pixel: its tree
+    // Each crown's columns and lowest row. A region over two trunks' columns
+    // is foliage the colours did not part (LinCity-NG's leaves, textured
+    // pixel by pixel), not one crown.
+    struct Extent {
+        int x0, x1, y1;
+    };
+    std::vector<Extent> extent;
+    for (const Mask& crown : crowns) {
+        Extent e{w, -1, -1};
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i)
+                if (crown.bits[std::size_t(j) * w + i]) e.x0 = std::min(e.x0, i), e.x1 = std::max(e.x1, i), e.y1 = j;
+        int over = 0;
+        for (const TrunkFoot& f : feet) over += f.x >= object.x0 + e.x0 && f.x < object.x0 + e.x1 + 1;
+        if (over >= 2) return {};
+        extent.push_back(e);
+    }
+    std::vector<GroveTree> trees;
+    std::vector<int> crown_tree(crowns.size(), -1);
+    std::vector<double> lifts;
+    for (const TrunkFoot& f : feet) {
+        const int c = int(std::floor(f.x));
+        int crown = -1;
+        for (int y = f.y; y >= object.y0 && crown < 0; --y)
+            for (std::size_t k = 0; k < crowns.size() && crown < 0; ++k)
+                if (crowns[k].get(c, y)) crown = int(k);
+        if (crown < 0 || crown_tree[std::size_t(crown)] >= 0) return {};
+        crown_tree[std::size_t(crown)] = int(trees.size());
+        lifts.push_back(f.y - top_row(crowns[std::size_t(crown)]));
+        trees.push_back({f.x, f.y, false, Mask(object.rect())});
+    }
+    std::nth_element(lifts.begin(), lifts.begin() + std::ptrdiff_t(lifts.size() / 2), lifts.end());
+    const int lift = int(std::lround(lifts[lifts.size() / 2]));
+    for (std::size_t k = 0; k < crowns.size(); ++k) {
+        if (crown_tree[k] >= 0) continue;
+        const auto [x0, x1, y1] = extent[k];
+        const double fx = object.x0 + (x0 + x1) / 2.0;
+        const int fy = top_row(crowns[k]) + lift, c = int(std::floor(fx));
+        int opaque = 0, rows = 0;
+        for (int y = object.y0 + y1 + 1; y < fy; ++y, ++rows) opaque += object.get(c, y);
+        if (fy <= object.y0 + y1 || opaque < hidden_trunk_cover * rows) continue;
+        const double near = (x1 - x0 + 1) / 4.0 / sqrt2;  // a quarter of the crown's width, on the ground
+        int joins = -1;
+        for (std::size_t t = 0; t < trees.size() && joins < 0; ++t) {
+            const double dx = trees[t].x - fx, dy = trees[t].y - fy;
+            if (std::hypot(dy + dx / 2, dy - dx / 2) < near) joins = int(t);
+        }
+        if (joins < 0) {
+            joins = int(trees.size());
+            trees.push_back({fx, fy, true, Mask(object.rect())});
+        }
+        crown_tree[k] = joins;
+    }
+    // Seeds: the crowns, and each trunk's column from its foot up to its crown.
+    std::vector<int> queue;
+    for (std::size_t k = 0; k < crowns.size(); ++k)
+        if (crown_tree[k] >= 0)
+            for (int i = 0; i < w * h; ++i)
+                if (crowns[k].bits[std::size_t(i)] && owner[std::size_t(i)] < 0) owner[std::size_t(i)] = crown_tree[k], queue.push_back(i);
+    for (std::size_t t = 0; t < trees.size(); ++t) {
+        if (trees[t].hidden) continue;
+        const int c = int(std::floor(trees[t].x)) - object.x0;
+        for (int j = trees[t].y - object.y0; j >= 0; --j) {
+            if (j >= h) continue;
+            bool any = false;
+            for (int i = std::max(c - 2, 0); i <= std::min(c + 2, w - 1); ++i) {
+                const int n = j * w + i;
+                if (!object.bits[std::size_t(n)] || owner[std::size_t(n)] >= 0) continue;
+                owner[std::size_t(n)] = int(t), queue.push_back(n), any = true;
+            }
+            if (!any && j < trees[t].y - object.y0 - 2) break;
+        }
+    }
+    // The rest, breadth first from the seeds (in their order: deterministic).
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+        const int i = queue[q], x = i % w, y = i / w;
+        for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+            const int nx = x + dx, ny = y + dy, n = ny * w + nx;
+            if (nx < 0 || ny < 0 || nx >= w || ny >= h || !object.bits[std::size_t(n)] || owner[std::size_t(n)] >= 0) continue;
+            owner[std::size_t(n)] = owner[std::size_t(i)];
+            queue.push_back(n);
+        }
+    }
+    for (int i = 0; i < w * h; ++i)
+        if (owner[std::size_t(i)] >= 0) trees[std::size_t(owner[std::size_t(i)])].part.bits[std::size_t(i)] = 1;
+    return trees;
+}
+
+// Each grove tree's solid of revolution, standing on its foot: its discs
+// fit the pixels that show it together with those of the trees in front
+// (nearer the viewer: a foot lower on screen), which may hide any of it,
+// and a disc that shows none of its own pixels is hidden wholly, so holds
+// only its stem (hidden_stem_ratio of the widest disc): a hidden tree's
+// discs would otherwise fill the crowns in front of it down to the ground.
+std::vector<EstimatedObject> grove_solids(const Mask& object, const std::vector<GroveTree>& trees) {
+    std::vector<EstimatedObject> out;
+    for (const GroveTree& t : trees) {
+        Mask may_hide = t.part;
+        for (const GroveTree& u : trees)
+            if (u.y > t.y)
+                for (std::size_t i = 0; i < may_hide.bits.size(); ++i) may_hide.bits[i] |= u.part.bits[i];
+        EstimatedObject o;
+        o.center_x = t.x + 0.5;
+        o.center_y = t.y + 0.5;
+        o.rect = Rect{int(std::floor(t.x)) - 2, t.y - 2, 5, 3};
+        const RunsThrough runs = runs_through(may_hide, int(std::floor(o.center_x)));
+        o.radius = fit_discs(runs, o.center_x, o.center_y, top_row(t.part), object.width / sqrt2 + 1, false);
+        std::size_t shown = o.radius.size();  // the lowest disc that shows the tree's own pixels
+        for (std::size_t z = 0; z < o.radius.size(); ++z)
+            if (o.radius[z] > 0 && disc_touches(t.part, o.center_x, o.center_y - (double(z) + 0.5), o.radius[z])) {
+                shown = z;
+                break;
+            }
+        if (shown == o.radius.size()) continue;
+        const double stem = hidden_stem_ratio * *std::max_element(o.radius.begin() + std::ptrdiff_t(shown), o.radius.end());
+        for (std::size_t z = 0; z < shown; ++z) o.radius[z] = std::min(o.radius[z] > 0 ? o.radius[z] : stem, stem);
+        stand_on_hidden_stem(t.part, o);
+        widen_across_view(t.part, o);
+        out.push_back(std::move(o));
+    }
+    return out;
+}
+
 }  // namespace
 
 bool hidden_below_widest(const Mask& object, const EstimatedObject& o) {
@@ -350,7 +513,8 @@ bool hidden_below_widest(const Mask& object, const EstimatedObject& o) {
 namespace {
 
 std::vector<EstimatedObject> revolution_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction,
-                                                const std::vector<TrunkFoot>* trunks, bool whole_base) {
+                                                const std::vector<TrunkFoot>* trunks, bool whole_base,
+                                                const std::vector<Mask>* crowns) {
     EstimatedObject o;
     const bool has_footprint = mask_centre(footprint, o.center_x, o.center_y, o.rect);
     const bool corrected = correction && correction->object_foot;
@@ -368,6 +532,13 @@ std::vector<EstimatedObject> revolution_objects(const Mask& object, const Mask& 
     if (trunks && !corrected && !whole_base) {
         const std::vector<TrunkFoot>& feet = *trunks;
         if (feet.size() >= 2) {
+            if (crowns) {
+                const std::vector<GroveTree> trees = grove_trees(object, feet, *crowns);
+                if (!trees.empty()) {
+                    std::vector<EstimatedObject> grove = grove_solids(object, trees);
+                    if (grove.size() >= 2) return grove;
+                }
+            }
             std::vector<EstimatedObject> grove = grove_objects(object, feet);
             if (grove.size() >= 2) return grove;
         }
@@ -448,12 +619,13 @@ void apply_correction(EstimatedObject& o, const FootprintSpec& c) {
 }  // namespace
 
 std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& footprint, const FootprintSpec* correction,
-                                              const std::vector<TrunkFoot>* trunks, bool whole_base) {
+                                              const std::vector<TrunkFoot>* trunks, bool whole_base,
+                                              const std::vector<Mask>* crowns) {
     // The user's model, where they chose one (a pointer: GCC 12 misreads an optional's use here).
     const ObjectModel* chosen = correction && correction->object_model ? &*correction->object_model : nullptr;
     std::vector<EstimatedObject> revolution;
     if (!chosen || *chosen == ObjectModel::revolution)
-        revolution = revolution_objects(object, footprint, correction, trunks, whole_base);
+        revolution = revolution_objects(object, footprint, correction, trunks, whole_base, crowns);
     if (chosen && *chosen == ObjectModel::revolution) return revolution;
     // A foot or a height without a model corrects the solid of revolution,
     // as it did before there were models: manifests keep their solids.
@@ -469,7 +641,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     if (!chosen || *chosen == ObjectModel::mound) mound = fit_mound(object);
     if (chosen) {  // the user's model; where it finds no fit, the estimate's own
         std::optional<EstimatedObject>& o = *chosen == ObjectModel::prism ? prism : mound;
-        if (!o) return revolution_objects(object, footprint, correction, trunks, whole_base);
+        if (!o) return revolution_objects(object, footprint, correction, trunks, whole_base, crowns);
         if (o->model == ObjectModel::prism && !o->flat_top) step_prism(object, *o);
         apply_correction(*o, *correction);
         return {*o};
@@ -698,7 +870,7 @@ std::vector<EstimatedObject> estimate_objects(const FootprintReport& report, con
     const bool corrected =
         correction && (correction->object_foot || correction->object_height > 0 || correction->object_model);
     if (report.parts.empty() || corrected || report.trunks.size() >= 2)
-        return estimate_objects(report.estimate, footprint, correction, &report.trunks, report.whole_base);
+        return estimate_objects(report.estimate, footprint, correction, &report.trunks, report.whole_base, &report.crowns);
     std::vector<EstimatedObject> out;
     for (const ObjectPart& part : report.parts)
         for (EstimatedObject& o : estimate_objects(part.object, part.footprint)) out.push_back(std::move(o));

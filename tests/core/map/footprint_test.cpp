@@ -201,6 +201,50 @@ TEST(Footprint, aTrunkUnderAnOrangeCrownIsFound) {
     EXPECT_EQ(feet[0].y, 55);
 }
 
+// A grove's crowns are told apart by colour: two crowns that overlap,
+// each shaded smoothly and outlined in a dark line, are two regions, the
+// one behind keeping only what shows; the outline and the trunk belong to
+// neither. Foliage textured pixel by pixel (neighbours 40 or more apart)
+// holds no region a crown's size.
+TEST(Footprint, crownsAreTheRegionsOfOneSmoothlyShadedColour) {
+    Image im(64, 64);
+    auto crown = [&](double cx, double cy, double r, int red, int green, bool textured) {
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) {
+                const double d = std::hypot(x + 0.5 - cx, y + 0.5 - cy);
+                if (d > r) continue;
+                std::uint8_t* p = im.at(x, y);
+                const int shade = int(20 * (x - cx) / r) + (textured && (x + y) % 2 ? 40 : 0);
+                p[0] = std::uint8_t(std::clamp(red + shade, 0, 255)), p[1] = std::uint8_t(std::clamp(green + shade, 0, 255));
+                p[2] = 30, p[3] = 255;
+                if (d > r - 1) p[0] = p[1] = p[2] = 20;  // the outline
+            }
+    };
+    crown(26, 22, 12, 200, 110, false);  // orange, behind
+    crown(36, 30, 12, 210, 190, false);  // yellow, in front
+    for (int y = 42; y < 60; ++y)
+        for (int x = 34; x < 38; ++x) {
+            std::uint8_t* p = im.at(x, y);
+            p[0] = 80, p[1] = 54, p[2] = 42, p[3] = 255;  // bark
+        }
+    const Mask object = opacity_map(im, 0.5);
+    const std::vector<Mask> crowns = crown_regions(im, object);
+    ASSERT_EQ(crowns.size(), 2u);
+    // Row-major order: the orange crown's first pixel is higher.
+    EXPECT_TRUE(crowns[0].get(20, 16));
+    EXPECT_FALSE(crowns[0].get(36, 30));
+    EXPECT_TRUE(crowns[1].get(36, 30));
+    EXPECT_LT(crowns[0].count(), crowns[1].count());  // the front crown hides part of the one behind
+    for (const Mask& c : crowns) {
+        EXPECT_FALSE(c.get(36, 50));   // the trunk
+        EXPECT_FALSE(c.get(36, 18));   // the front crown's outline, at its top
+    }
+    Image noisy(64, 64);
+    std::swap(im, noisy);
+    crown(32, 28, 16, 60, 140, true);
+    EXPECT_TRUE(crown_regions(im, opacity_map(im, 0.5)).empty());
+}
+
 // A scatter of things on one tile (rocks): each part standing on the floor
 // diamond is an object's own, with Algorithm 1's footprint under it; a
 // blob floating above the diamond (a crown's leaf) and a speck are not.

@@ -505,6 +505,39 @@ TEST(SolidModels, rocksApartAndTreesOfAGroveAreObjectsOfTheirOwn) {
     }
 }
 
+// The town's grove: six trees whose crowns merge, three of their trunks
+// hidden behind the trees in front. Its crowns, told apart by colour, give
+// a tree for each crown no trunk takes, standing where its crown's top says
+// (two crowns of one colour are one tree): five objects, each standing
+// within 6 px of a true trunk's foot on screen, sharing far more of the
+// true volume than the three trees the trunks alone give.
+TEST(SolidModels, aGrovesHiddenTrunksStandUnderTheirCrowns) {
+    const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
+    const Sprite& s = town.sprites[test::sprite_index(town, "grove")];
+    FootprintReport r;
+    const Mask fp = tileset_footprint(town, s, Params{}, &r);
+    ASSERT_EQ(r.trunks.size(), 3u);
+    const std::vector<EstimatedObject> objects = estimate_objects(r, fp, &s.footprint);
+    const std::vector<EstimatedObject> by_trunks = estimate_objects(r.estimate, fp, nullptr, &r.trunks);
+    ASSERT_EQ(by_trunks.size(), 3u);
+    EXPECT_EQ(objects.size(), 5u);
+    std::vector<std::pair<double, double>> feet;  // the true trunks' feet on screen
+    for (const Solid& solid : s.shape)
+        if (solid.kind == SolidKind::cylinder)
+            feet.push_back({s.anchor_x + solid.a.x - solid.a.y, s.anchor_y + (solid.a.x + solid.a.y) / 2});
+    ASSERT_EQ(feet.size(), 6u);
+    for (const EstimatedObject& o : objects) {
+        double nearest = 1e9;
+        for (const auto& [x, y] : feet) nearest = std::min(nearest, std::hypot(o.center_x - x, o.center_y - y));
+        EXPECT_LE(nearest, 6) << "the tree standing at " << o.center_x << ", " << o.center_y;
+    }
+    const double crowns = volume_overlap(objects, s.anchor_x, s.anchor_y, s.shape),
+                 trunks = volume_overlap(by_trunks, s.anchor_x, s.anchor_y, s.shape);
+    std::printf("grove: %zu trees share %.3f of the true volume, the trunks' %zu %.3f\n", objects.size(), crowns,
+                by_trunks.size(), trunks);
+    EXPECT_GT(crowns, trunks + 0.1);
+}
+
 // A mountain wider than a tile (the town tileset's: a cone with two side
 // lobes): a mound with a peak's profile (a cone: its cross-section halfway
 // up about half its base's), standing on its base's middle, sharing far
