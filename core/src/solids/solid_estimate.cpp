@@ -355,8 +355,8 @@ constexpr double hidden_trunk_cover = 0.8;
 // first going up from its foot. A crown no trunk takes is a tree whose
 // trunk is hidden behind the trees in front, when its column is opaque from
 // the crown down to where the trunk's foot would be: its crown's top row
-// plus the median of the trunk trees' (foot row - crown top row), in the
-// middle of its columns; a foot within a quarter of the crown's width of
+// plus the median of the trunk trees' (foot row - crown top row), under
+// the middle of its top; a foot within a quarter of the crown's width of
 // another tree's on the ground is that tree's (one crown in two colours).
 // The object's other pixels (outlines, trunks, seams) go to the tree of
 // the nearest crown or trunk pixel. Empty where a trunk meets no crown of
@@ -400,8 +400,16 @@ std::vector<GroveTree> grove_trees(const Mask& object, const std::vector<TrunkFo
     for (std::size_t k = 0; k < crowns.size(); ++k) {
         if (crown_tree[k] >= 0) continue;
         const auto [x0, x1, y1] = extent[k];
-        const double fx = object.x0 + (x0 + x1) / 2.0;
-        const int fy = top_row(crowns[k]) + lift, c = int(std::floor(fx));
+        // The axis shows at the crown's top (its two highest rows), which the
+        // trees in front, standing lower on screen, hide last.
+        const int top = top_row(crowns[k]);
+        double sum = 0;
+        int n = 0;
+        for (int y = top; y < top + 2; ++y)
+            for (int i = x0; i <= x1; ++i)
+                if (crowns[k].get(object.x0 + i, y)) sum += object.x0 + i, ++n;
+        const double fx = sum / n;
+        const int fy = top + lift, c = int(std::floor(fx));
         int opaque = 0, rows = 0;
         for (int y = object.y0 + y1 + 1; y < fy; ++y, ++rows) opaque += object.get(c, y);
         if (fy <= object.y0 + y1 || opaque < hidden_trunk_cover * rows) continue;
@@ -452,6 +460,29 @@ std::vector<GroveTree> grove_trees(const Mask& object, const std::vector<TrunkFo
     return trees;
 }
 
+// One grove tree's solid: its discs fit within `may_hide` (its pixels and
+// those of the trees in front), as grove_solids says.
+std::optional<EstimatedObject> grove_solid(const GroveTree& t, const Mask& may_hide, int width) {
+    EstimatedObject o;
+    o.center_x = t.x + 0.5;
+    o.center_y = t.y + 0.5;
+    o.rect = Rect{int(std::floor(t.x)) - 2, t.y - 2, 5, 3};
+    const RunsThrough runs = runs_through(may_hide, int(std::floor(o.center_x)));
+    o.radius = fit_discs(runs, o.center_x, o.center_y, top_row(t.part), width / sqrt2 + 1, false);
+    std::size_t shown = o.radius.size();  // the lowest disc that shows the tree's own pixels
+    for (std::size_t z = 0; z < o.radius.size(); ++z)
+        if (o.radius[z] > 0 && disc_touches(t.part, o.center_x, o.center_y - (double(z) + 0.5), o.radius[z])) {
+            shown = z;
+            break;
+        }
+    if (shown == o.radius.size()) return std::nullopt;
+    const double stem = hidden_stem_ratio * *std::max_element(o.radius.begin() + std::ptrdiff_t(shown), o.radius.end());
+    for (std::size_t z = 0; z < shown; ++z) o.radius[z] = std::min(o.radius[z] > 0 ? o.radius[z] : stem, stem);
+    stand_on_hidden_stem(t.part, o);
+    widen_across_view(t.part, o);
+    return o;
+}
+
 // Each grove tree's solid of revolution, standing on its foot: its discs
 // fit the pixels that show it together with those of the trees in front
 // (nearer the viewer: a foot lower on screen), which may hide any of it,
@@ -459,31 +490,29 @@ std::vector<GroveTree> grove_trees(const Mask& object, const std::vector<TrunkFo
 // only its stem (hidden_stem_ratio of the widest disc): a hidden tree's
 // discs would otherwise fill the crowns in front of it down to the ground.
 std::vector<EstimatedObject> grove_solids(const Mask& object, const std::vector<GroveTree>& trees) {
-    std::vector<EstimatedObject> out;
-    for (const GroveTree& t : trees) {
-        Mask may_hide = t.part;
-        for (const GroveTree& u : trees)
-            if (u.y > t.y)
-                for (std::size_t i = 0; i < may_hide.bits.size(); ++i) may_hide.bits[i] |= u.part.bits[i];
-        EstimatedObject o;
-        o.center_x = t.x + 0.5;
-        o.center_y = t.y + 0.5;
-        o.rect = Rect{int(std::floor(t.x)) - 2, t.y - 2, 5, 3};
-        const RunsThrough runs = runs_through(may_hide, int(std::floor(o.center_x)));
-        o.radius = fit_discs(runs, o.center_x, o.center_y, top_row(t.part), object.width / sqrt2 + 1, false);
-        std::size_t shown = o.radius.size();  // the lowest disc that shows the tree's own pixels
-        for (std::size_t z = 0; z < o.radius.size(); ++z)
-            if (o.radius[z] > 0 && disc_touches(t.part, o.center_x, o.center_y - (double(z) + 0.5), o.radius[z])) {
-                shown = z;
-                break;
-            }
-        if (shown == o.radius.size()) continue;
-        const double stem = hidden_stem_ratio * *std::max_element(o.radius.begin() + std::ptrdiff_t(shown), o.radius.end());
-        for (std::size_t z = 0; z < shown; ++z) o.radius[z] = std::min(o.radius[z] > 0 ? o.radius[z] : stem, stem);
-        stand_on_hidden_stem(t.part, o);
-        widen_across_view(t.part, o);
-        out.push_back(std::move(o));
+    // Front to back, each tree's pixels joining `in_front` once every tree
+    // standing on its row has been fitted: one pass over the pixels a tree.
+    std::vector<std::size_t> order(trees.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return trees[p].y > trees[q].y; });
+    Mask in_front(object.rect());
+    std::vector<std::optional<EstimatedObject>> solids(trees.size());
+    for (std::size_t first = 0; first < order.size();) {
+        std::size_t last = first;
+        while (last < order.size() && trees[order[last]].y == trees[order[first]].y) ++last;
+        for (std::size_t k = first; k < last; ++k) {
+            const GroveTree& t = trees[order[k]];
+            Mask may_hide = in_front;
+            for (std::size_t i = 0; i < may_hide.bits.size(); ++i) may_hide.bits[i] |= t.part.bits[i];
+            solids[order[k]] = grove_solid(t, may_hide, object.width);
+        }
+        for (std::size_t k = first; k < last; ++k)
+            for (std::size_t i = 0; i < in_front.bits.size(); ++i) in_front.bits[i] |= trees[order[k]].part.bits[i];
+        first = last;
     }
+    std::vector<EstimatedObject> out;
+    for (std::optional<EstimatedObject>& o : solids)
+        if (o) out.push_back(std::move(*o));
     return out;
 }
 

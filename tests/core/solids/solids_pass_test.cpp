@@ -324,25 +324,26 @@ TEST(SolidsPass, solidsHalveThePapersErrorOnTheAccuracyScenes) {
 
 // The town scene (the town tileset: walls, houses, a town in one tile,
 // rocks, a mountain, a grove, drawn in another look): solids never mislight
-// more ground or sprite pixels than footprints, and at most half as many
-// under lights 4 and 16 px high. (Half is not met at 32 and 64 px yet:
+// more ground or sprite pixels than footprints; at most half as many
+// sprite pixels under lights 4, 16 and 32 px high, and half as many ground
+// pixels under lights 4 and 16 px high. (Half is not met on the rest yet:
 // docs/accuracy.md.)
 TEST(SolidsPass, solidsNeverWorseThanFootprintsOnTheTownScene) {
     const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
     const auto points = paper_and_solids("town", town);
     ASSERT_EQ(points.size(), 4u);
-    for (std::size_t h = 0; h < points.size(); ++h) {
+    for (std::size_t h = 0; h < points.size(); ++h) {  // light heights 4, 16, 32, 64
         const PaperAndSolids& p = points[h];
-        const double share = h < 2 ? 0.5 : 1.0;  // light heights 4, 16, 32, 64
-        EXPECT_LE(p.solids.sprite.lit_mismatch, share * p.paper.sprite.lit_mismatch) << p.where;
-        EXPECT_LE(p.solids.floor.lit_mismatch, share * p.paper.floor.lit_mismatch) << p.where;
+        EXPECT_LE(p.solids.sprite.lit_mismatch, (h < 3 ? 0.5 : 1.0) * p.paper.sprite.lit_mismatch) << p.where;
+        EXPECT_LE(p.solids.floor.lit_mismatch, (h < 2 ? 0.5 : 1.0) * p.paper.floor.lit_mismatch) << p.where;
     }
 }
 
 // Drawn seeds of the town tileset (its walls, houses, rocks, groves, town
-// tiles and mountains wherever the seed puts them), pooled: solids never
-// mislight more ground or sprite pixels than footprints at any height, and
-// at most half the ground pixels. (Half the sprite pixels is not met yet.)
+// tiles and mountains wherever the seed puts them), pooled: solids mislight
+// at most half the ground pixels footprints do at every height, and at most
+// half the sprite pixels under lights 4, 16 and 32 px high, never more
+// under the light 64 px high. (Half is not met there yet.)
 TEST(SolidsPass, solidsNeverWorseThanFootprintsOnDrawnTownSeeds) {
     const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
     const std::vector<std::string> heights = {"4", "16", "32", "64"};
@@ -362,7 +363,7 @@ TEST(SolidsPass, solidsNeverWorseThanFootprintsOnDrawnTownSeeds) {
                     where.c_str(), 100 * paper[h].floor(), 100 * solids[h].floor(), 100 * shapes[h].floor(),
                     100 * paper[h].sprites(), 100 * solids[h].sprites(), 100 * shapes[h].sprites());
         EXPECT_LE(solids[h].floor(), paper[h].floor() / 2) << where;
-        EXPECT_LE(solids[h].sprites(), paper[h].sprites()) << where;
+        EXPECT_LE(solids[h].sprites(), (h < 3 ? 0.5 : 1.0) * paper[h].sprites()) << where;
     }
 }
 
