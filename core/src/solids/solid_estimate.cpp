@@ -293,37 +293,6 @@ FootCandidate lowest_best_foot(const ObjectPixels& object, const EstimatedObject
     return best;
 }
 
-// One object per trunk: the object's pixels go to the trunk whose column is
-// nearest (the lower index on a tie), and each part gets its solid standing
-// on its trunk's foot, with a 5 x 3 footprint there.
-std::vector<EstimatedObject> grove_objects(const Mask& object, const std::vector<TrunkFoot>& feet) {
-    std::vector<Mask> parts(feet.size(), Mask(object.rect()));
-    for (int j = 0; j < object.height; ++j)
-        for (int i = 0; i < object.width; ++i) {
-            if (!object.bits[std::size_t(j) * object.width + i]) continue;
-            const double x = object.x0 + i;
-            std::size_t nearest = 0;
-            for (std::size_t t = 1; t < feet.size(); ++t)
-                if (std::abs(x - feet[t].x) < std::abs(x - feet[nearest].x)) nearest = t;
-            parts[nearest].bits[std::size_t(j) * object.width + i] = 1;
-        }
-    std::vector<EstimatedObject> out;
-    for (std::size_t k = 0; k < feet.size(); ++k) {
-        const Mask& part = parts[k];
-        EstimatedObject o;
-        o.center_x = feet[k].x + 0.5;
-        o.center_y = feet[k].y + 0.5;
-        o.rect = Rect{int(std::floor(feet[k].x)) - 2, feet[k].y - 2, 5, 3};
-        const RunsThrough runs = runs_through(part, int(std::floor(o.center_x)));
-        o.radius = fit_discs(runs, o.center_x, o.center_y, top_row(part), part.width / sqrt2 + 1, false);
-        if (o.radius.empty()) continue;
-        stand_on_hidden_stem(part, o);
-        widen_across_view(part, o);
-        out.push_back(std::move(o));
-    }
-    return out;
-}
-
 // Whether any pixel of `part` has its centre inside the ellipse a disc of
 // radius r shows as at screen centre (fx, yc).
 bool disc_touches(const Mask& part, double fx, double yc, double r) {
@@ -516,6 +485,23 @@ std::vector<EstimatedObject> grove_solids(const Mask& object, const std::vector<
     return out;
 }
 
+// One tree per trunk where the colours part no crowns: the object's pixels
+// go to the trunk whose column is nearest (the lower index on a tie).
+std::vector<GroveTree> column_trees(const Mask& object, const std::vector<TrunkFoot>& feet) {
+    std::vector<GroveTree> trees;
+    for (const TrunkFoot& f : feet) trees.push_back({f.x, f.y, false, Mask(object.rect())});
+    for (int j = 0; j < object.height; ++j)
+        for (int i = 0; i < object.width; ++i) {
+            if (!object.bits[std::size_t(j) * object.width + i]) continue;
+            const double x = object.x0 + i;
+            std::size_t nearest = 0;
+            for (std::size_t t = 1; t < feet.size(); ++t)
+                if (std::abs(x - feet[t].x) < std::abs(x - feet[nearest].x)) nearest = t;
+            trees[nearest].part.bits[std::size_t(j) * object.width + i] = 1;
+        }
+    return trees;
+}
+
 }  // namespace
 
 bool hidden_below_widest(const Mask& object, const EstimatedObject& o) {
@@ -568,7 +554,7 @@ std::vector<EstimatedObject> revolution_objects(const Mask& object, const Mask& 
                     if (grove.size() >= 2) return grove;
                 }
             }
-            std::vector<EstimatedObject> grove = grove_objects(object, feet);
+            std::vector<EstimatedObject> grove = grove_solids(object, column_trees(object, feet));
             if (grove.size() >= 2) return grove;
         }
     }

@@ -539,6 +539,35 @@ TEST(SolidModels, aGrovesHiddenTrunksStandUnderTheirCrowns) {
     EXPECT_GT(crowns, trunks + 0.1);
 }
 
+// Two trees whose crowns overlap on screen, and no crowns the colours part
+// (foliage textured pixel by pixel): each tree takes the pixels of the
+// columns nearest its trunk, and the one behind may reach into the front
+// one's, which hide the rest of its crown: its crown stays round instead
+// of ending in a straight vertical edge halfway between the trunks.
+TEST(SolidModels, aGroveTreeBehindReachesBehindTheTreeInFront) {
+    const int w = 160, h = 140, ax = 80, ay = 110;
+    // Screen x = X - Y: the back tree 12 px left of the anchor, the front one 12 px right, 10 rows lower.
+    const Vec3 back{4, 16, 0}, front{20, 8, 0};
+    std::vector<Solid> shape;
+    for (const Vec3 at : {back, front}) {
+        shape.push_back(Solid{SolidKind::cylinder, at, {2.5, 2.5, 30}});
+        shape.push_back(Solid{SolidKind::ellipsoid, at + Vec3{0, 0, 38}, {12, 12, 11}});
+    }
+    const Mask object = drawn(shape, w, h, ax, ay);
+    const std::vector<TrunkFoot> feet = {{ax + back.x - back.y - 0.5, int(ay + (back.x + back.y) / 2) - 1},
+                                         {ax + front.x - front.y - 0.5, int(ay + (front.x + front.y) / 2) - 1}};
+    const auto objects = estimate_objects(object, foot(w, h, ax, ay), nullptr, &feet);
+    ASSERT_EQ(objects.size(), 2u);
+    const EstimatedObject& behind = objects[0].center_y < objects[1].center_y ? objects[0] : objects[1];
+    double widest = 0;
+    for (std::size_t z = 0; z < behind.radius.size(); ++z) widest = std::max(widest, behind.across_at(z));
+    // Halfway to the front trunk lies 12 screen px, 12 / sqrt(2) ground px, from the axis.
+    std::printf("the tree behind: its widest cross-section %.1f px across (its crown 12, halfway %.1f)\n", widest,
+                12 / std::sqrt(2.0));
+    EXPECT_GT(widest, 10);
+    EXPECT_GT(volume_overlap(objects, ax, ay, shape), 0.4);
+}
+
 // A mountain wider than a tile (the town tileset's: a cone with two side
 // lobes): a mound with a peak's profile (a cone: its cross-section halfway
 // up about half its base's), standing on its base's middle, sharing far
