@@ -471,6 +471,22 @@ write("ts/specks2048.png", png(2048, 2048, rows=b"".join(b"\0" + (speck_row if y
 specks_ts = write("ts/specks2048.json", json.dumps({"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]},
                                                                  O(image="specks2048.png")]}))
 case("solid_of_2048_specks", ["check-tileset", specks_ts, "--json"], 0)
+# A 2048x2048 grove: two trunks on the tile under a canopy of four crowns
+# of one colour each, 1000 rows tall: its crowns, hidden trees and their
+# solids are found in time linear in its pixels for each tree.
+def grove_row(y):
+    row = bytearray(2048 * 4)
+    for x in range(2048):
+        if 1000 <= y < 2000 and 900 <= x < 1148:
+            k = (x - 900) // 62
+            row[4 * x:4 * x + 4] = bytes((60 + 50 * k, 140, 40, 255))
+        if 1990 <= y < 2040 and (978 <= x < 982 or 1068 <= x < 1072):
+            row[4 * x:4 * x + 4] = b"\x50\x36\x2a\xff"
+    return bytes(row)
+write("ts/grove2048.png", png(2048, 2048, rows=b"".join(b"\0" + grove_row(y) for y in range(2048))))
+grove_ts = write("ts/grove2048.json", json.dumps({"sprites": [{"name": "grass", "image": "grass.png", "kind": "floor", "tags": ["grass"]},
+                                                               O(image="grove2048.png")]}))
+case("solid_of_a_2048_grove", ["check-tileset", grove_ts, "--json"], 0)
 # A million edits (36 MB) take time in proportion: each sprite name found in a
 # sorted index, not by a search per edit.
 case("edits_a_million", ["render", "--scene", write("million.scene.json", json.dumps(
