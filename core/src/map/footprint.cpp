@@ -115,32 +115,41 @@ bool find_whole_base(const Mask& est, int tw, int th, std::vector<std::pair<int,
 
 namespace {
 
-// Calls fn(component) with each 8-connected component of the set pixels of a
-// w x h grid (`set`, row by row, 0 or 1), each a list of indices y * w + x,
-// in row-major order of their first pixel, so the same on every machine.
-template <class Fn>
-void for_each_component(std::vector<std::uint8_t> set, int w, int h, Fn fn) {
-    std::vector<int> stack, component;
+// Calls fn(region) with each region of the set pixels of a w x h grid
+// (`set`, row by row, 0 or 1), each a list of indices y * w + x: the pixels
+// joined through neighbours (8 of them with `diagonal`, else 4) for which
+// joins(from, to) holds, in row-major order of their first pixel, so the
+// same on every machine.
+template <class Joins, class Fn>
+void for_each_region(std::vector<std::uint8_t> set, int w, int h, bool diagonal, Joins joins, Fn fn) {
+    std::vector<int> stack, region;
     for (int start = 0; start < w * h; ++start) {
         if (!set[std::size_t(start)]) continue;
         set[std::size_t(start)] = 0;
         stack.assign(1, start);
-        component.clear();
+        region.clear();
         while (!stack.empty()) {
             const int i = stack.back();
             stack.pop_back();
-            component.push_back(i);
+            region.push_back(i);
             const int x = i % w, y = i / w;
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx) {
-                    const int nx = x + dx, ny = y + dy;
-                    if (nx < 0 || ny < 0 || nx >= w || ny >= h || !set[std::size_t(ny) * w + nx]) continue;
-                    set[std::size_t(ny) * w + nx] = 0;
-                    stack.push_back(ny * w + nx);
+                    if ((dx == 0 && dy == 0) || (!diagonal && dx != 0 && dy != 0)) continue;
+                    const int nx = x + dx, ny = y + dy, n = ny * w + nx;
+                    if (nx < 0 || ny < 0 || nx >= w || ny >= h || !set[std::size_t(n)] || !joins(i, n)) continue;
+                    set[std::size_t(n)] = 0;
+                    stack.push_back(n);
                 }
         }
-        fn(component);
+        fn(region);
     }
+}
+
+// Each 8-connected component of the set pixels (for_each_region).
+template <class Fn>
+void for_each_component(std::vector<std::uint8_t> set, int w, int h, Fn fn) {
+    for_each_region(std::move(set), w, h, true, [](int, int) { return true; }, fn);
 }
 
 }  // namespace
@@ -240,32 +249,16 @@ std::vector<Mask> crown_regions(const Image& sprite, const Mask& object) {
         open[std::size_t(i)] = object.bits[std::size_t(i)] && !is_bark(pixel(i)) && luminance(pixel(i)) >= crown_outline_luminance;
     const long least = std::max(16L, long(std::ceil(crown_share * double(object.count()))));
     std::vector<Mask> crowns;
-    std::vector<int> stack, region;
-    for (int start = 0; start < w * h; ++start) {  // row-major seeds: the same regions on every machine
-        if (!open[std::size_t(start)]) continue;
-        open[std::size_t(start)] = 0;
-        stack.assign(1, start);
-        region.clear();
-        while (!stack.empty()) {
-            const int i = stack.back();
-            stack.pop_back();
-            region.push_back(i);
-            const std::uint8_t* p = pixel(i);
-            const int x = i % w, y = i / w;
-            for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
-                const int nx = x + dx, ny = y + dy, n = ny * w + nx;
-                if (nx < 0 || ny < 0 || nx >= w || ny >= h || !open[std::size_t(n)]) continue;
-                const std::uint8_t* q = pixel(n);
-                if (std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]) >= crown_colour_step) continue;
-                open[std::size_t(n)] = 0;
-                stack.push_back(n);
-            }
-        }
-        if (long(region.size()) < least) continue;
+    const auto alike = [&](int i, int n) {
+        const std::uint8_t *p = pixel(i), *q = pixel(n);
+        return std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]) < crown_colour_step;
+    };
+    for_each_region(std::move(open), w, h, false, alike, [&](const std::vector<int>& region) {
+        if (long(region.size()) < least) return;
         Mask crown(object.rect());
         for (int i : region) crown.bits[std::size_t(i)] = 1;
         crowns.push_back(std::move(crown));
-    }
+    });
     return crowns;
 }
 
