@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <functional>
@@ -562,6 +563,24 @@ void print_walk_ratios(int pairs) {
     const OccluderMap occ = build_occluders(w, solids, w.placed.bounds);
     bench::print_ratio("solids_tree_floor",
                        bench::interleaved_costs(tree_touch_floor(128, occ.tallest, 16), walk_footprints, pairs), nullptr);
+    // The carried light's two passes against solids (the ground pass and the
+    // sprite pass, at the walk's 16 positions, one thread) over the floor
+    // walk of the same light's trees: how far the passes run above the
+    // structure they walk.
+    auto passes = [&occ, solids] {
+        const auto t0 = std::chrono::steady_clock::now();
+        for (long f = 0; f < 16; ++f) {
+            const Light l = walk_light(walk_camera(f));
+            const std::int64_t cx = std::int64_t(std::floor(l.x)), cy = std::int64_t(std::floor(l.y));
+            const Rect area{int(cx) - 128, int(cy) - 128, 257, 257};
+            LightMask m = trace_light_solids(occ, cx, cy, 128, 128, light_height(l, solids), solids, area);
+            light_sprite_points(m, occ, light_height(l, solids), solids);
+            benchmark::DoNotOptimize(m.value.data());
+        }
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    };
+    bench::print_ratio("solids_over_floor", bench::interleaved_costs(passes, tree_touch_floor(128, occ.tallest, 16), pairs),
+                       "<= 2");
     const auto behind = nodes_behind_spans(occ, 128);
     std::printf("solids_nodes_behind_spans ground %.3f sprites %.3f (of the nodes solids_tree_floor touches)\n", behind[0],
                 behind[1]);

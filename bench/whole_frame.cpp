@@ -390,6 +390,16 @@ void print_floor_ratios() {
         print_ratio("solids_edit_cost", interleaved_costs(edit, rebuild, pairs), "<= 0.05", 3);
     }
 
+    // Beyond the paper: the whole CPU frame (every light moved) with solids
+    // over the same frame with the paper's footprints, the same threads.
+    {
+        auto solids = [](Params& p) { p.occluders = Occluders::solids; };
+        auto solids_frame = make_screen("default", 1, 32, solids), footprints_frame = make_screen("default", 1, 32);
+        print_ratio("solids_frame_cost",
+                    interleaved([&] { step(*solids_frame, 32); }, 1, [&] { step(*footprints_frame, 32); }, 3, pairs),
+                    "<= 5", 2);
+    }
+
     // Beyond the paper: the whole frame with solids, its sprites shaded by
     // the solids' normals, over the same frame unshaded (every light moved).
     {

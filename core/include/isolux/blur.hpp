@@ -33,6 +33,12 @@ struct SurfaceIds {
     // fills it. A texel whose distance exceeds the blur's radius blurs as
     // box_blur does.
     std::vector<std::uint8_t> reach;
+    // Per pixel, whether its right neighbour (join_right) and the one below
+    // it (join_down) show the same surface; index_surfaces fills it. The
+    // blur near outlines reads these bytes, sixteen pixels at a time, where
+    // it would otherwise compare ids one by one.
+    static constexpr std::uint8_t join_right = 1, join_down = 2;
+    std::vector<std::uint8_t> joins;
     std::int32_t at(int wx, int wy) const {
         return rect.contains(wx, wy) ? id[std::size_t(wy - rect.y) * rect.w + std::size_t(wx - rect.x)] : -1;
     }
@@ -42,8 +48,8 @@ struct SurfaceIds {
 // blur compares a reach with (past it the blur never reads the reach).
 constexpr int surface_reach_cap = 8;
 
-// Fills `ids.reach` from `ids.id` (a pass along the rows, then one reading
-// the surface_reach_cap - 1 rows each side: O(1) per pixel).
+// Fills `ids.reach` and `ids.joins` from `ids.id` (a pass along the rows,
+// then one reading the surface_reach_cap - 1 rows each side: O(1) per pixel).
 void index_surfaces(SurfaceIds& ids);
 
 // Each texel becomes the mean, rounded to nearest, of the texels reached from

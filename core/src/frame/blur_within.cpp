@@ -7,6 +7,7 @@
 #include <array>
 #include <cassert>
 #include <cstring>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -90,6 +91,100 @@ bool windows_dark(const std::uint8_t* first, std::ptrdiff_t row_bytes) {
     }
     return _mm_movemask_epi8(_mm_cmpeq_epi8(any, _mm_setzero_si128())) == 0xffff;
 }
+
+// The rule for a strip sixteen texels wide, rows [ya, yb) (their windows
+// inside the texture and the surfaces' rectangle), from column x, for the
+// texels near another surface: per row of the window, each lane's run along
+// the row (the joins to the right, carried outwards from the lane), kept for
+// the next rows down the strip; then the rows kept while the lane's column
+// stays on its surface (the joins down). The sums fit 16 bits (225 x 255 at
+// radius 7); the rounded mean (s + n / 2) / n comes from a float division,
+// exact here: a quotient that is not whole lies at least 1 / n >= 1 / 225
+// from a whole number, more than half a float's step (1 / 512) below 65,536.
+template <int R>
+void blur_within_strip(const LightTexture& tex, const SurfaceIds& ids, int x, int ya, int yb, LightTexture& out) {
+    const Rect t = tex.rect, s = ids.rect;
+    const std::ptrdiff_t row_bytes = t.w, join_w = s.w;
+    const std::uint8_t* values = &tex.texels[std::size_t(ya - t.y) * t.w + std::size_t(x - t.x)];
+    const std::uint8_t* joins = &ids.joins[std::size_t(ya - s.y) * s.w + std::size_t(x - s.x)];
+    const std::uint8_t* reach = &ids.reach[std::size_t(ya - s.y) * s.w + std::size_t(x - s.x)];
+    std::uint8_t* result = &out.texels[std::size_t(ya - t.y) * t.w + std::size_t(x - t.x)];
+    const __m128i zero = _mm_setzero_si128(), all = _mm_cmpeq_epi8(zero, zero), one = _mm_set1_epi8(1),
+                  limit = _mm_set1_epi8(char(R)), right_bit = _mm_set1_epi8(char(SurfaceIds::join_right)),
+                  down_bit = _mm_set1_epi8(char(SurfaceIds::join_down));
+    auto load = [](const std::uint8_t* p) __attribute__((always_inline)) {
+        return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+    };
+    auto joined = [&](const std::uint8_t* j, __m128i bit) __attribute__((always_inline)) {
+        return _mm_cmpeq_epi8(_mm_and_si128(load(j), bit), bit);
+    };
+    // The rows' runs, by row (dy from ya) modulo 2R + 1: sums (16-bit, low
+    // and high lanes) and counts (bytes).
+    constexpr int rows = 2 * R + 1;
+    struct Run {
+        __m128i lo, hi, n;
+        __m128i down;  // where the row's pixel joins the one below it
+        int row;
+    };
+    std::array<Run, rows> run;
+    for (Run& r : run) r.row = std::numeric_limits<int>::min();
+    auto run_of = [&](int dy) __attribute__((always_inline)) -> const Run& {
+        Run& r = run[std::size_t(dy + R) % rows];
+        if (r.row == dy) return r;
+        r.row = dy;
+        const std::uint8_t* v = values + dy * row_bytes;
+        const std::uint8_t* j = joins + dy * join_w;
+        const __m128i centre = load(v);
+        r.down = joined(j, down_bit);
+        r.lo = _mm_unpacklo_epi8(centre, zero), r.hi = _mm_unpackhi_epi8(centre, zero), r.n = one;
+        __m128i left = all, right = all;
+        for (int i = 1; i <= R; ++i) {
+            right = _mm_and_si128(right, joined(j + i - 1, right_bit));  // x + i - 1 joins x + i
+            left = _mm_and_si128(left, joined(j - i, right_bit));        // x - i joins x - i + 1
+            const __m128i a = _mm_and_si128(load(v + i), right), b = _mm_and_si128(load(v - i), left);
+            r.lo = _mm_add_epi16(r.lo, _mm_add_epi16(_mm_unpacklo_epi8(a, zero), _mm_unpacklo_epi8(b, zero)));
+            r.hi = _mm_add_epi16(r.hi, _mm_add_epi16(_mm_unpackhi_epi8(a, zero), _mm_unpackhi_epi8(b, zero)));
+            r.n = _mm_add_epi8(r.n, _mm_sub_epi8(zero, _mm_add_epi8(right, left)));  // each -1 where kept
+        }
+        return r;
+    };
+    for (int dy = 0; dy < yb - ya; ++dy) {
+        const std::uint8_t* v0 = values + dy * row_bytes;
+        const __m128i r = load(reach + dy * join_w);
+        const __m128i near = _mm_cmpeq_epi8(_mm_min_epu8(r, limit), r);
+        if (_mm_movemask_epi8(near) == 0 || windows_dark<1, R>(v0, row_bytes)) continue;
+        const Run& mid = run_of(dy);
+        __m128i lo = mid.lo, hi = mid.hi, n = mid.n;
+        auto add = [&](const Run& w, __m128i on) __attribute__((always_inline)) {
+            lo = _mm_add_epi16(lo, _mm_and_si128(w.lo, _mm_unpacklo_epi8(on, on)));
+            hi = _mm_add_epi16(hi, _mm_and_si128(w.hi, _mm_unpackhi_epi8(on, on)));
+            n = _mm_add_epi8(n, _mm_and_si128(w.n, on));
+        };
+        __m128i up = all, down = mid.down;
+        for (int k = 1; k <= R; ++k) {
+            const Run& above = run_of(dy - k);
+            up = _mm_and_si128(up, above.down);  // row y - k joins y - k + 1
+            add(above, up);
+            const Run& below = run_of(dy + k);
+            add(below, down);
+            if (k < R) down = _mm_and_si128(down, below.down);  // row y + k joins y + k + 1
+        }
+        // (s + n / 2) / n, four lanes at a time.
+        const __m128i n_lo = _mm_unpacklo_epi8(n, zero), n_hi = _mm_unpackhi_epi8(n, zero);
+        lo = _mm_add_epi16(lo, _mm_srli_epi16(n_lo, 1));
+        hi = _mm_add_epi16(hi, _mm_srli_epi16(n_hi, 1));
+        auto quotient = [&](__m128i s16, __m128i n16) __attribute__((always_inline)) {
+            auto q = [&](__m128i sv, __m128i nv) {
+                return _mm_cvttps_epi32(_mm_div_ps(_mm_cvtepi32_ps(sv), _mm_cvtepi32_ps(nv)));
+            };
+            return _mm_packs_epi32(q(_mm_unpacklo_epi16(s16, zero), _mm_unpacklo_epi16(n16, zero)),
+                                   q(_mm_unpackhi_epi16(s16, zero), _mm_unpackhi_epi16(n16, zero)));
+        };
+        const __m128i q = _mm_packus_epi16(quotient(lo, n_lo), quotient(hi, n_hi));
+        std::uint8_t* o = result + dy * row_bytes;
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(o), _mm_or_si128(_mm_and_si128(near, q), _mm_andnot_si128(near, load(o))));
+    }
+}
 #endif
 
 // Whether every texel of `window` (inside the texture) is 0.
@@ -139,10 +234,18 @@ void blur_within_region(const LightTexture& tex, const SurfaceIds& ids, Rect z, 
     const Rect t = tex.rect, s = ids.rect;
     // Where a window lies inside both the texture and the surfaces' rectangle.
     const Rect inner = intersect(Rect{t.x + R, t.y + R, t.w - 2 * R, t.h - 2 * R}, Rect{s.x + R, s.y + R, s.w - 2 * R, s.h - 2 * R});
+    const int ya = std::clamp(inner.y, z.y, z.y + z.h), yb = std::clamp(inner.y + inner.h, ya, z.y + z.h);
+    const int xa = std::clamp(inner.x, z.x, z.x + z.w), xb = std::clamp(inner.x + inner.w, xa, z.x + z.w);
+    // One channel with the joins indexed: the inner columns in strips
+    // sixteen wide, down the rows (blur_within_strip); the rest by the texel.
+#if defined(__SSE2__)
+    const bool strips = C == 1 && ids.joins.size() == ids.id.size();
+#else
+    const bool strips = false;
+#endif
+    const int strips_end = strips ? xa + (xb - xa) / 16 * 16 : xa;
     for (int y = z.y; y < z.y + z.h; ++y) {
-        const bool row_inner = y >= inner.y && y < inner.y + inner.h;
-        const int xa = row_inner ? std::clamp(inner.x, z.x, z.x + z.w) : z.x + z.w;
-        const int xb = row_inner ? std::clamp(inner.x + inner.w, xa, z.x + z.w) : z.x + z.w;
+        const bool row_inner = y >= ya && y < yb;
         auto edge = [&](int x) {
             // Off `inner`: plain only inside the texture with no surface's
             // rectangle in reach (the ground all round); else by the rule.
@@ -152,33 +255,41 @@ void blur_within_region(const LightTexture& tex, const SurfaceIds& ids, Rect z, 
             if (window_dark<C>(tex, window)) return;  // 0 by either rule
             blur_within_texel_any<C>(tex, R, ids, x, y, out);
         };
-        for (int x = z.x; x < xa; ++x) edge(x);
-        if (xa < xb) {
-            // Only texels another surface lies within R of (reach <= R), and
-            // of those only where the window's values differ, take the rule.
-            const std::uint8_t* reach = &ids.reach[std::size_t(y - s.y) * s.w] - s.x;
-            const std::uint8_t* values = &tex.texels[std::size_t(y - t.y) * t.w * C] - std::ptrdiff_t(t.x) * C;
-            const std::ptrdiff_t row_bytes = std::ptrdiff_t(t.w) * C;
-            auto redo = [&](int x) {
-                if (!window_uniform<C, R>(values + std::ptrdiff_t(x) * C, row_bytes))
-                    blur_within_texel<C, R>(tex, ids, x, y, out);
-            };
-            int x = xa;
-#if defined(__SSE2__)
-            // Sixteen reaches at a time: a row is mostly far from any outline.
-            const __m128i limit = _mm_set1_epi8(char(R));
-            for (; x + 16 <= xb; x += 16) {
-                const __m128i r = _mm_loadu_si128(reinterpret_cast<const __m128i*>(reach + x));
-                unsigned near = unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_min_epu8(r, limit), r)));
-                if (near && windows_dark<C, R>(values + std::ptrdiff_t(x) * C, row_bytes)) continue;
-                for (; near; near &= near - 1) redo(x + __builtin_ctz(near));
-            }
-#endif
-            for (; x < xb; ++x)
-                if (reach[x] <= R) redo(x);
+        if (!row_inner) {
+            for (int x = z.x; x < z.x + z.w; ++x) edge(x);
+            continue;
         }
-        for (int x = std::max(xb, xa); x < z.x + z.w; ++x) edge(x);
+        for (int x = z.x; x < xa; ++x) edge(x);
+        // Only texels another surface lies within R of (reach <= R), and of
+        // those only where the window's values differ, take the rule.
+        const std::uint8_t* reach = &ids.reach[std::size_t(y - s.y) * s.w] - s.x;
+        const std::uint8_t* values = &tex.texels[std::size_t(y - t.y) * t.w * C] - std::ptrdiff_t(t.x) * C;
+        const std::ptrdiff_t row_bytes = std::ptrdiff_t(t.w) * C;
+        auto redo = [&](int x) {
+            if (!window_uniform<C, R>(values + std::ptrdiff_t(x) * C, row_bytes)) blur_within_texel<C, R>(tex, ids, x, y, out);
+        };
+        int x = strips_end;
+#if defined(__SSE2__)
+        // Sixteen reaches at a time: a row is mostly far from any outline.
+        const __m128i limit = _mm_set1_epi8(char(R));
+        for (; x + 16 <= xb; x += 16) {
+            const __m128i r = _mm_loadu_si128(reinterpret_cast<const __m128i*>(reach + x));
+            unsigned near = unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_min_epu8(r, limit), r)));
+            if (near && windows_dark<C, R>(values + std::ptrdiff_t(x) * C, row_bytes)) continue;
+            for (; near; near &= near - 1) redo(x + __builtin_ctz(near));
+        }
+#endif
+        for (; x < xb; ++x)
+            if (reach[x] <= R) redo(x);
+        for (x = std::max(xb, xa); x < z.x + z.w; ++x) edge(x);
     }
+#if defined(__SSE2__)
+    // In bands of rows that stay in the cache from one strip to the next.
+    constexpr int band = 32;
+    if constexpr (C == 1)
+        for (int y = ya; y < yb; y += band)
+            for (int x = xa; x < strips_end; x += 16) blur_within_strip<R>(tex, ids, x, y, std::min(yb, y + band), out);
+#endif
 }
 
 template <int C, int... R>
@@ -266,6 +377,7 @@ void index_surfaces(SurfaceIds& ids) {
     // edge; then per pixel, the least over the rows up to cap - 1 away of
     // max(rows away, that row's distance). Capped, so the second step reads
     // a fixed number of rows, each a straight byte loop.
+    ids.joins.assign(std::size_t(w) * h, std::uint8_t(0));
     std::vector<std::uint8_t> along(std::size_t(w) * h);
     std::vector<std::int32_t> framed(3 * (std::size_t(w) + 2), -1);  // rows y - 1, y, y + 1, a ground pixel each side
     std::vector<std::uint8_t> edge(static_cast<std::size_t>(w));
@@ -280,8 +392,13 @@ void index_surfaces(SurfaceIds& ids) {
         const std::int32_t* up = &framed[std::size_t(y) % 3 * (std::size_t(w) + 2) + 1];
         const std::int32_t* at = &framed[std::size_t(y + 1) % 3 * (std::size_t(w) + 2) + 1];
         const std::int32_t* down = &framed[std::size_t(y + 2) % 3 * (std::size_t(w) + 2) + 1];
+        std::uint8_t* joins = &ids.joins[std::size_t(y) * w];
         for (int x = 0; x < w; ++x) {
             const std::int32_t c = at[x];
+            // (The frame's sides are -1, so the last column and row join
+            // nothing only where they are not the ground: never read there.)
+            joins[x] = std::uint8_t((x + 1 < w && at[x + 1] == c ? SurfaceIds::join_right : 0) |
+                                    (y + 1 < h && down[x] == c ? SurfaceIds::join_down : 0));
             edge[std::size_t(x)] = std::uint8_t((up[x - 1] != c) | (up[x] != c) | (up[x + 1] != c) | (at[x - 1] != c) |
                                                 (at[x + 1] != c) | (down[x - 1] != c) | (down[x] != c) | (down[x + 1] != c));
         }

@@ -326,6 +326,41 @@ TEST(BlurWithinSurfaces, darkAndEvenStretchesGiveTheReferencesBytes) {
     EXPECT_EQ(checked, 56);
 }
 
+TEST(BlurWithinSurfaces, ItsSixteenWideStripsGiveTheReferencesBytesAtFullValueAndOnRaggedOutlines) {
+    // The one-channel blur takes the texels near an outline sixteen at a
+    // time, down bands of rows, with 16-bit sums and a float division: a
+    // texture wider than several strips and taller than a band, at full
+    // value (the largest sums: 225 x 255 at radius 7, each mean whole) and
+    // at random values (means that are not whole), over surfaces whose
+    // outlines are ragged pixel by pixel and over solid blocks.
+    int checked = 0;
+    for (std::uint64_t seed : {21, 22, 23}) {
+        const Rect r{-9, 4, 150, 90};
+        Pcg32 rng(seed);
+        SurfaceIds ids = random_surfaces(r, seed);
+        for (std::size_t i = 0; i < ids.id.size(); ++i)  // ragged: a third of the pixels another surface
+            if (rng.below(3) == 0) ids.id[i] = std::int32_t(rng.below(4)) - 1;
+        index_surfaces(ids);
+        ASSERT_EQ(ids.joins.size(), ids.id.size());
+        for (int y = r.y; y < r.y + r.h; ++y)
+            for (int x = r.x; x < r.x + r.w; ++x) {
+                const std::uint8_t j = ids.joins[std::size_t(y - r.y) * r.w + std::size_t(x - r.x)];
+                EXPECT_EQ(bool(j & SurfaceIds::join_right), x + 1 < r.x + r.w && ids.at(x + 1, y) == ids.at(x, y));
+                EXPECT_EQ(bool(j & SurfaceIds::join_down), y + 1 < r.y + r.h && ids.at(x, y + 1) == ids.at(x, y));
+            }
+        for (bool full : {true, false}) {
+            LightTexture t(r, 1);
+            for (std::uint8_t& v : t.texels) v = full ? 255 : std::uint8_t(rng.below(256));
+            for (int radius = 1; radius <= 7; ++radius) {
+                EXPECT_EQ(box_blur_within(t, radius, ids).texels, box_blur_within_reference(t, radius, ids).texels)
+                    << "seed " << seed << (full ? " full" : " random") << " r " << radius;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_EQ(checked, 42);
+}
+
 TEST(BlurWithinSurfaces, ReachIsTheChebyshevDistanceToAnotherSurface) {
     // Every pixel's reach against a brute-force search, the outside counting
     // as the ground; and the blur gives the same bytes with ids over any
