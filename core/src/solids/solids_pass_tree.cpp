@@ -261,10 +261,14 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
     const std::uint8_t* flags = area_flags(occ, m.clip, in, wanted);
     std::uint8_t* value = m.value.data();
     // Below a span: a stack of the subtrees whose shades differ from their
-    // parent's. A shade [from, to) shades the whole depths [ceil(from),
-    // ceil(to)), so a frame holds them as one bit per depth, and the depth
-    // from which everything is shaded to the border. Beyond the area's last
-    // depth a shade shades nothing (a canopy far out shades past the border).
+    // parent's. A span standing on the ground shades from its own node's
+    // depth to some depth beyond: on the rays below, every depth up to the
+    // farthest such end (`until`, a running maximum). A crown over the
+    // ground shades the whole depths [ceil(from), ceil(to)) beyond its
+    // node, kept as one bit per depth (a frame's row of bits, its parent's
+    // when it adds none); and the depth from which everything is shaded to
+    // the border. Beyond the area's last depth a shade shades nothing (a
+    // canopy far out shades past the border).
     const int last = std::max(m.a, m.b);
     const double last_depth = double(last);
     const int words = last / 64 + 1;
@@ -272,7 +276,9 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
     struct Frame {
         std::int32_t end;
         int endless;  // none, or the depth from which all is shaded
-        int reach;    // the bits end before it
+        int until;    // the depths below it are shaded (spans on the ground)
+        int reach;    // the crowns' bits end before it
+        int row;      // the stack level whose row of bits this frame reads
     };
     // (The scalars by value: the mask's byte stores may alias anything the
     // walk holds by reference, which would be read again after each.)
@@ -283,11 +289,11 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
         thread_local std::vector<std::uint64_t> bit_arena;
         frames.resize(std::size_t(last) + 2);
         bit_arena.resize(frames.size() * std::size_t(words));
-        std::fill_n(bit_arena.begin(), words, 0);  // each deeper frame copies its parent's first
+        std::fill_n(bit_arena.begin(), words, 0);  // a frame adding bits copies its row first
         Frame* frame = frames.data();
         std::uint64_t* bits = bit_arena.data();
         int t = 0;
-        frame[0] = Frame{n, none, 0};
+        frame[0] = Frame{n, none, 0, 0, 0};
         for (std::int32_t i = piece; i < n;) {
             while (frame[t].end <= i) --t;
             const Frame top = frame[t];
@@ -299,17 +305,21 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
                 i = node[i].end;
                 continue;
             }
-            if (top.reach <= k && !(f & OccluderMap::has_span)) {
-                // No bit shades this node or any below it: lit unless past the
-                // endless shade, up to the next span (in its subtree, or after
-                // it when the frame is empty).
-                i = light_clear<S>(node, i, top.reach == 0 && top.endless == none ? top.end : node[i].end, flags,
-                                   table.data(), value, std::uint32_t(top.endless));
+            if (top.reach <= k && top.until <= k && !(f & OccluderMap::has_span)) {
+                // No shade reaches this node or any below it: lit unless past
+                // the endless shade, up to the next span (in its subtree, or
+                // after it when the frame is empty).
+                const bool empty = top.reach == 0 && top.until == 0 && top.endless == none;
+                i = light_clear<S>(node, i, empty ? top.end : node[i].end, flags, table.data(), value,
+                                   std::uint32_t(top.endless));
                 continue;
             }
-            // This node's shades (one per span below the light): the depths [from, to).
-            int endless = top.endless;
+            // This node's shades (one per span below the light): a span on
+            // the ground shades [k, to) (this node too), a crown [from, to)
+            // with from > k.
+            int endless = top.endless, until = top.until;
             std::array<int, 2> from{0, 0}, to{0, 0};
+            bool grounded_here = false;
             if (f & OccluderMap::has_span) {
                 const Spans& sps = occ.spans[in.map(o)];
                 const double kd = double(k);
@@ -320,10 +330,16 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
                     if (f > last_depth) continue;
                     if (sp.high >= H) {
                         endless = std::min(endless, int(std::ceil(f)));
+                        continue;
+                    }
+                    const double e = kd * H / (H - sp.high);
+                    const int end = e > last_depth ? last + 1 : int(std::ceil(e));
+                    if (sp.low <= 0) {
+                        grounded_here = grounded_here || k < end;
+                        until = std::max(until, end);
                     } else {
-                        const double e = kd * H / (H - sp.high);
                         from[std::size_t(j)] = int(std::ceil(f));
-                        to[std::size_t(j)] = e > last_depth ? last + 1 : int(std::ceil(e));
+                        to[std::size_t(j)] = end;
                     }
                 }
             }
@@ -331,28 +347,32 @@ void trace_ground_tree(LightMask& m, const OccluderMap& occ, double H, const std
                 i = node[i].end;
                 continue;
             }
-            const std::uint64_t* at = bits + std::size_t(t) * words;
-            bool shaded = k < top.reach && (at[k >> 6] >> (k & 63) & 1);
+            until = std::min(until, endless);
+            const std::uint64_t* at = bits + std::size_t(top.row) * words;
+            const bool shaded = grounded_here || k < top.until || (k < top.reach && (at[k >> 6] >> (k & 63) & 1));
             int reach = top.reach;
-            bool any_shade = false;
+            bool new_bits = false;
             for (std::size_t j = 0; j < 2; ++j) {
-                shaded = shaded || (from[j] <= k && k < to[j]);
-                from[j] = std::max(from[j], k + 1);
+                from[j] = std::max({from[j], k + 1, until});  // the grounded spans' depths shade them already
                 to[j] = std::min(to[j], endless);
-                if (from[j] < to[j]) any_shade = true, reach = std::max(reach, to[j]);
+                if (from[j] < to[j]) new_bits = true, reach = std::max(reach, to[j]);
             }
             if (!shaded) store<S>(value[o], table[std::size_t(k)]);
-            if ((any_shade || endless < top.endless) && node[i].end > i + 1) {
-                std::uint64_t* mine = bits + std::size_t(t + 1) * words;
-                std::memcpy(mine, at, std::size_t(words) * sizeof(std::uint64_t));
-                for (std::size_t j = 0; j < 2; ++j)
-                    for (int d = from[j]; d < to[j];) {  // the depths [from, to), a word at a time
-                        const int word_end = std::min(to[j], (d & ~63) + 64);
-                        const int count = word_end - d;
-                        mine[d >> 6] |= (count == 64 ? ~std::uint64_t(0) : ((std::uint64_t(1) << count) - 1)) << (d & 63);
-                        d = word_end;
-                    }
-                frame[t + 1] = Frame{node[i].end, endless, reach};
+            if ((new_bits || until > top.until || endless < top.endless) && node[i].end > i + 1) {
+                int row = top.row;
+                if (new_bits) {
+                    row = t + 1;
+                    std::uint64_t* mine = bits + std::size_t(row) * words;
+                    std::memcpy(mine, at, std::size_t(words) * sizeof(std::uint64_t));
+                    for (std::size_t j = 0; j < 2; ++j)
+                        for (int d = from[j]; d < to[j];) {  // the depths [from, to), a word at a time
+                            const int word_end = std::min(to[j], (d & ~63) + 64);
+                            const int count = word_end - d;
+                            mine[d >> 6] |= (count == 64 ? ~std::uint64_t(0) : ((std::uint64_t(1) << count) - 1)) << (d & 63);
+                            d = word_end;
+                        }
+                }
+                frame[t + 1] = Frame{node[i].end, endless, until, reach, row};
                 ++t;
             }
             ++i;
