@@ -211,6 +211,15 @@ void register_whole_frames() {
                                              for (auto _ : st) box_blur_into(tex, radius, tex.rect, out);
                                          })
                 ->Unit(benchmark::kMillisecond);
+    // The whole frame with every light moved, per model of what stops the
+    // rays (solids_frame_cost's two sides), one thread.
+    for (const Occluders o : {Occluders::footprints, Occluders::solids})
+        benchmark::RegisterBenchmark((std::string("frame/screen/occluders:") + (o == Occluders::solids ? "solids" : "footprints")).c_str(),
+                                     [o](benchmark::State& st) {
+                                         auto s = make_screen("default", 1, 32, [o](Params& p) { p.occluders = o; });
+                                         for (auto _ : st) step(*s, 32);
+                                     })
+            ->Unit(benchmark::kMillisecond);
     // Beyond the paper: the blur within the surfaces the view shows (occluders
     // solids or shapes), radius 2, grey.
     benchmark::RegisterBenchmark("stage/blur_within/radius:2", [](benchmark::State& st) {

@@ -80,6 +80,13 @@ struct OccluderMap {
     };
     std::vector<std::uint32_t> shown_start;
     std::vector<Shown> shown;
+    // An edit relists its pixels in place: where their lists shrink, the
+    // entries left over stay at the end of the last pixel's list as padding,
+    // rows = unlisted (so far above any pixel that every pass skips it), for
+    // the next edit there to reuse. `padding` counts them; a build or a pan
+    // lists without any.
+    static constexpr std::uint32_t unlisted = 1u << 30;
+    std::size_t padding = 0;
     int tallest = 0;  // the most rows any such pixel lies above its ground pixel
     // At least the most rows any sprite pixel of the surface lies above its
     // ground pixel, listed or not (its ground below the map): how far up a

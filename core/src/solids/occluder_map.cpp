@@ -142,6 +142,7 @@ struct KeptIndex {
 // columns it changed, down to reach_rows below it). What remains for the
 // whole region is a running sum and copies of the kept lists.
 void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
+    m.padding = 0;
     const Surface& s = m.surface;
     const std::size_t n = s.instance.size();
     if (n >= std::numeric_limits<std::uint32_t>::max() - 1)
@@ -221,6 +222,161 @@ void index_shown(OccluderMap& m, const KeptIndex* kept = nullptr) {
     start.pop_back();
     m.tallest = int(tallest);
     m.reach_rows = unchanged.empty() ? int(reach) : std::max(m.reach_rows, int(reach));
+}
+
+// The lists without their padding, in place (before a pan's index_shown
+// copies them by rows).
+void drop_padding(OccluderMap& m) {
+    if (m.padding == 0) return;
+    std::uint32_t to = 0;
+    for (std::size_t g = 0; g + 1 < m.shown_start.size(); ++g) {
+        const std::uint32_t from = m.shown_start[g], end = m.shown_start[g + 1];
+        m.shown_start[g] = to;
+        for (std::uint32_t k = from; k < end; ++k)
+            if (m.shown[k].rows != OccluderMap::unlisted) m.shown[to++] = m.shown[k];
+    }
+    m.shown_start.back() = to;
+    m.shown.resize(to);
+    m.padding = 0;
+}
+
+// An edit in place's lists (index_shown's, for `lists`, region pixels).
+// Where each row's new lists fit the room its old ones took (their padding
+// included), they are written there, padding ending the row's last list:
+// nothing else moves. Else the entries from the lists' first pixel to
+// their last (row-major) are written anew, the other columns' lists among
+// them copied, each row's lists given as much room again as they need (for
+// the next edits there), and the entries after them moved up. The has_shown
+// flags and the tallest point as index_shown leaves them: the same lists
+// but for the padding.
+void relist_shown(OccluderMap& m, Rect lists) {
+    const Surface& s = m.surface;
+    const Rect region = s.rect;
+    const std::size_t w = std::size_t(region.w);
+    const std::size_t x0 = std::size_t(lists.x - region.x), x1 = x0 + std::size_t(lists.w);
+    const std::size_t g0 = std::size_t(lists.y - region.y), g1 = g0 + std::size_t(lists.h);  // ground rows
+    constexpr std::uint32_t unlisted = OccluderMap::unlisted;
+    const OccluderMap::Shown pad{0.f, unlisted};
+    std::vector<std::uint32_t>& start = m.shown_start;
+    // 1. The points over the lists' pixels, by ground pixel in scan order
+    // (as index_shown places them), and the rows each sprite pixel reaches.
+    struct Point {
+        std::uint32_t ground;
+        OccluderMap::Shown shown;
+    };
+    thread_local std::vector<Point> points;
+    points.clear();
+    std::uint32_t reach = 0, new_tallest = 0;
+    for (std::size_t y = g0 - std::min<std::size_t>(g0, std::size_t(m.reach_rows)); y < g1; ++y)
+        for (std::size_t i = y * w + x0; i < y * w + x1; ++i) {
+            if (s.instance[i] < 0) continue;
+            const float height = std::max(s.height[i], 0.f);
+            const std::uint32_t rows = std::uint32_t(rows_above(height));
+            reach = std::max(reach, rows);
+            if (y + rows < g0 || y + rows >= g1) continue;
+            points.push_back({std::uint32_t(i + rows * w), {height, rows}});
+            new_tallest = std::max(new_tallest, rows);
+        }
+    std::stable_sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.ground < b.ground; });
+    // 2. Per row, the new count against the old room; the old tallest's
+    // entries and the padding among the old lists counted.
+    thread_local std::vector<std::uint32_t> counts;  // per row of the lists
+    counts.assign(g1 - g0, 0);
+    for (const Point& p : points) ++counts[p.ground / w - g0];
+    bool fits = true;
+    std::size_t lost_tallest = 0, old_padding = 0;
+    for (std::size_t y = g0; y < g1; ++y) {
+        const std::uint32_t from = start[y * w + x0], to = start[y * w + x1];
+        fits = fits && counts[y - g0] <= to - from;
+        for (std::uint32_t k = from; k < to; ++k) {
+            lost_tallest += m.shown[k].rows == std::uint32_t(m.tallest);
+            old_padding += m.shown[k].rows == unlisted;
+        }
+    }
+    // 3. The lists' flags, and their entries where they are to go.
+    auto place_row = [&](std::size_t y, std::uint32_t at, std::uint32_t room, std::vector<Point>::const_iterator& p) {
+        for (std::size_t g = y * w + x0; g < y * w + x1; ++g) {
+            start[g] = at;
+            const std::uint32_t before = at;
+            for (; p != points.cend() && p->ground == g; ++p) m.shown[at++] = p->shown;
+            m.flags[g] = std::uint8_t((m.flags[g] & OccluderMap::has_span) | (at > before ? OccluderMap::has_shown : 0));
+        }
+        std::fill(m.shown.begin() + at, m.shown.begin() + std::ptrdiff_t(start[y * w + x0] + room), pad);
+        return room - (at - start[y * w + x0]);  // the row's padding
+    };
+    std::size_t new_padding = 0;
+    auto p = points.cbegin();
+    if (fits) {
+        for (std::size_t y = g0; y < g1; ++y)
+            new_padding += place_row(y, start[y * w + x0], start[y * w + x1] - start[y * w + x0], p);
+    } else {
+        // The span [first, last): each lists row with room for twice its
+        // count (or its old room), the columns between copied less padding.
+        const std::size_t first = g0 * w + x0, last = (g1 - 1) * w + x1;
+        thread_local std::vector<OccluderMap::Shown> between;  // the other columns' lists, in order
+        thread_local std::vector<std::uint32_t> between_count, rooms;
+        between.clear();
+        between_count.assign(last - first, 0);
+        rooms.assign(g1 - g0, 0);
+        std::size_t total = 0;
+        for (std::size_t g = first; g < last; ++g) {
+            const std::size_t x = g % w;
+            if (x == x0) {
+                const std::size_t y = g / w;
+                const std::uint32_t old_room = start[y * w + x1] - start[g], need = counts[y - g0];
+                rooms[y - g0] = need <= old_room ? old_room : 2 * need;
+                total += rooms[y - g0];
+                g = y * w + x1 - 1;
+                continue;
+            }
+            const std::size_t before = between.size();
+            for (std::uint32_t k = start[g]; k < start[g + 1]; ++k)
+                if (m.shown[k].rows != unlisted) between.push_back(m.shown[k]);
+                else ++old_padding;
+            between_count[g - first] = std::uint32_t(between.size() - before);
+            total += between.size() - before;
+        }
+        const std::size_t had = start[last] - start[first];
+        if (total > had) {
+            const std::size_t grow = total - had;
+            if (m.shown.size() + grow >= std::numeric_limits<std::uint32_t>::max())
+                throw Error("occluders: the region's sprite points are too many to trace against solids");
+            m.shown.insert(m.shown.begin() + std::ptrdiff_t(start[last]), grow, pad);
+            for (std::size_t g = last; g < start.size(); ++g) start[g] += std::uint32_t(grow);
+        }
+        std::uint32_t at = start[first];
+        std::size_t b = 0;
+        for (std::size_t g = first; g < last; ++g) {
+            const std::size_t x = g % w;
+            if (x == x0) {
+                const std::size_t y = g / w;
+                new_padding += place_row(y, at, rooms[y - g0], p);
+                at += rooms[y - g0];
+                g = y * w + x1 - 1;
+                continue;
+            }
+            start[g] = at;
+            std::copy_n(between.begin() + std::ptrdiff_t(b), between_count[g - first], m.shown.begin() + at);
+            b += between_count[g - first];
+            at += between_count[g - first];
+        }
+        // What is left before the entries after the span: the last row's padding.
+        std::fill(m.shown.begin() + at, m.shown.begin() + start[last], pad);
+        new_padding += start[last] - at;
+    }
+    m.padding = m.padding - old_padding + new_padding;
+    // 4. The tallest point: higher if the lists' is; lower only when every
+    // one of the old tallest's entries was among the lists' (then sought).
+    m.reach_rows = std::max(m.reach_rows, int(reach));
+    if (int(new_tallest) >= m.tallest) {
+        m.tallest = int(new_tallest);
+    } else if (lost_tallest > 0) {
+        std::uint32_t tallest = 0;
+        for (const OccluderMap::Shown& e : m.shown)
+            if (e.rows != unlisted) tallest = std::max(tallest, e.rows);
+        m.tallest = int(tallest);
+    }
+    if (m.padding > m.shown.size() / 2) drop_padding(m);  // edits all over: compacted now and then
 }
 
 }  // namespace
@@ -334,6 +490,21 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
     // (in place when the size is the same: a pan).
     // The old lists trade places with the last update's (their storage kept
     // per thread: an edit then lists into memory it already has).
+    // An edit in place relists its pixels alone (relist_shown).
+    const Rect edited = intersect(changed, region);
+    if (!edited.empty() && region == m.rect && !m.shown_start.empty()) {
+        for (Rect r : {edited}) {
+            OccluderMap part;
+            fill_occluders(part, world, p, r, cache);
+            copy_part(m, part, r);
+            for (std::size_t i = 0; i < part.surface.instance.size(); ++i)
+                if (part.surface.instance[i] >= 0)
+                    m.reach_rows = std::max(m.reach_rows, int(rows_above(std::max(part.surface.height[i], 0.f))));
+        }
+        relist_shown(m, intersect(region, Rect{edited.x, edited.y, edited.w, edited.h + m.reach_rows}));
+        return;
+    }
+    drop_padding(m);
     thread_local KeptIndex kept;
     kept.rect = m.rect;
     kept.unchanged = {keep};
@@ -347,7 +518,6 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
     m.rect = m.surface.rect = region;
     // What came into the region, and what the world changed: built.
     std::vector<Rect> parts = outside(region, keep);
-    const Rect edited = intersect(changed, region);
     if (!edited.empty()) parts.push_back(edited);
     for (Rect r : parts) {
         OccluderMap part;

@@ -16,6 +16,7 @@
 #include "isolux/obstacle_map.hpp"
 #include "isolux/occluder_map.hpp"
 #include "isolux/tileset_file.hpp"
+#include "isolux/world.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -377,6 +378,51 @@ TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
     EXPECT_EQ(r2.tracer, "gpu");
     EXPECT_EQ(gpu2.traced.texels, cpu2.traced.texels) << "a second frame state";
     gpu_tracer_free(tracer);
+}
+
+// An occluder map edited in place carries padding in its sprite index
+// (OccluderMap::unlisted entries where an edit's lists shrank): the GPU's
+// sprite pass skips it as the CPU's does, the same bytes.
+TEST(Gl, theGpuSkipsAnEditedMapsPaddingAsTheCpuDoes) {
+    ASSERT_NE(gl().window, nullptr) << "no GL context (run under xvfb-run): " << gl().error;
+    GpuTracer tracer;
+    std::string error;
+    ASSERT_TRUE(gpu_tracer_init(tracer, error)) << error;
+    World w = world();
+    const Rect b = w.placed.bounds;
+    Params p;
+    p.occluders = Occluders::solids;
+    p.falloff_scale = 8;
+    OccluderMap occ = build_occluders(w, p, b);
+    const int reach = occluder_reach(w.tileset);
+    std::uint64_t revision = 5000;
+    int compared = 0;
+    for (const char* overlay : {"oak", "", "pine", ""}) {
+        TileEdit e;
+        e.col = 4, e.row = 5;
+        e.overlays = *overlay ? std::vector<std::string>{overlay} : std::vector<std::string>{};
+        const Rect changed = set_edits(w, {e});
+        ASSERT_EQ(w.placed.bounds, b);
+        update_occluders(occ, w, p, b, Rect{changed.x - reach, changed.y - reach, changed.w + 2 * reach, changed.h + 2 * reach});
+        ++revision;
+        const std::int64_t cx = changed.x + changed.w / 2, cy = changed.y + changed.h;
+        for (const double height : {8.0, 40.0}) {
+            const int a = 90, bb = 90;
+            const Rect clip{int(cx) - a, int(cy) - bb, 2 * a + 1, 2 * bb + 1};
+            LightMask want = trace_light_solids(occ, cx, cy, a, bb, height, p, clip);
+            light_sprite_points(want, occ, height, p);
+            LightMask got;
+            start_mask(got, cx, cy, a, bb, p, clip, false);
+            std::vector<LightMask*> masks{&got};
+            ASSERT_TRUE(gpu_trace_solids(tracer, occ, revision, masks, {height}, p, true));
+            EXPECT_EQ(got.value, want.value) << (*overlay ? overlay : "cleared") << " at " << height;
+            ++compared;
+        }
+        if (!*overlay) {
+            EXPECT_GT(occ.padding, 0u) << "taking a tree away leaves padding";
+        }
+    }
+    EXPECT_EQ(compared, 8);
 }
 
 // Beyond the paper: the ground pass against solids with height on the GPU

@@ -36,8 +36,24 @@ void expect_same_map(const OccluderMap& a, const OccluderMap& b, const std::stri
     EXPECT_TRUE(a.spans == b.spans);
     EXPECT_EQ(a.surface.instance, b.surface.instance);
     EXPECT_EQ(a.surface.height, b.surface.height);
-    EXPECT_EQ(a.shown_start, b.shown_start);
-    EXPECT_TRUE(a.shown == b.shown);
+    // The sprite points by ground pixel: the same lists in the same order
+    // (an edit's padding, rows = unlisted, left out and counted).
+    auto lists = [](const OccluderMap& m, std::size_t& padding) {
+        std::vector<std::vector<OccluderMap::Shown>> out;
+        padding = 0;
+        for (std::size_t g = 0; g + 1 < m.shown_start.size(); ++g) {
+            out.emplace_back();
+            for (std::uint32_t k = m.shown_start[g]; k < m.shown_start[g + 1]; ++k)
+                if (m.shown[k].rows == OccluderMap::unlisted) ++padding;
+                else out.back().push_back(m.shown[k]);
+        }
+        EXPECT_EQ(m.shown_start.empty() ? 0 : m.shown_start.back(), m.shown.size());
+        return out;
+    };
+    std::size_t padding_a = 0, padding_b = 0;
+    EXPECT_TRUE(lists(a, padding_a) == lists(b, padding_b));
+    EXPECT_EQ(padding_a, a.padding);
+    EXPECT_EQ(padding_b, b.padding);
     EXPECT_EQ(a.flags, b.flags);
     EXPECT_EQ(a.tallest, b.tallest);
 }
@@ -142,6 +158,81 @@ TEST(OccluderMap, anUpdatedMapIsTheMapBuiltWhole) {
         update_occluders(m, w, s.params, b, around);
         expect_same_map(m, build_occluders(w, s.params, b), "edit " + std::to_string(k));
     }
+}
+
+// Edits in place relist only their pixels (update_occluders): one map
+// edited again and again, trees planted where there were none and taken
+// away (its lists grow into new room and shrink into padding), lists what
+// a build lists after every edit, its tallest point included; a light
+// traced against it, ground and sprite passes, lights the bytes a fresh
+// map's light does (every pass skips the padding); and a pan afterwards
+// lists without padding.
+TEST(OccluderMap, aMapEditedAgainAndAgainListsWhatABuildLists) {
+    Scene s;
+    s.width = s.height = 10;
+    s.params.occluders = Occluders::solids;
+    World w = make_world(test::default_tileset(), s);
+    const Rect b = w.placed.bounds;
+    OccluderMap m = build_occluders(w, s.params, b);
+    const int reach = occluder_reach(w.tileset);
+    const char* overlays[] = {"oak", "pine", "bush", "rock", "wall", "birch"};
+    Pcg32 rng(91);
+    std::size_t most_padding = 0;
+    int tallest_changes = 0, in_place = 0, moved_up = 0;
+    for (int k = 0; k < 16; ++k) {
+        TileEdit e;
+        e.col = 1 + int(rng.below(8));
+        e.row = 1 + int(rng.below(8));
+        e.overlays = k % 3 == 2 ? std::vector<std::string>{} : std::vector<std::string>{overlays[rng.below(6)]};
+        const int tallest_before = m.tallest;
+        const std::size_t entries_before = m.shown.size();
+        const Rect changed = set_edits(w, {e});
+        ASSERT_EQ(w.placed.bounds, b);
+        update_occluders(m, w, s.params, b, Rect{changed.x - reach, changed.y - reach, changed.w + 2 * reach, changed.h + 2 * reach});
+        in_place += m.shown.size() == entries_before;  // the lists fit their room
+        moved_up += m.shown.size() > entries_before;   // the entries after them moved up
+        const OccluderMap built = build_occluders(w, s.params, b);
+        expect_same_map(m, built, "edit " + std::to_string(k));
+        most_padding = std::max(most_padding, m.padding);
+        tallest_changes += m.tallest != tallest_before;
+        // A light at the edit, its two passes against the edited map and the built one.
+        const std::int64_t cx = changed.x + changed.w / 2, cy = changed.y + changed.h;
+        for (const double height : {16.0, 48.0}) {
+            LightMask lit = trace_light_solids(m, cx, cy, 96, 96, height, s.params, Rect{int(cx) - 96, int(cy) - 96, 193, 193});
+            light_sprite_points(lit, m, height, s.params);
+            LightMask fresh = trace_light_solids(built, cx, cy, 96, 96, height, s.params, Rect{int(cx) - 96, int(cy) - 96, 193, 193});
+            light_sprite_points(fresh, built, height, s.params);
+            EXPECT_EQ(lit.value, fresh.value) << "edit " << k << " height " << height;
+        }
+    }
+    // The map's overlays cleared, then one pine planted and taken away: its
+    // tallest point rises with the pine and falls when it goes.
+    std::vector<TileEdit> clear;
+    for (int row = 0; row < 10; ++row)
+        for (int col = 0; col < 10; ++col) {
+            TileEdit e;
+            e.col = col, e.row = row, e.overlays = std::vector<std::string>{};
+            clear.push_back(e);
+        }
+    for (const auto& [edits, what] : {std::pair{clear, "cleared"}, {std::vector<TileEdit>{{5, 5, {}, std::vector<std::string>{"pine"}}}, "a pine"},
+                                      {std::vector<TileEdit>{{5, 5, {}, std::vector<std::string>{}}}, "the pine gone"}}) {
+        const int tallest_before = m.tallest;
+        const Rect changed = set_edits(w, edits);
+        update_occluders(m, w, s.params, b, Rect{changed.x - reach, changed.y - reach, changed.w + 2 * reach, changed.h + 2 * reach});
+        expect_same_map(m, build_occluders(w, s.params, b), what);
+        most_padding = std::max(most_padding, m.padding);
+        tallest_changes += m.tallest != tallest_before;
+    }
+    EXPECT_GE(tallest_changes, 2);  // up with the pine, down without it (sought among the lists)
+    EXPECT_GT(most_padding, 0u);  // some edit's lists shrank
+    EXPECT_GT(in_place, 0);
+    EXPECT_GT(moved_up, 0);
+    const Rect moved{b.x + 40, b.y + 20, b.w - 80, b.h - 60};
+    update_occluders(m, w, s.params, moved, Rect{});
+    EXPECT_EQ(m.padding, 0u);
+    expect_same_map(m, build_occluders(w, s.params, moved), "a pan after the edits");
+    std::printf("16 edits: %d in place, %d moving the entries after them; most padding %zu entries; the tallest point changed %d times\n",
+                in_place, moved_up, most_padding, tallest_changes);
 }
 
 // A map rebuilt in the storage of another (what the frame does when a
