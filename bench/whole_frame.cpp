@@ -220,6 +220,15 @@ void register_whole_frames() {
                                          for (auto _ : st) step(*s, 32);
                                      })
             ->Unit(benchmark::kMillisecond);
+    // The same against solids with the sprites shaded by their normals
+    // (sprite_shading_cost's first side).
+    benchmark::RegisterBenchmark("frame/screen/occluders:solids/sprite_shading:solids", [](benchmark::State& st) {
+        auto s = make_screen("default", 1, 32, [](Params& p) {
+            p.occluders = Occluders::solids;
+            p.sprite_shading = SpriteShading::solids;
+        });
+        for (auto _ : st) step(*s, 32);
+    })->Unit(benchmark::kMillisecond);
     // Beyond the paper: the blur within the surfaces the view shows (occluders
     // solids or shapes), radius 2, grey.
     benchmark::RegisterBenchmark("stage/blur_within/radius:2", [](benchmark::State& st) {

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/cpu.hpp"
+#include "base/cpu_dispatch.hpp"
 #include "isolux/occluder_map.hpp"
 #include "isolux/sprite_shading.hpp"
+#include "shading/oracles.hpp"
 
 namespace isolux {
 
@@ -52,9 +55,75 @@ ShadingMap build_shading_map(const World& world, const Params& p, Rect region, N
     return m;
 }
 
+namespace {
+
+// One row of a light's mask, x from 0 to n: the pixels lit (v != 0) that
+// show a sprite (a normal that is not (0, 0, 0)), multiplied by the blend
+// of the flat light and Lambert's cosine; every lane computed, then kept or
+// not (no branch, so the compiler's vectors take the row; the arithmetic is
+// the same per pixel). ox0: the row's first pixel's column less the light's.
+[[gnu::always_inline]] inline void shade_row(std::uint8_t* v, const std::array<std::int8_t, 3>* q, const float* h, int n,
+                                             int ox0, float oy, float lz, float s, float flat) {
+    for (int x = 0; x < n; ++x) {
+        const int qx = q[x][0], qy = q[x][1], qz = q[x][2];
+        const float half_ox = float(ox0 + x) * 0.5f, up = oy + h[x];
+        const float dx = -(up + half_ox), dy = -(up - half_ox), dz = lz - h[x];
+        const float len2 = dx * dx + dy * dy + dz * dz;
+        const float along = float(qx) * dx + float(qy) * dy + float(qz) * dz;
+        // (Divided in every lane, then chosen: a division the compiler may
+        // not move out of a branch keeps the loop scalar.)
+        const float facing = std::max(0.0f, along / (127.0f * std::sqrt(len2)));
+        const float cosine = len2 > 1e-12f ? facing : 1.0f;
+        const float here = float(v[x]);
+        const float lit = std::min(here, std::floor(here * (flat + s * cosine) + 0.5f));
+        const bool shaded = v[x] != 0 && (qx | qy | qz) != 0;  // lit, and not the ground
+        v[x] = std::uint8_t(shaded ? lit : here);
+    }
+}
+
+void shade_rows(LightMask& mask, const ShadingMap& map, Rect r, float lz, float s, float flat) {
+    for (int y = r.y; y < r.y + r.h; ++y) {
+        const std::size_t row = std::size_t(y - map.rect.y) * map.rect.w + std::size_t(r.x - map.rect.x);
+        shade_row(&mask.value[std::size_t(y - mask.clip.y) * mask.clip.w + std::size_t(r.x - mask.clip.x)], &map.normal[row],
+                  &map.height[row], r.w, int(std::int64_t(r.x) - mask.cx), float(std::int64_t(y) - mask.cy), lz, s, flat);
+    }
+}
+#if ISOLUX_X86_DISPATCH
+ISOLUX_AVX2 void shade_rows_avx2(LightMask& mask, const ShadingMap& map, Rect r, float lz, float s, float flat) {
+    for (int y = r.y; y < r.y + r.h; ++y) {
+        const std::size_t row = std::size_t(y - map.rect.y) * map.rect.w + std::size_t(r.x - map.rect.x);
+        shade_row(&mask.value[std::size_t(y - mask.clip.y) * mask.clip.w + std::size_t(r.x - mask.clip.x)], &map.normal[row],
+                  &map.height[row], r.w, int(std::int64_t(r.x) - mask.cx), float(std::int64_t(y) - mask.cy), lz, s, flat);
+    }
+}
+#endif
+
+}  // namespace
+
+void shade_sprites_reference(LightMask& mask, const ShadingMap& map, double light_height, const Params& p) {
+    if (!shades_sprites(p) || map.empty()) return;
+    const Rect r = intersect(mask.clip, map.rect);
+    const float s = float(p.shading_strength), flat = 1 - s, lz = float(light_height);
+    for (int y = r.y; y < r.y + r.h; ++y)
+        for (int x = r.x; x < r.x + r.w; ++x) {
+            std::uint8_t& v = mask.value[std::size_t(y - mask.clip.y) * mask.clip.w + std::size_t(x - mask.clip.x)];
+            const std::size_t i = std::size_t(y - map.rect.y) * map.rect.w + std::size_t(x - map.rect.x);
+            const std::array<std::int8_t, 3> q = map.normal[i];
+            if (v == 0 || q == std::array<std::int8_t, 3>{0, 0, 0}) continue;  // dark, or the ground
+            const float h = map.height[i];
+            const float half_ox = float(std::int64_t(x) - mask.cx) * 0.5f, up = float(std::int64_t(y) - mask.cy) + h;
+            const float dx = -(up + half_ox), dy = -(up - half_ox), dz = lz - h;
+            const float len2 = dx * dx + dy * dy + dz * dz;
+            const float along = float(q[0]) * dx + float(q[1]) * dy + float(q[2]) * dz;
+            const float cosine = len2 > 1e-12f ? std::max(0.0f, along / (127.0f * std::sqrt(len2))) : 1.0f;
+            v = std::uint8_t(std::min(float(v), std::floor(float(v) * (flat + s * cosine) + 0.5f)));
+        }
+}
+
 void shade_sprites(LightMask& mask, const ShadingMap& map, double light_height, const Params& p) {
     if (!shades_sprites(p) || map.empty()) return;
     const Rect r = intersect(mask.clip, map.rect);
+    if (r.empty()) return;
     // Single precision, one square root a pixel: lambert() written out for
     // the map's stored normals (q / 127, unit within a rounding). The
     // direction to the light, from the point ground_frame(x + 0.5, y + 0.5,
@@ -62,28 +131,13 @@ void shade_sprites(LightMask& mask, const ShadingMap& map, double light_height, 
     // ground_frame's linearity (-(oy + h + ox / 2), -(oy + h - ox / 2), H - h)
     // with (ox, oy) = (x - cx, y - cy): small numbers however far out the
     // light stands (an endless world's pixels pass 2^36). Floats round the
-    // same on every machine (no contraction: core's -ffp-contract=off).
-    const float s = float(p.shading_strength), flat = 1 - s;
-    const float lz = float(light_height);
-    for (int y = r.y; y < r.y + r.h; ++y) {
-        std::uint8_t* v = &mask.value[std::size_t(y - mask.clip.y) * mask.clip.w + std::size_t(r.x - mask.clip.x)];
-        const std::size_t row = std::size_t(y - map.rect.y) * map.rect.w + std::size_t(r.x - map.rect.x);
-        const std::array<std::int8_t, 3>* q = &map.normal[row];
-        const float* h = &map.height[row];
-        const float oy = float(std::int64_t(y) - mask.cy);
-        for (int x = 0; x < r.w; ++x) {
-            if (v[x] == 0) continue;
-            const int qx = q[x][0], qy = q[x][1], qz = q[x][2];
-            if ((qx | qy | qz) == 0) continue;  // the ground: not shaded
-            const float half_ox = float(std::int64_t(r.x + x) - mask.cx) * 0.5f, up = oy + h[x];
-            const float dx = -(up + half_ox), dy = -(up - half_ox), dz = lz - h[x];
-            const float len2 = dx * dx + dy * dy + dz * dz;
-            const float along = float(qx) * dx + float(qy) * dy + float(qz) * dz;
-            const float cosine = len2 > 1e-12f ? std::max(0.0f, along / (127.0f * std::sqrt(len2))) : 1.0f;
-            const float lit = float(v[x]) * (flat + s * cosine);
-            v[x] = std::uint8_t(std::min(float(v[x]), std::floor(lit + 0.5f)));
-        }
-    }
+    // same on every machine (no contraction: core's -ffp-contract=off), in
+    // the baseline build and the AVX2 one alike.
+    const float s = float(p.shading_strength), flat = 1 - s, lz = float(light_height);
+#if ISOLUX_X86_DISPATCH
+    if (wide_kernels()) return shade_rows_avx2(mask, map, r, lz, s, flat);
+#endif
+    shade_rows(mask, map, r, lz, s, flat);
 }
 
 }  // namespace isolux

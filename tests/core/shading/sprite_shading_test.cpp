@@ -11,6 +11,9 @@
 #include "isolux/scene_file.hpp"
 #include "isolux/sprite_shading.hpp"
 #include "isolux/tileset_file.hpp"
+#include "base/cpu.hpp"
+#include "isolux/occluder_map.hpp"
+#include "shading/oracles.hpp"
 #include "test_util.hpp"
 
 using namespace isolux;
@@ -152,6 +155,46 @@ TEST(SpriteShading, aLitPixelTakesLambertsCosineBlendedByTheStrength) {
     LightMask a = mask_at(cx, cy, 200);
     shade_sprites(a, one_pixel({-1, 0, 0}, 10), 10, p);
     EXPECT_EQ(a.value[0], 200);
+}
+
+// shade_sprites takes each row in vectors (the AVX2 build) or pixel by
+// pixel (the baseline): both give its oracle's bytes, on a frame's own
+// shading map and traced masks (ground, sprites, dark and lit, the map's
+// edge), at several strengths and light heights.
+TEST(SpriteShading, theShadingsBuildsGiveItsOraclesBytes) {
+    test::CentredLight scene = test::centred_light(10, 40, 30);
+    Scene s = scene.scene;
+    s.params.sprite_shading = SpriteShading::solids;
+    const Rect b = scene.world.placed.bounds;
+    s.lights.push_back(Light{b.x + b.w / 4.0 + 0.5, b.y + b.h / 3.0 + 0.5});
+    s.lights.push_back(Light{double(b.x + b.w - 3), double(b.y + 2)});  // its area past the map's corner
+    FrameState st;
+    render_frame(st, scene.world, s, Camera{}, 0);
+    ASSERT_FALSE(st.shading.empty());
+    int compared = 0;
+    long shaded = 0;
+    for (const Light& l : s.lights)
+        for (double strength : {1.0, 0.6})
+            for (double height : {6.0, 40.0, 300.0}) {
+                Params p = s.params;
+                p.shading_strength = strength;
+                const std::int64_t cx = std::int64_t(std::floor(l.x)), cy = std::int64_t(std::floor(l.y));
+                const LightMask traced = trace_light_solids(st.occluders, cx, cy, 90, 70, height, p,
+                                                            Rect{int(cx) - 90, int(cy) - 70, 181, 141});
+                LightMask want = traced;
+                shade_sprites_reference(want, st.shading, height, p);
+                for (std::size_t i = 0; i < want.value.size(); ++i) shaded += want.value[i] != traced.value[i];
+                for (const bool wide : test::both_widths()) {
+                    set_wide_kernels(wide);
+                    LightMask got = traced;
+                    shade_sprites(got, st.shading, height, p);
+                    set_wide_kernels(true);
+                    EXPECT_EQ(got.value, want.value) << (wide ? "AVX2" : "baseline") << " strength " << strength << " height " << height;
+                    ++compared;
+                }
+            }
+    EXPECT_GE(compared, 18);
+    EXPECT_GT(shaded, 10000) << "the shading must change many pixels";
 }
 
 // On the default and town tilesets, whose sprites were drawn from the
