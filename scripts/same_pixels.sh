@@ -14,7 +14,8 @@
 # opacity correction, light, shadow and flat modes, ray skips, the l frames,
 # occluders solids and shapes (explicit flags, not a preset: light and
 # shadow modes, light heights, the default and town tilesets)
-# with a moving camera, three layouts and the layers; on seeded maps, both
+# with a moving camera, three layouts and the layers; sprite shading
+# (solids, luminance, a half strength, shadow mode); on seeded maps, both
 # scenes, the real art of tests/realart (when tests/realart/fetch.sh has
 # unpacked it) and Tiled's own example map. NEW_CLI also renders each case
 # with --threads 2, which must give the same pixels. idiff
@@ -75,6 +76,9 @@ cases=(
   "shapes-shadow|$lights --occluders shapes --mode shadow --light-height 16"
   "solids-town|--tileset $here/assets/town/tileset.json --size 10x10 $lights --occluders solids"
   "shapes-town|--tileset $here/assets/town/tileset.json --size 10x10 $lights --occluders shapes"
+  "shaded-solids|$lights --occluders solids --sprite-shading solids"
+  "shaded-half-shadow|$lights --occluders solids --sprite-shading solids --shading-strength 0.5 --mode shadow"
+  "shaded-luminance-town|--tileset $here/assets/town/tileset.json --size 10x10 $lights --sprite-shading luminance"
 )
 art=${ISOLUX_REALART_CACHE:-$HOME/.cache/isolux-realart}
 for name in freedroidrpg lincity-ng widelands; do

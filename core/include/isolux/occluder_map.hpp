@@ -154,9 +154,11 @@ void rebuild_occluders(OccluderMap& m, const World& world, const Params& p, Rect
 // Makes `m` (built with the same parameters) the occluder map of `region`,
 // keeping what it holds there: only the parts of `region` that `m` did not
 // cover, and `changed` (where the world changed since: the sprites edited,
-// grown by occluder_reach), are built, and the index is redone. The same map
-// as build_occluders (each pixel depends only on the sprites near it), at the
-// cost of the parts. With shapes, the whole region is built.
+// grown by occluder_reach), are built, and the index's lists they can change
+// are listed again (an edit in the same region: in place, with padding where
+// they shrink). The same map as build_occluders (each pixel depends only on
+// the sprites near it) but for the padding, at the cost of the parts. With
+// shapes, the whole region is built.
 void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect region, Rect changed,
                       SolidsCache* cache = nullptr);
 
