@@ -339,7 +339,7 @@ void print_floor_ratios() {
     print_ratio("blur_within_cost",
                 interleaved([&] { box_blur_within_into(traced, 2, ids, traced.rect, blurred); }, 2,
                             [&] { box_blur_into(traced, 2, traced.rect, blurred); }, 5, pairs),
-                nullptr, 2);
+                "<= 6", 2);
 
     // The composite reads the view's sprites (RGBA) and the light at the view
     // (grey here, the frame's lights being white: one byte a texel).
