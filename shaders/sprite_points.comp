@@ -23,7 +23,7 @@ layout(std430, binding = 2) readonly buffer Spans { vec4 spans[]; };        // (
 struct Shown {
     float height;  // of the point the pixel shows
     uint rows;     // the pixel lies this many rows above its ground pixel
-};
+};                 // (an edit's padding: rows 2^30, outside every area, so skipped)
 layout(std430, binding = 4) readonly buffer ShownStart { uint shown_start[]; };  // per ground pixel, and one past the last
 layout(std430, binding = 5) readonly buffer ShownPoints { Shown shown[]; };
 
