@@ -2,6 +2,7 @@
 // sprite pixels shaded by it (sprite_shading.hpp).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "base/cpu.hpp"
 #include "base/cpu_dispatch.hpp"
@@ -81,20 +82,35 @@ namespace {
     }
 }
 
-void shade_rows(LightMask& mask, const ShadingMap& map, Rect r, float lz, float s, float flat) {
+// The rows of r, in runs of 64 pixels: a run the light leaves dark (a
+// shadow) is passed without reading its normals and heights.
+[[gnu::always_inline]] inline void shade_runs(LightMask& mask, const ShadingMap& map, Rect r, float lz, float s, float flat) {
+    constexpr int run = 64;
     for (int y = r.y; y < r.y + r.h; ++y) {
         const std::size_t row = std::size_t(y - map.rect.y) * map.rect.w + std::size_t(r.x - map.rect.x);
-        shade_row(&mask.value[std::size_t(y - mask.clip.y) * mask.clip.w + std::size_t(r.x - mask.clip.x)], &map.normal[row],
-                  &map.height[row], r.w, int(std::int64_t(r.x) - mask.cx), float(std::int64_t(y) - mask.cy), lz, s, flat);
+        std::uint8_t* v = &mask.value[std::size_t(y - mask.clip.y) * mask.clip.w + std::size_t(r.x - mask.clip.x)];
+        const int ox0 = int(std::int64_t(r.x) - mask.cx);
+        const float oy = float(std::int64_t(y) - mask.cy);
+        for (int x = 0; x < r.w; x += run) {
+            const int n = std::min(run, r.w - x);
+            std::uint64_t any = 0;
+            if (n == run) {
+                std::uint64_t words[run / 8];
+                std::memcpy(words, v + x, run);
+                for (std::uint64_t w : words) any |= w;
+            } else {
+                any = 1;
+            }
+            if (any) shade_row(v + x, &map.normal[row + std::size_t(x)], &map.height[row + std::size_t(x)], n, ox0 + x, oy, lz, s, flat);
+        }
     }
+}
+void shade_rows(LightMask& mask, const ShadingMap& map, Rect r, float lz, float s, float flat) {
+    shade_runs(mask, map, r, lz, s, flat);
 }
 #if ISOLUX_X86_DISPATCH
 ISOLUX_AVX2 void shade_rows_avx2(LightMask& mask, const ShadingMap& map, Rect r, float lz, float s, float flat) {
-    for (int y = r.y; y < r.y + r.h; ++y) {
-        const std::size_t row = std::size_t(y - map.rect.y) * map.rect.w + std::size_t(r.x - map.rect.x);
-        shade_row(&mask.value[std::size_t(y - mask.clip.y) * mask.clip.w + std::size_t(r.x - mask.clip.x)], &map.normal[row],
-                  &map.height[row], r.w, int(std::int64_t(r.x) - mask.cx), float(std::int64_t(y) - mask.cy), lz, s, flat);
-    }
+    shade_runs(mask, map, r, lz, s, flat);
 }
 #endif
 
