@@ -488,22 +488,26 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
     }
     // The kept pixels' spans, surface and has_span flags hold where they are
     // (in place when the size is the same: a pan).
-    // The old lists trade places with the last update's (their storage kept
-    // per thread: an edit then lists into memory it already has).
-    // An edit in place relists its pixels alone (relist_shown).
+    // Part r built and copied in, reach_rows grown by its sprite pixels' heights.
+    auto build_part = [&](Rect r) {
+        OccluderMap part;
+        fill_occluders(part, world, p, r, cache);
+        copy_part(m, part, r);
+        for (std::size_t i = 0; i < part.surface.instance.size(); ++i)
+            if (part.surface.instance[i] >= 0)
+                m.reach_rows = std::max(m.reach_rows, int(rows_above(std::max(part.surface.height[i], 0.f))));
+    };
+    // An edit in place: its part built, and only the lists it can change
+    // (its columns, from its top to reach_rows below its bottom, where its
+    // sprite pixels' points land) listed again, in place (relist_shown).
     const Rect edited = intersect(changed, region);
-    if (!edited.empty() && region == m.rect && !m.shown_start.empty()) {
-        for (Rect r : {edited}) {
-            OccluderMap part;
-            fill_occluders(part, world, p, r, cache);
-            copy_part(m, part, r);
-            for (std::size_t i = 0; i < part.surface.instance.size(); ++i)
-                if (part.surface.instance[i] >= 0)
-                    m.reach_rows = std::max(m.reach_rows, int(rows_above(std::max(part.surface.height[i], 0.f))));
-        }
+    if (!edited.empty() && region == m.rect) {
+        build_part(edited);
         relist_shown(m, intersect(region, Rect{edited.x, edited.y, edited.w, edited.h + m.reach_rows}));
         return;
     }
+    // A pan: the old lists trade places with the last pan's (their storage
+    // kept per thread).
     drop_padding(m);
     thread_local KeptIndex kept;
     kept.rect = m.rect;
@@ -519,26 +523,12 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
     // What came into the region, and what the world changed: built.
     std::vector<Rect> parts = outside(region, keep);
     if (!edited.empty()) parts.push_back(edited);
-    for (Rect r : parts) {
-        OccluderMap part;
-        fill_occluders(part, world, p, r, cache);
-        copy_part(m, part, r);
-        for (std::size_t i = 0; i < part.surface.instance.size(); ++i)
-            if (part.surface.instance[i] >= 0)
-                m.reach_rows = std::max(m.reach_rows, int(rows_above(std::max(part.surface.height[i], 0.f))));
-    }
-    // The lists that cannot change. After an edit in place: all but those
-    // of the edit's columns, from its top to reach_rows below its bottom
-    // (its sprite pixels' points land there; reach_rows already holds the
-    // edit's own heights). After a pan: not the rows below a top that moved,
-    // within reach of the sprites above it, which came or went.
-    if (!edited.empty() && !(region == kept.rect)) {
-        index_shown(m);  // a pan and an edit at once: listed whole
-    } else if (!edited.empty()) {
-        const Rect lists = intersect(region, Rect{edited.x, edited.y, edited.w, edited.h + m.reach_rows});
-        kept.unchanged = outside(region, lists);
-        kept.anew = {lists};
-        index_shown(m, &kept);
+    for (Rect r : parts) build_part(r);
+    // The lists that cannot change after a pan: all but the rows below a
+    // top that moved, within reach of the sprites above it, which came or
+    // went. A pan and an edit at once: listed whole.
+    if (!edited.empty()) {
+        index_shown(m);
     } else {
         if (region.y != kept.rect.y) {
             const int top = std::max(region.y, kept.rect.y) + m.reach_rows;
