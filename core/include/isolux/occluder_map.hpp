@@ -107,7 +107,9 @@ struct OccluderMap {
 // One sprite's estimated objects, the spans each fills over the ground
 // pixels (a stamp per object: the pixels of `rect`, in sprite pixels, row
 // by row; (0, 0) where it fills none), and the height of the point each
-// sprite pixel shows. A world pixel's offset from its sprite is whole, so a
+// sprite pixel shows (and which object shows it: `shown_by`, an index into
+// `objects`, -1 where none does and the height is its row's above the
+// nearest foot, or the sprite shows nothing). A world pixel's offset from its sprite is whole, so a
 // stamp holds exactly the spans at the pixels' centres wherever it lands.
 struct SpanStamp {
     Rect rect;
@@ -117,6 +119,7 @@ struct SpriteSolids {
     std::vector<EstimatedObject> objects;
     std::vector<SpanStamp> stamps;
     std::vector<float> heights;
+    std::vector<std::int32_t> shown_by;
 };
 SpriteSolids sprite_solids(const Tileset& tileset, const Sprite& s, const Params& p);
 

@@ -65,6 +65,13 @@ struct EstimatedObject {
     bool span_at(double x, double y, double& z_low, double& z_high) const;
     // Whether the ground-frame point `p`, relative to the axis's foot, lies inside.
     bool contains(Vec3 p) const;
+    // The outward unit normal of the solid's surface at (or nearest) the
+    // ground-frame point `p` relative to the axis's foot, from the model
+    // itself: a prism's nearest face; an ellipse stack's gradient of
+    // (u / across(z))^2 + (v / radius(z))^2, the cross-sections' change with
+    // height taken over 2 levels each side (a stack's per-level radii are
+    // its silhouette's rows, whose one-level differences draw stripes).
+    Vec3 normal_at(Vec3 p) const;
 };
 
 // Where the widest disc hides everything below it (a pine's skirt of

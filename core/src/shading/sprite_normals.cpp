@@ -65,8 +65,22 @@ std::vector<Vec3> smoothed(const Mask& shown, const std::vector<float>& h, const
 // The sprite's pixels that show a surface (opaque at the preset's threshold).
 Mask shown_pixels(const Sprite& s, const Params& p) { return opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)); }
 
-std::vector<float> estimated_heights(const Tileset& ts, const Sprite& s, const Params& p) {
-    return sprite_solids(ts, s, p).heights;
+// The estimated solids' own normals (EstimatedObject::normal_at) at the
+// points they show; the height field's, differenced, where no solid shows a
+// pixel (its height is its row's above a foot) or the model's normal turns
+// away from the viewer (a point that rounding put past the silhouette).
+std::vector<Vec3> solid_normals(const Sprite& s, const Mask& shown, const SpriteSolids& solids) {
+    std::vector<Vec3> n = normals_from_heights(shown, solids.heights);
+    const int w = s.image.width, hgt = s.image.height;
+    for (int y = 0; y < hgt; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = std::size_t(y) * w + x;
+            if (!shown.bits[i] || solids.shown_by[i] < 0) continue;
+            const EstimatedObject& o = solids.objects[std::size_t(solids.shown_by[i])];
+            const Vec3 m = o.normal_at(ground_frame(x + 0.5 - o.center_x, y + 0.5 - o.center_y, solids.heights[i]));
+            if (glm::dot(m, toward_viewer) > 0) n[i] = m;
+        }
+    return n;
 }
 
 // Brightness read as relief, its slope by Sobel's 3 x 3 differences (a
@@ -200,13 +214,13 @@ SpriteNormals sprite_normals(const Tileset& ts, const Sprite& s, const Params& p
     switch (from) {
         case SpriteShading::none:
         case SpriteShading::solids:
-            out.heights = estimate ? estimate->heights : estimated_heights(ts, s, p);
-            out.normal = normals_from_heights(shown, out.heights);
+        case SpriteShading::luminance: {
+            SpriteSolids own;
+            if (!estimate) own = sprite_solids(ts, s, p), estimate = &own;
+            out.heights = estimate->heights;
+            out.normal = from == SpriteShading::luminance ? luminance_normals(s, shown) : solid_normals(s, shown, *estimate);
             break;
-        case SpriteShading::luminance:
-            out.heights = estimate ? estimate->heights : estimated_heights(ts, s, p);
-            out.normal = luminance_normals(s, shown);
-            break;
+        }
         case SpriteShading::shapes:
             if (s.shape.empty() && s.height.empty())
                 throw Error(ts.source + ": sprite \"" + s.name +

@@ -67,7 +67,8 @@ std::pair<int, int> settle_run(double centre, double half, int n, In&& in) {
 // across the view and v = sqrt(2) (sy + z) in depth, so down a column each
 // height z is inside for one run of rows: the columns take those runs from
 // the top down, each row keeping the first (rows x heights, not their product).
-void topmost_points(const EstimatedObject& o, int w, int h, std::vector<float>& best) {
+void topmost_points(const EstimatedObject& o, std::int32_t index, int w, int h, std::vector<float>& best,
+                    std::vector<std::int32_t>& shown_by) {
     const int heights = 2 * int(o.radius.size());  // z = top - n / 2, n < heights
     const double top = o.height() - 0.5;
     FirstRun rows(h);
@@ -89,13 +90,15 @@ void topmost_points(const EstimatedObject& o, int w, int h, std::vector<float>& 
             rows.take(y0, y1, n);
         }
         for (int y = 0; y < h; ++y) {
-            float& b = best[std::size_t(y) * w + x];
+            const std::size_t i = std::size_t(y) * w + x;
+            float& b = best[i];
             // A flat-topped prism's point in its top cross-section lies on
             // its top face (a hedge's), as a stepped prism's in its column's
             // top one does on its step: at the face's height, not half a
             // pixel inside, where the prism's own spans would shade it from
             // every light above it.
-            if (b < 0 && rows[y] >= 0) b = float(o.height() - 0.5 * rows[y] == face ? face : top - 0.5 * rows[y]);
+            if (b < 0 && rows[y] >= 0)
+                b = float(o.height() - 0.5 * rows[y] == face ? face : top - 0.5 * rows[y]), shown_by[i] = index;
         }
     }
 }
@@ -183,10 +186,15 @@ SpriteSolids sprite_solids(const Tileset& ts, const Sprite& s, const Params& p) 
     const Mask shown = opacity_map(s.image, sprite_threshold(s, p.opacity_threshold));
     out.heights.assign(std::size_t(s.image.width) * s.image.height, 0.f);
     std::vector<float> best(out.heights.size(), -1.f);
-    for (std::size_t k : front_first) topmost_points(out.objects[k], s.image.width, s.image.height, best);
+    out.shown_by.assign(out.heights.size(), -1);
+    for (std::size_t k : front_first)
+        topmost_points(out.objects[k], std::int32_t(k), s.image.width, s.image.height, best, out.shown_by);
     for (int y = 0; y < s.image.height; ++y)
         for (int x = 0; x < s.image.width; ++x) {
-            if (!shown.get(x, y)) continue;
+            if (!shown.get(x, y)) {
+                out.shown_by[std::size_t(y) * s.image.width + x] = -1;
+                continue;
+            }
             float b = best[std::size_t(y) * s.image.width + x];
             if (b < 0 && !out.objects.empty()) {
                 const EstimatedObject* nearest = &out.objects[0];

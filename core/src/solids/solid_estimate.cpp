@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "isolux/footprint.hpp"
 
@@ -129,6 +130,31 @@ bool EstimatedObject::span_at(double x, double y, double& z_low, double& z_high)
 bool EstimatedObject::contains(Vec3 p) const {
     if (p.z < 0 || p.z >= height()) return false;
     return holds(std::size_t(p.z), p.x, p.y);
+}
+
+Vec3 EstimatedObject::normal_at(Vec3 p) const {
+    const Vec3 up{0, 0, 1};
+    if (radius.empty()) return up;
+    if (model == ObjectModel::prism) {
+        const double to_top = std::abs(step_at(p.x - p.y) - p.z);
+        const double to_x = half_x - std::abs(p.x), to_y = half_y - std::abs(p.y);
+        if (to_top <= to_x && to_top <= to_y) return up;
+        return to_x <= to_y ? Vec3{p.x < 0 ? -1 : 1, 0, 0} : Vec3{0, p.y < 0 ? -1 : 1, 0};
+    }
+    const long n = long(radius.size()), level = std::clamp(long(std::floor(p.z)), 0L, n - 1);
+    // Below the ground a cross-section is the lowest's; above the top, none.
+    auto depth = [&](long k) { return k >= n ? 0.0 : radius[std::size_t(std::max(k, 0L))]; };
+    auto wide = [&](long k) { return k >= n ? 0.0 : across_at(std::size_t(std::max(k, 0L))); };
+    const double d = depth(level), a = wide(level);
+    if (!(d > 0 && a > 0)) return up;
+    constexpr long reach = 1;
+    const double dd = (depth(level + reach) - depth(level - reach)) / (2 * reach);
+    const double da = (wide(level + reach) - wide(level - reach)) / (2 * reach);
+    const double u = (p.x - p.y) / sqrt2, v = (p.x + p.y) / sqrt2;  // across the view, in depth
+    const double gu = u / (a * a), gv = v / (d * d), gz = -(u * u * da / (a * a * a) + v * v * dd / (d * d * d));
+    const Vec3 g{(gu + gv) / sqrt2, (gv - gu) / sqrt2, gz};
+    const double len = glm::length(g);
+    return len > 0 ? g / len : up;
 }
 
 namespace {
