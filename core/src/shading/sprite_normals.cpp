@@ -3,6 +3,8 @@
 // picture's brightness (sprite_shading.hpp).
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "isolux/error.hpp"
 #include "isolux/occluder_map.hpp"
@@ -66,12 +68,19 @@ std::vector<Vec3> smoothed(const Mask& shown, const std::vector<float>& h, const
 Mask shown_pixels(const Sprite& s, const Params& p) { return opacity_map(s.image, sprite_threshold(s, p.opacity_threshold)); }
 
 // The estimated solids' own normals (EstimatedObject::normal_at) at the
-// points they show; the height field's, differenced, where no solid shows a
-// pixel (its height is its row's above a foot) or the model's normal turns
-// away from the viewer (a point that rounding put past the silhouette).
+// points they show. A pixel no solid shows (the silhouette of the solids
+// leaves out a fence's rail, a crown's ragged edge, a twig: its height is
+// its row's above a foot, which tells no direction) takes the normal of the
+// nearest pixel a solid shows, 4-neighbour steps through shown pixels,
+// ties to the first reached in row order. Where a model's normal turns
+// away from the viewer (rounding put the point past its silhouette), and
+// where no shown pixel joins one a solid shows, the height field's,
+// differenced.
 std::vector<Vec3> solid_normals(const Sprite& s, const Mask& shown, const SpriteSolids& solids) {
     std::vector<Vec3> n = normals_from_heights(shown, solids.heights);
     const int w = s.image.width, hgt = s.image.height;
+    std::vector<std::size_t> queue;
+    std::vector<char> reached(n.size(), 0);
     for (int y = 0; y < hgt; ++y)
         for (int x = 0; x < w; ++x) {
             const std::size_t i = std::size_t(y) * w + x;
@@ -79,7 +88,21 @@ std::vector<Vec3> solid_normals(const Sprite& s, const Mask& shown, const Sprite
             const EstimatedObject& o = solids.objects[std::size_t(solids.shown_by[i])];
             const Vec3 m = o.normal_at(ground_frame(x + 0.5 - o.center_x, y + 0.5 - o.center_y, solids.heights[i]));
             if (glm::dot(m, toward_viewer) > 0) n[i] = m;
+            reached[i] = 1;
+            queue.push_back(i);
         }
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+        const std::size_t i = queue[head];
+        const int x = int(i % std::size_t(w)), y = int(i / std::size_t(w));
+        for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+            if (!shown.get(x + dx, y + dy)) continue;
+            const std::size_t j = std::size_t(y + dy) * w + std::size_t(x + dx);
+            if (reached[j]) continue;
+            reached[j] = 1;
+            n[j] = n[i];
+            queue.push_back(j);
+        }
+    }
     return n;
 }
 
