@@ -8,8 +8,9 @@
 // height over its centre. Ground pixels are not shaded.
 //
 // Where the normals come from (sprite_normals):
-//   solids:    the heights of the points the estimated solids show
-//              (solid_estimate.hpp), differenced between neighbouring pixels;
+//   solids:    the estimated solids' own normals at the points they show
+//              (EstimatedObject::normal_at, solid_estimate.hpp); a pixel no
+//              solid shows takes its nearest shown neighbour's that one does;
 //   shapes:    the manifest's shapes (the nearest solid's normal, as the 3D
 //              reference takes it), else its height map differenced;
 //   luminance: the picture's brightness gradient, as normal-map generators
