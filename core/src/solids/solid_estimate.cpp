@@ -97,6 +97,29 @@ bool disc_fits(const RunsThrough& runs, double fx, double yc, double r) {
     return true;
 }
 
+// Whether the disc fits with its `strict` half (left: -1, right: +1) inside
+// `strict` runs and its other half inside `loose` ones (both through the
+// axis's column).
+bool disc_fits_sided(const RunsThrough& strict, const RunsThrough& loose, int side, double fx, double yc, double r) {
+    const double a = r * sqrt2, b = r / sqrt2;
+    const int y_top = int(std::floor(yc - b - 0.5)), y_bottom = int(std::ceil(yc + b - 0.5));
+    for (int y = y_top; y <= y_bottom; ++y) {
+        const double v = (y + 0.5 - yc) / b;
+        if (v * v > 1) continue;
+        const double hw = a * std::sqrt(1 - v * v);
+        const int x0 = int(std::ceil(fx - hw - 0.5)), x1 = int(std::floor(fx + hw - 0.5));
+        if (x0 > x1) continue;
+        const int j = y - strict.y0;
+        if (j < 0 || j >= int(strict.first.size())) return false;
+        const RunsThrough& left = side < 0 ? strict : loose;
+        const RunsThrough& right = side < 0 ? loose : strict;
+        if (left.first[std::size_t(j)] > left.last[std::size_t(j)] || right.first[std::size_t(j)] > right.last[std::size_t(j)])
+            return false;
+        if (x0 < left.first[std::size_t(j)] || x1 > right.last[std::size_t(j)]) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 bool EstimatedObject::holds(std::size_t z, double x, double y) const {
@@ -176,19 +199,19 @@ int top_row(const Mask& object) {
 // the top row: a flat roof seen from above is one disc's ellipse. With
 // `height` (a user's correction) exactly that many discs, one that does not
 // fit taking the radius of the one below.
-std::vector<double> fit_discs(const RunsThrough& runs, double fx, double fy, int top, double widest, bool flat_top,
-                              int height = 0) {
+template <class Fits>
+std::vector<double> fit_discs_by(Fits&& fits, double fy, int top, double widest, bool flat_top, int height = 0) {
     std::vector<double> radius;
     double reached = fy;  // the highest screen row the discs' ellipses reach
     for (int z = 0;; ++z) {
         const double yc = fy - (z + 0.5);
         if (height > 0 ? z >= height : (yc < top || (flat_top && reached <= top + 0.5))) break;
         double r = 0;
-        if (disc_fits(runs, fx, yc, 0.5)) {
+        if (fits(yc, 0.5)) {
             double lo = 0.5, hi = widest;
             for (int k = 0; k < 16; ++k) {
                 const double mid = (lo + hi) / 2;
-                (disc_fits(runs, fx, yc, mid) ? lo : hi) = mid;
+                (fits(yc, mid) ? lo : hi) = mid;
             }
             r = lo;
         }
@@ -198,6 +221,11 @@ std::vector<double> fit_discs(const RunsThrough& runs, double fx, double fy, int
     }
     while (!radius.empty() && radius.back() == 0) radius.pop_back();
     return radius;
+}
+
+std::vector<double> fit_discs(const RunsThrough& runs, double fx, double fy, int top, double widest, bool flat_top,
+                              int height = 0) {
+    return fit_discs_by([&](double yc, double r) { return disc_fits(runs, fx, yc, r); }, fy, top, widest, flat_top, height);
 }
 
 // The object's pixels, and per row how many of them lie left of each column,
@@ -339,6 +367,7 @@ struct GroveTree {
     int y = 0;     // the foot's pixel row
     bool hidden = false;  // no trunk shows: its foot was inferred from its crown
     Mask part;
+    Mask crown;  // its crowns' pixels (crown_regions; empty: the colours parted none)
 };
 
 // The share of a hidden trunk's column, from its crown down to its foot,
@@ -452,21 +481,39 @@ std::vector<GroveTree> grove_trees(const Mask& object, const std::vector<TrunkFo
     }
     for (int i = 0; i < w * h; ++i)
         if (owner[std::size_t(i)] >= 0) trees[std::size_t(owner[std::size_t(i)])].part.bits[std::size_t(i)] = 1;
+    for (std::size_t k = 0; k < crowns.size(); ++k) {
+        if (crown_tree[k] < 0) continue;
+        Mask& crown = trees[std::size_t(crown_tree[k])].crown;
+        if (crown.bits.empty()) crown = Mask(object.rect());
+        for (std::size_t i = 0; i < crown.bits.size(); ++i) crown.bits[i] |= crowns[k].bits[i];
+    }
     return trees;
 }
 
 // One grove tree's solid: its discs fit within `may_hide` (its pixels and
 // those of the trees in front), as grove_solids says.
-std::optional<EstimatedObject> grove_solid(const GroveTree& t, const Mask& may_hide, int width) {
+std::optional<EstimatedObject> grove_solid(const GroveTree& t, const Mask& may_hide, const Mask& object, int width) {
     EstimatedObject o;
     o.center_x = t.x + 0.5;
     o.center_y = t.y + 0.5;
     o.rect = Rect{int(std::floor(t.x)) - 2, t.y - 2, 5, 3};
-    const RunsThrough runs = runs_through(may_hide, int(std::floor(o.center_x)));
-    o.radius = fit_discs(runs, o.center_x, o.center_y, top_row(t.part), width / sqrt2 + 1, false);
-    std::size_t shown = o.radius.size();  // the lowest disc that shows the tree's own pixels
+    const int c = int(std::floor(o.center_x));
+    const RunsThrough runs = runs_through(may_hide, c), whole = runs_through(object, c);
+    // A crown is round: where one side shows it whole, the other may reach
+    // as far into any of the grove's pixels (a crown in another tree's
+    // colour may stand in front of it there, which the feet cannot tell).
+    o.radius = fit_discs_by(
+        [&](double yc, double r) {
+            return disc_fits_sided(runs, whole, -1, o.center_x, yc, r) || disc_fits_sided(runs, whole, 1, o.center_x, yc, r);
+        },
+        o.center_y, top_row(t.part), width / sqrt2 + 1, false);
+    // The lowest disc that shows the tree's own crown (else its own pixels):
+    // the outlines and seams between the crowns in front, which go to the
+    // nearest crown, are not foliage of its own down there.
+    const Mask& own = t.crown.bits.empty() ? t.part : t.crown;
+    std::size_t shown = o.radius.size();
     for (std::size_t z = 0; z < o.radius.size(); ++z)
-        if (o.radius[z] > 0 && disc_touches(t.part, o.center_x, o.center_y - (double(z) + 0.5), o.radius[z])) {
+        if (o.radius[z] > 0 && disc_touches(own, o.center_x, o.center_y - (double(z) + 0.5), o.radius[z])) {
             shown = z;
             break;
         }
@@ -499,7 +546,7 @@ std::vector<EstimatedObject> grove_solids(const Mask& object, const std::vector<
             const GroveTree& t = trees[order[k]];
             Mask may_hide = in_front;
             for (std::size_t i = 0; i < may_hide.bits.size(); ++i) may_hide.bits[i] |= t.part.bits[i];
-            solids[order[k]] = grove_solid(t, may_hide, object.width);
+            solids[order[k]] = grove_solid(t, may_hide, object, object.width);
         }
         for (std::size_t k = first; k < last; ++k)
             for (std::size_t i = 0; i < in_front.bits.size(); ++i) in_front.bits[i] |= trees[order[k]].part.bits[i];

@@ -539,6 +539,37 @@ TEST(SolidModels, aGrovesHiddenTrunksStandUnderTheirCrowns) {
     EXPECT_GT(crowns, trunks + 0.1);
 }
 
+// The town grove's trees are alike (crowns 12 px in radius): each estimated
+// tree's widest disc within a fifth of its true tree's, the red crown left
+// of the two orange ones among them, whose right half those hide though
+// their foot (one tree for two crowns of one colour) stands behind its own;
+// and the trees share more of the true volume than three fifths.
+TEST(SolidModels, aGroveCrownKeepsItsWidthBesideACrownOfAnotherColour) {
+    const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
+    const Sprite& s = town.sprites[test::sprite_index(town, "grove")];
+    FootprintReport r;
+    const Mask fp = tileset_footprint(town, s, Params{}, &r);
+    const std::vector<EstimatedObject> objects = estimate_objects(r, fp, &s.footprint);
+    ASSERT_EQ(objects.size(), 5u);
+    for (const EstimatedObject& o : objects) {
+        double nearest = 1e9, crown = 0;
+        for (const Solid& trunk : s.shape) {
+            if (trunk.kind != SolidKind::cylinder) continue;
+            const double d = std::hypot(o.center_x - (s.anchor_x + trunk.a.x - trunk.a.y),
+                                        o.center_y - (s.anchor_y + (trunk.a.x + trunk.a.y) / 2));
+            if (d >= nearest) continue;
+            nearest = d;
+            for (const Solid& e : s.shape)
+                if (e.kind == SolidKind::ellipsoid && e.a.x == trunk.a.x && e.a.y == trunk.a.y) crown = e.b.x;
+        }
+        ASSERT_GT(crown, 0);
+        const double widest = *std::max_element(o.radius.begin(), o.radius.end());
+        EXPECT_GE(widest, 0.8 * crown) << "the tree standing at " << o.center_x << ", " << o.center_y;
+        EXPECT_LE(widest, 1.2 * crown) << "the tree standing at " << o.center_x << ", " << o.center_y;
+    }
+    EXPECT_GT(volume_overlap(objects, s.anchor_x, s.anchor_y, s.shape), 0.6);
+}
+
 // Two trees whose crowns overlap on screen, and no crowns the colours part
 // (foliage textured pixel by pixel): each tree takes the pixels of the
 // columns nearest its trunk, and the one behind may reach into the front
