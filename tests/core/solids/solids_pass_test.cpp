@@ -325,9 +325,8 @@ TEST(SolidsPass, solidsHalveThePapersErrorOnTheAccuracyScenes) {
 // The town scene (the town tileset: walls, houses, a town in one tile,
 // rocks, a mountain, a grove, drawn in another look): solids never mislight
 // more ground or sprite pixels than footprints; at most half as many
-// sprite pixels under lights 4, 16 and 32 px high, and half as many ground
-// pixels under lights 4 and 16 px high. (Half is not met on the rest yet:
-// docs/accuracy.md.)
+// ground and sprite pixels under lights 4, 16 and 32 px high. (Half is not
+// met under the light 64 px high yet: docs/accuracy.md.)
 TEST(SolidsPass, solidsNeverWorseThanFootprintsOnTheTownScene) {
     const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
     const auto points = paper_and_solids("town", town);
@@ -335,7 +334,7 @@ TEST(SolidsPass, solidsNeverWorseThanFootprintsOnTheTownScene) {
     for (std::size_t h = 0; h < points.size(); ++h) {  // light heights 4, 16, 32, 64
         const PaperAndSolids& p = points[h];
         EXPECT_LE(p.solids.sprite.lit_mismatch, (h < 3 ? 0.5 : 1.0) * p.paper.sprite.lit_mismatch) << p.where;
-        EXPECT_LE(p.solids.floor.lit_mismatch, (h < 2 ? 0.5 : 1.0) * p.paper.floor.lit_mismatch) << p.where;
+        EXPECT_LE(p.solids.floor.lit_mismatch, (h < 3 ? 0.5 : 1.0) * p.paper.floor.lit_mismatch) << p.where;
     }
 }
 
