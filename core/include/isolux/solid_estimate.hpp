@@ -68,9 +68,9 @@ struct EstimatedObject {
     // The outward unit normal of the solid's surface at (or nearest) the
     // ground-frame point `p` relative to the axis's foot, from the model
     // itself: a prism's nearest face; an ellipse stack's gradient of
-    // (u / across(z))^2 + (v / radius(z))^2, the cross-sections' change with
-    // height taken over 2 levels each side (a stack's per-level radii are
-    // its silhouette's rows, whose one-level differences draw stripes).
+    // (u / across(z))^2 + (v / radius(z))^2 (u across the view, v in depth),
+    // the cross-sections' change with height the central difference of the
+    // levels above and below p's.
     Vec3 normal_at(Vec3 p) const;
 };
 

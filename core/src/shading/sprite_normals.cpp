@@ -81,6 +81,7 @@ std::vector<Vec3> solid_normals(const Sprite& s, const Mask& shown, const Sprite
     const int w = s.image.width, hgt = s.image.height;
     std::vector<std::size_t> queue;
     std::vector<char> reached(n.size(), 0);
+    if (solids.shown_by.size() != n.size()) return n;  // solids made without it: the heights' own
     for (int y = 0; y < hgt; ++y)
         for (int x = 0; x < w; ++x) {
             const std::size_t i = std::size_t(y) * w + x;

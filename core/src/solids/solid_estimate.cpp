@@ -170,9 +170,7 @@ Vec3 EstimatedObject::normal_at(Vec3 p) const {
     auto wide = [&](long k) { return k >= n ? 0.0 : across_at(std::size_t(std::max(k, 0L))); };
     const double d = depth(level), a = wide(level);
     if (!(d > 0 && a > 0)) return up;
-    constexpr long reach = 1;
-    const double dd = (depth(level + reach) - depth(level - reach)) / (2 * reach);
-    const double da = (wide(level + reach) - wide(level - reach)) / (2 * reach);
+    const double dd = (depth(level + 1) - depth(level - 1)) / 2, da = (wide(level + 1) - wide(level - 1)) / 2;
     const double u = (p.x - p.y) / sqrt2, v = (p.x + p.y) / sqrt2;  // across the view, in depth
     const double gu = u / (a * a), gv = v / (d * d), gz = -(u * u * da / (a * a * a) + v * v * dd / (d * d * d));
     const Vec3 g{(gu + gv) / sqrt2, (gv - gu) / sqrt2, gz};
