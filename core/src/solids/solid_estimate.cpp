@@ -78,10 +78,12 @@ RunsThrough runs_through(const Mask& m, int c) {
     return r;
 }
 
-// Whether the disc of radius r at screen centre (fx, yc) fits the object: on
-// every row, the pixels whose centres its ellipse holds are opaque. Such a
-// row's pixels always include column floor(fx), so the run through it decides.
-bool disc_fits(const RunsThrough& runs, double fx, double yc, double r) {
+// Whether the disc of radius r at screen centre (fx, yc) lies within two
+// masks' runs through its axis's column (both of one rectangle): on every
+// row its ellipse's pixel centres reach no further left than `left`'s run
+// and no further right than `right`'s, neither run empty. Such a row's
+// pixels always include column floor(fx), so the runs decide.
+bool disc_within(const RunsThrough& left, const RunsThrough& right, double fx, double yc, double r) {
     const double a = r * sqrt2, b = r / sqrt2;
     const int y_top = int(std::floor(yc - b - 0.5)), y_bottom = int(std::ceil(yc + b - 0.5));
     for (int y = y_top; y <= y_bottom; ++y) {
@@ -90,35 +92,17 @@ bool disc_fits(const RunsThrough& runs, double fx, double yc, double r) {
         const double hw = a * std::sqrt(1 - v * v);
         const int x0 = int(std::ceil(fx - hw - 0.5)), x1 = int(std::floor(fx + hw - 0.5));
         if (x0 > x1) continue;  // no pixel centre on this row
-        const int j = y - runs.y0;
-        if (j < 0 || j >= int(runs.first.size())) return false;
-        if (x0 < runs.first[std::size_t(j)] || x1 > runs.last[std::size_t(j)]) return false;
+        const int j = y - left.y0;
+        if (j < 0 || j >= int(left.first.size())) return false;
+        const std::size_t k = std::size_t(j);
+        if (left.first[k] > left.last[k] || right.first[k] > right.last[k]) return false;
+        if (x0 < left.first[k] || x1 > right.last[k]) return false;
     }
     return true;
 }
 
-// Whether the disc fits with its `strict` half (left: -1, right: +1) inside
-// `strict` runs and its other half inside `loose` ones (both through the
-// axis's column).
-bool disc_fits_sided(const RunsThrough& strict, const RunsThrough& loose, int side, double fx, double yc, double r) {
-    const double a = r * sqrt2, b = r / sqrt2;
-    const int y_top = int(std::floor(yc - b - 0.5)), y_bottom = int(std::ceil(yc + b - 0.5));
-    for (int y = y_top; y <= y_bottom; ++y) {
-        const double v = (y + 0.5 - yc) / b;
-        if (v * v > 1) continue;
-        const double hw = a * std::sqrt(1 - v * v);
-        const int x0 = int(std::ceil(fx - hw - 0.5)), x1 = int(std::floor(fx + hw - 0.5));
-        if (x0 > x1) continue;
-        const int j = y - strict.y0;
-        if (j < 0 || j >= int(strict.first.size())) return false;
-        const RunsThrough& left = side < 0 ? strict : loose;
-        const RunsThrough& right = side < 0 ? loose : strict;
-        if (left.first[std::size_t(j)] > left.last[std::size_t(j)] || right.first[std::size_t(j)] > right.last[std::size_t(j)])
-            return false;
-        if (x0 < left.first[std::size_t(j)] || x1 > right.last[std::size_t(j)]) return false;
-    }
-    return true;
-}
+// Whether the disc fits the object whose runs are `runs`: every pixel its ellipse holds is opaque.
+bool disc_fits(const RunsThrough& runs, double fx, double yc, double r) { return disc_within(runs, runs, fx, yc, r); }
 
 }  // namespace
 
@@ -502,7 +486,7 @@ std::optional<EstimatedObject> grove_solid(const GroveTree& t, const Mask& may_h
     // colour may stand in front of it there, which the feet cannot tell).
     o.radius = fit_discs_by(
         [&](double yc, double r) {
-            return disc_fits_sided(runs, whole, -1, o.center_x, yc, r) || disc_fits_sided(runs, whole, 1, o.center_x, yc, r);
+            return disc_within(runs, whole, o.center_x, yc, r) || disc_within(whole, runs, o.center_x, yc, r);
         },
         o.center_y, top_row(t.part), width / sqrt2 + 1, false);
     // The lowest disc that shows the tree's own crown (else its own pixels):
