@@ -133,6 +133,13 @@ struct FrameState {
     std::vector<Mask> opacity;   // each tileset sprite's opacity map, by sprite index
     ObstacleHeights obstacle_heights;  // with rays_over_obstacles: the obstacles' estimated heights
     OccluderMap occluders;             // with occluders solids or shapes: spans and surface heights
+    // With occluder_scale s > 1: coarse_occluders(occluders, s), what both
+    // passes trace over, remade when either changes (coarse_revision: a new
+    // value then, as obstacles_revision; coarse_of: the obstacles_revision
+    // and the scale it was made for).
+    OccluderMap coarse_occluders;
+    std::uint64_t coarse_revision = 0, coarse_of = 0;
+    int coarse_scale = 0;
     // With sprite_shading: each pixel's normal and the height of the point it
     // shows, over the obstacle map's region, remade with it
     // (shading_revision: the obstacles_revision it was made for).

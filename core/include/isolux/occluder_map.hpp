@@ -199,4 +199,36 @@ void light_sprite_points(LightMask& mask, const OccluderMap& occ, double height,
 // they reach (shaders/sprite_points.comp).
 void start_sprite_points(LightMask& mask, const OccluderMap& occ, double height, const Params& p);
 
+
+// Beyond the paper: the occluders' resolution as an accuracy-for-time knob
+// (Params::occluder_scale, s). Both passes run over a map s times coarser
+// in x, y and height (the projection is the same at any scale, so the
+// coarse scene is the fine one shrunk), each fine pixel then taking the
+// lit-or-dark answer of the coarse pixel that holds it, with its own
+// falloff. A coarse pixel covers an s x s block: its spans are the union
+// of the block's (no solid is lost, however thin), its surface the block's
+// top-left pixel's, height over s. Two pixels' more, all round, of empty
+// ground: a coarse light's area covers its fine one's and stays inside the
+// map. s = 1 is the map itself (callers keep it and skip this).
+OccluderMap coarse_occluders(const OccluderMap& fine, int scale);
+
+// The coarse light of a fine mask (clip, centre and a, b set): centre and
+// clip the fine ones' blocks, half-extents a / s + 1 (covering the fine
+// area), the falloff flat so that every lit pixel is non-zero. `coarse_p`
+// (coarse_params) traces it; its height is the fine one's over s.
+Params coarse_params(const Params& p);
+void start_coarse_mask(LightMask& coarse, const LightMask& fine, int scale, const Params& coarse_p);
+
+// Each pixel of the fine mask's area (in its clip) lit, with its own
+// falloff, where the coarse pixel holding it is lit; unlit elsewhere. In
+// shadow mode every pixel of the clip is reached, as trace_light_solids
+// leaves it.
+void upsample_mask(LightMask& fine, const LightMask& coarse, int scale, const Params& p);
+
+// trace_light_solids then, with `sprite_points`, light_sprite_points, over
+// `coarse` (coarse_occluders(fine, scale)): the fine mask (started as
+// trace_light_solids starts it) from the coarse one.
+void trace_solids_at_scale(LightMask& fine, const OccluderMap& coarse, int scale, double height, const Params& p,
+                           bool sprite_points, int threads = 1);
+
 }  // namespace isolux

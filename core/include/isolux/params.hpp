@@ -103,6 +103,7 @@ struct Params {
     double light_height = 32;      // a light's height above the ground, pixels, when it gives none (not in the paper)
     bool rays_over_obstacles = false;  // rays pass over obstacles lower than the ray (height_rays.hpp; not in the paper)
     Occluders occluders = Occluders::footprints;  // what stops the rays (occluder_map.hpp; not in the paper)
+    int occluder_scale = 1;         // s: solids and shapes traced over a map s times coarser (occluder_map.hpp)
     Footprint footprint = Footprint::automatic;  // sprites without their own footprint (not in the paper)
     FalloffShape falloff_shape = FalloffShape::chebyshev;
     FalloffSpace falloff_space = FalloffSpace::screen;  // where distances are measured (FalloffSpace)

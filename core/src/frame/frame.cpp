@@ -69,15 +69,15 @@ Rect camera_view(const Camera& c, const World& w) {
 
 using namespace frame_steps;
 
-namespace {
-
 // Unique across every FrameState of the process: a tracer that keeps a copy
 // of the obstacle map (the GPU's) never mistakes a new state's map for an
 // old one's.
-std::uint64_t next_obstacles_revision() {
+std::uint64_t frame_steps::next_obstacles_revision() {
     static std::atomic<std::uint64_t> counter{0};
     return ++counter;
 }
+
+namespace {
 
 bool covers(Rect outer, Rect inner) { return intersect(outer, inner) == inner; }
 

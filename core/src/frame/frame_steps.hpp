@@ -30,6 +30,9 @@ struct Timer {
     }
 };
 
+// A new revision, unique in the process (FrameState::obstacles_revision).
+std::uint64_t next_obstacles_revision();
+
 inline Rect grow(Rect r, int by) { return {r.x - by, r.y - by, r.w + 2 * by, r.h + 2 * by}; }
 
 inline Rect bounding(const std::vector<Rect>& parts) {

@@ -135,6 +135,17 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     const bool over = p.rays_over_obstacles && p.mode != Mode::shadow && !solids;
     const std::size_t n = plan.todo.size();
     std::vector<double> trace_ms(n, 0), correct_ms(n, 0);
+    // Beyond the paper: the occluders' resolution (occluder_map.hpp); the
+    // coarse map is made here, once per obstacle map and scale.
+    const int scale = solids ? p.occluder_scale : 1;
+    if (scale > 1 && (st.coarse_of != st.obstacles_revision || st.coarse_scale != scale)) {
+        const auto t0 = Clock::now();
+        st.coarse_occluders = coarse_occluders(st.occluders, scale);
+        st.coarse_of = st.obstacles_revision;
+        st.coarse_scale = scale;
+        st.coarse_revision = next_obstacles_revision();
+        rep.ms[int(Stage::obstacle_map)] += ms_between(t0, Clock::now());
+    }
     // The order threads take the lights in: the costliest first, so that a
     // cheap one last leaves the least time with one thread idle. A light's
     // cost is what it took last frame (lights move little between frames);
@@ -158,8 +169,26 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             masks.push_back(&tl.mask);
             heights.push_back(tl.height);
         }
-        rep.tracer = st.options.tracer(st.obstacles, st.obstacles_revision, solids ? &st.occluders : nullptr, masks,
-                                       heights, p, solids && correct);
+        if (scale == 1) {
+            rep.tracer = st.options.tracer(st.obstacles, st.obstacles_revision, solids ? &st.occluders : nullptr,
+                                           masks, heights, p, solids && correct);
+        } else {
+            // The coarse lights over the coarse map, then each fine mask from its coarse one.
+            const Params cp = coarse_params(p);
+            std::vector<LightMask> coarse(masks.size());
+            std::vector<LightMask*> coarse_masks;
+            for (std::size_t i = 0; i < masks.size(); ++i) {
+                start_coarse_mask(coarse[i], *masks[i], scale, cp);
+                coarse_masks.push_back(&coarse[i]);
+                heights[i] = std::max(heights[i], 0.0) / scale;
+            }
+            // (The revision names the coarse map: a tracer keeping a copy of it
+            // sees a new one when the scale changes.)
+            rep.tracer = st.options.tracer(st.obstacles, st.coarse_revision, &st.coarse_occluders, coarse_masks,
+                                           heights, cp, correct);
+            if (!rep.tracer.empty())
+                for (std::size_t i = 0; i < masks.size(); ++i) upsample_mask(*masks[i], coarse[i], scale, p);
+        }
         traced_elsewhere = !rep.tracer.empty();
         if (traced_elsewhere) rep.ms[int(Stage::trace)] += ms_between(t0, Clock::now());
     }
@@ -178,7 +207,10 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             trace_light_into(tl.mask, st.obstacles, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip,
                              area_is_clear(st.obstacles, area), ctl);
         } else {
-            if (solids && !traced_elsewhere)  // beyond the paper: solids with height
+            if (solids && !traced_elsewhere && scale > 1) {  // beyond the paper: both passes over the coarse map
+                start_mask(tl.mask, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip, p.mode == Mode::shadow);
+                trace_solids_at_scale(tl.mask, st.coarse_occluders, scale, tl.height, p, correct, light_threads);
+            } else if (solids && !traced_elsewhere)  // beyond the paper: solids with height
                 tl.mask = trace_light_solids(st.occluders, tl.cx, tl.cy, tl.a, tl.b, tl.height, p, tl.mask.clip,
                                              light_threads);
             else if (over)  // beyond the paper: rays over low obstacles
@@ -191,7 +223,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
         // its rays); else the ground lines when every sprite's ground fits
         // them, the reference otherwise.
         if (correct && solids) {
-            if (!traced_elsewhere) light_sprite_points(tl.mask, st.occluders, tl.height, p, light_threads);
+            if (!traced_elsewhere && scale == 1) light_sprite_points(tl.mask, st.occluders, tl.height, p, light_threads);
         } else if (correct && st.cache->ground.exact)
             correct_with_ground_lines(tl.mask, st.cache->ground);
         else if (correct)

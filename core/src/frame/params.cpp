@@ -58,6 +58,10 @@ const ParamInfo table[] = {
      "opacity correction; solids: beyond the paper, a solid estimated from each sprite's alpha, the light at its "
      "height, so canopies cast shadows and a higher light casts shorter ones; shapes: the manifest's own shapes the "
      "same way (every overlay needs one). Light and shadow modes.", obstacle_map, ISOLUX_FIELD(occluders)},
+    {"occluder_scale", "--occluder-scale", nullptr, "occluder scale", "", trace_group, ParamType::integer, 1, 4,
+     false, 1, 4, false, {}, "Beyond the paper, with occluders solids or shapes: both passes traced over an "
+     "occluder map this many times coarser (1: full resolution), each pixel lit where its block is; faster, a "
+     "little less exact at shadows' edges (docs/accuracy.md measures both).", trace, ISOLUX_FIELD(occluder_scale)},
     {"sprite_shading", "--sprite-shading", nullptr, "sprite shading", "", trace_group, ParamType::choice, 0, 3, false,
      0, 3, false, {"none", "solids", "shapes", "luminance"}, "Beyond the paper: a sprite pixel's light from each light "
      "times the Lambert term between its surface's normal and the direction to the light (at its height). none: flat "

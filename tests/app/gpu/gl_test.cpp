@@ -333,6 +333,8 @@ void expect_gpu_frames_are_cpu_frames(GpuTracer& tracer, const World& w, Scene s
         const FrameReport rg = render_frame(gpu, w, s, Camera{}, f);
         EXPECT_EQ(rc.tracer, "cpu");
         EXPECT_EQ(rg.tracer, "gpu");
+        EXPECT_GT(std::count_if(cpu.traced.texels.begin(), cpu.traced.texels.end(), [](std::uint8_t v) { return v != 0; }), 5000)
+            << "frame " << f << ": the lights must light something";
         EXPECT_EQ(gpu.traced.texels, cpu.traced.texels) << "frame " << f;
         EXPECT_EQ(gpu.final.rgba, cpu.final.rgba) << "frame " << f;
     }
@@ -364,6 +366,33 @@ TEST(Gl, aFrameWithTheGpuTracerEqualsTheCpuFrame) {
         shaded.params.mode = mode;
         FrameState cpu_shaded, gpu_shaded;
         expect_gpu_frames_are_cpu_frames(tracer, world(), shaded, cpu_shaded, gpu_shaded);
+    }
+    // The occluders at half and a third of full resolution (occluder_scale):
+    // the GPU's passes over the coarse map, each mask taken back on the CPU.
+    // The same frame states go on to scale 3: the coarse map changes with
+    // the obstacle map's revision the same, and the GPU must see it.
+    {
+        FrameState cpu_coarse, gpu_coarse;
+        for (int scale : {2, 3})
+            for (Mode mode : {Mode::light, Mode::shadow}) {
+                SCOPED_TRACE("occluder_scale " + std::to_string(scale) + " " + std::string(to_string(mode)));
+                Scene coarse = game;
+                coarse.params.occluder_scale = scale;
+                coarse.params.mode = mode;
+                expect_gpu_frames_are_cpu_frames(tracer, world(), coarse, cpu_coarse, gpu_coarse);
+            }
+        Scene shapes = game;
+        shapes.params.occluders = Occluders::shapes;
+        shapes.params.occluder_scale = 2;
+        FrameState cpu_shapes, gpu_shapes;
+        expect_gpu_frames_are_cpu_frames(tracer, world(), shapes, cpu_shapes, gpu_shapes);
+        // Coarse differs from full: the knob is honoured, not ignored.
+        Scene full = game, half = game;
+        half.params.occluder_scale = 2;
+        FrameState a, b;
+        render_frame(a, world(), full, Camera{}, 0);
+        render_frame(b, world(), half, Camera{}, 0);
+        EXPECT_NE(a.traced.texels, b.traced.texels);
     }
     // A new frame state on another map, with the same tracer: its obstacle
     // map is uploaded again (revisions are unique in the process).

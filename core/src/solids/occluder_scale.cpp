@@ -1,0 +1,110 @@
+// The occluders' resolution as a knob (occluder_map.hpp, Params::occluder_scale):
+// the coarse map, the coarse light of a fine one, and the fine mask taken
+// back from the coarse answer.
+#include <algorithm>
+#include <cassert>
+#include <cstdlib>
+#include <vector>
+
+#include "isolux/occluder_map.hpp"
+
+namespace isolux {
+
+namespace {
+
+// floor(v / s) for s > 0, negative v included (world pixels may be negative).
+int floor_div(std::int64_t v, int s) { return int(v >= 0 ? v / s : -((-v + s - 1) / s)); }
+
+// The coarse rectangle covering fine rectangle r.
+Rect cover(Rect r, int s) {
+    const int x0 = floor_div(r.x, s), y0 = floor_div(r.y, s);
+    const int x1 = floor_div(std::int64_t(r.x) + r.w - 1, s), y1 = floor_div(std::int64_t(r.y) + r.h - 1, s);
+    return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+}
+
+}  // namespace
+
+OccluderMap coarse_occluders(const OccluderMap& fine, int s) {
+    assert(s >= 1);
+    OccluderMap c;
+    if (fine.rect.empty()) return c;
+    const Rect covered = cover(fine.rect, s);
+    constexpr int border = 2;  // the coarse light's a / s + 1, and the tallest point's rounding
+    c.rect = {covered.x - border, covered.y - border, covered.w + 2 * border, covered.h + 2 * border};
+    const std::size_t n = std::size_t(c.rect.w) * std::size_t(c.rect.h);
+    c.spans.assign(n, Spans{});
+    c.surface.rect = c.rect;
+    c.surface.instance.assign(n, -1);
+    c.surface.height.assign(n, 0.0f);
+    const float inv = 1.0f / float(s);
+    const bool has_surface = fine.surface.instance.size() == std::size_t(fine.rect.w) * std::size_t(fine.rect.h);
+    for (int y = fine.rect.y; y < fine.rect.y + fine.rect.h; ++y) {
+        const int cy = floor_div(y, s);
+        const bool top_row = std::int64_t(cy) * s == y;
+        const std::size_t from = std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w);
+        const std::size_t to_row = std::size_t(cy - c.rect.y) * std::size_t(c.rect.w);
+        for (int x = fine.rect.x; x < fine.rect.x + fine.rect.w; ++x) {
+            const int cx = floor_div(x, s);
+            const std::size_t i = from + std::size_t(x - fine.rect.x), j = to_row + std::size_t(cx - c.rect.x);
+            const Spans& sp = fine.spans[i];
+            if (sp.lower.any()) c.spans[j].add(sp.lower.low * inv, sp.lower.high * inv);
+            if (sp.upper.any()) c.spans[j].add(sp.upper.low * inv, sp.upper.high * inv);
+            if (has_surface && top_row && std::int64_t(cx) * s == x) {
+                c.surface.instance[j] = fine.surface.instance[i];
+                c.surface.height[j] = fine.surface.height[i] * inv;
+            }
+        }
+    }
+    index_occluders(c);
+    return c;
+}
+
+Params coarse_params(const Params& p) {
+    Params c = p;
+    c.falloff_scale = 1e6;  // the largest accepted: 254 or 255 wherever lit, never 0
+    c.occluder_scale = 1;
+    return c;
+}
+
+void start_coarse_mask(LightMask& coarse, const LightMask& fine, int s, const Params& coarse_p) {
+    const int a = fine.a / s + 1, b = fine.b / s + 1;
+    const std::int64_t cx = floor_div(fine.cx, s), cy = floor_div(fine.cy, s);
+    const Rect area{int(cx) - a, int(cy) - b, 2 * a + 1, 2 * b + 1};
+    const Rect clip = fine.clip.empty() ? Rect{} : intersect(cover(fine.clip, s), area);
+    start_mask(coarse, cx, cy, a, b, coarse_p, clip, coarse_p.mode == Mode::shadow);
+}
+
+void upsample_mask(LightMask& fine, const LightMask& coarse, int s, const Params& p) {
+    if (p.mode == Mode::shadow) fine.reached.assign(fine.value.size(), 1);
+    const Rect area = intersect(Rect{int(fine.cx) - fine.a, int(fine.cy) - fine.b, 2 * fine.a + 1, 2 * fine.b + 1}, fine.clip);
+    if (area.empty()) return;
+    std::vector<std::uint8_t> table(std::size_t(std::max(fine.a, fine.b)) + 1);
+    for (std::size_t d = 0; d < table.size(); ++d) table[d] = falloff(std::int64_t(d), p.falloff_scale);
+    for (int y = area.y; y < area.y + area.h; ++y) {
+        const int cy = floor_div(y, s);
+        const std::size_t dy = std::size_t(std::llabs(std::int64_t(y) - fine.cy));
+        const std::uint8_t* from = coarse.value.data() + std::size_t(cy - coarse.clip.y) * std::size_t(coarse.clip.w);
+        std::uint8_t* to = fine.value.data() + std::size_t(y - fine.clip.y) * std::size_t(fine.clip.w);
+        assert(cy >= coarse.clip.y && cy < coarse.clip.y + coarse.clip.h);
+        for (int x = area.x; x < area.x + area.w; ++x) {
+            const int cx = floor_div(x, s);
+            const std::size_t d = std::max(dy, std::size_t(std::llabs(std::int64_t(x) - fine.cx)));
+            to[x - fine.clip.x] = from[cx - coarse.clip.x] ? table[d] : 0;
+        }
+    }
+}
+
+void trace_solids_at_scale(LightMask& fine, const OccluderMap& coarse, int s, double height, const Params& p,
+                           bool sprite_points, int threads) {
+    const Params cp = coarse_params(p);
+    thread_local LightMask c;
+    start_coarse_mask(c, fine, s, cp);
+    if (!c.clip.empty()) {
+        const double H = std::max(height, 0.0) / s;
+        c = trace_light_solids(coarse, c.cx, c.cy, c.a, c.b, H, cp, c.clip, threads);
+        if (sprite_points) light_sprite_points(c, coarse, H, cp, threads);
+    }
+    upsample_mask(fine, c, s, p);
+}
+
+}  // namespace isolux
