@@ -249,6 +249,13 @@ void register_occluder_map() {
                 if (s.kind == SpriteKind::overlay) benchmark::DoNotOptimize(sprite_solids(w.tileset, s, p).heights.data());
     })->Unit(benchmark::kMillisecond);
     static const OccluderMap occ = build_occluders(w, p, region);
+    // The coarse map occluder_scale 2 traces over, made from the map whole
+    // (after a build, a pan or an edit).
+    benchmark::RegisterBenchmark("occluders/coarse/scale:2/default", [](benchmark::State& st) {
+        for (auto _ : st) benchmark::DoNotOptimize(coarse_occluders(occ, 2).flags.data());
+        st.counters["ns_per_pixel"] = benchmark::Counter(double(occ.spans.size()),
+                                                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("occluders/index_surfaces/default", [](benchmark::State& st) {
         SurfaceIds ids{occ.surface.rect, occ.surface.instance, {}};
         for (auto _ : st) {
@@ -752,6 +759,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--ratios") == 0) return ratios();
         else if (std::strcmp(argv[i], "--endless-ratios") == 0) return bench::print_endless_ratios(), 0;  // those alone
+        else if (std::strcmp(argv[i], "--solids-frame-ratios") == 0) return bench::print_solids_frame_ratios(11), 0;  // those alone
         else if (std::strcmp(argv[i], "--walk-ratios") == 0) return print_walk_ratios(11), 0;  // trace_every4_cost, solids_trace_cost
     benchmark::Initialize(&argc, argv);
     benchmark::RunSpecifiedBenchmarks();

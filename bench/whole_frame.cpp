@@ -301,6 +301,37 @@ void register_whole_frames() {
     })->Unit(benchmark::kMillisecond)->UseRealTime();
 }
 
+void print_solids_frame_ratios(int pairs) {
+    // Beyond the paper: the whole CPU frame (every light moved) with solids
+    // over the same frame with the paper's footprints, the same threads.
+    {
+        auto solids = [](Params& p) { p.occluders = Occluders::solids; };
+        auto solids_frame = make_screen("default", 1, 32, solids), footprints_frame = make_screen("default", 1, 32);
+        print_ratio("solids_frame_cost",
+                    interleaved([&] { step(*solids_frame, 32); }, 1, [&] { step(*footprints_frame, 32); }, 3, pairs),
+                    "<= 5", 2);
+    }
+
+    // Beyond the paper: the occluders at half resolution (occluder_scale 2):
+    // the whole CPU frame with solids so, over the same frame with
+    // footprints (solids_frame_cost's measure), and over the solids frame
+    // at full resolution (what the knob saves).
+    {
+        auto solids = [](Params& p) { p.occluders = Occluders::solids; };
+        auto half = [](Params& p) {
+            p.occluders = Occluders::solids;
+            p.occluder_scale = 2;
+        };
+        auto half_frame = make_screen("default", 1, 32, half), full_frame = make_screen("default", 1, 32, solids),
+             footprints_frame = make_screen("default", 1, 32);
+        print_ratio("solids_frame_cost_scale2",
+                    interleaved([&] { step(*half_frame, 32); }, 1, [&] { step(*footprints_frame, 32); }, 3, pairs),
+                    nullptr, 2);
+        print_ratio("occluder_scale2_over_full",
+                    interleaved([&] { step(*half_frame, 32); }, 1, [&] { step(*full_frame, 32); }, 1, pairs), nullptr, 3);
+    }
+}
+
 void print_floor_ratios() {
     ScreenScene& one = screen("default", 1);
     ScreenScene& two = screen("default", 2);
@@ -408,15 +439,7 @@ void print_floor_ratios() {
         print_ratio("solids_edit_cost", interleaved_costs(edit, rebuild, pairs), "<= 0.05", 3);
     }
 
-    // Beyond the paper: the whole CPU frame (every light moved) with solids
-    // over the same frame with the paper's footprints, the same threads.
-    {
-        auto solids = [](Params& p) { p.occluders = Occluders::solids; };
-        auto solids_frame = make_screen("default", 1, 32, solids), footprints_frame = make_screen("default", 1, 32);
-        print_ratio("solids_frame_cost",
-                    interleaved([&] { step(*solids_frame, 32); }, 1, [&] { step(*footprints_frame, 32); }, 3, pairs),
-                    "<= 5", 2);
-    }
+    print_solids_frame_ratios(pairs);
 
     // Beyond the paper: the whole frame with solids, its sprites shaded by
     // the solids' normals, over the same frame unshaded (every light moved).

@@ -9,5 +9,10 @@ void register_whole_frames();
 // Prints frame_times_floor, blur_times_floor, composite_times_floor,
 // correction_times_floor, threads2_frame_speedup and one_light_moved_cost.
 void print_floor_ratios();
+// Its solids figures alone (print_floor_ratios prints them too):
+// solids_frame_cost, and the frame with the occluders at half resolution
+// over footprints' (solids_frame_cost_scale2) and over full resolution's
+// (occluder_scale2_over_full).
+void print_solids_frame_ratios(int pairs);
 
 }  // namespace isolux::bench

@@ -50,6 +50,10 @@ void accuracy_panel(App& app, AccuracyPanel& panel);
 // beyond huge_trace_steps and not `allow_huge` (then panel.over_budget).
 bool start_sweep(App& app, AccuracyPanel& panel, bool allow_huge = false);
 bool apply_sweep_point(App& app, AccuracyPanel& panel, std::size_t index);  // one undo step
+// The "Occluder resolution" button: axes occluder_scale 1, 2, 4 (and
+// occluders solids, shapes when the scene uses footprints, on which the
+// scale does nothing), against 3d.
+void set_occluder_resolution_axes(const App& app, AccuracyPanel& panel);
 
 // The heat map for the app's current view and settings against `reference`
 // (CPU, both frames fresh).

@@ -40,7 +40,7 @@ Script load_script(const std::filesystem::path& path) {
         static const std::pair<const char*, int> arity[] = {
             {"wait", 1}, {"click", 2}, {"rclick", 2}, {"drag", 4}, {"key", 1}, {"param", 2},
             {"type", 1}, {"window-shot", 1}, {"resize", 2}, {"inspect", 1}, {"footprint", 2}, {"save-footprints", 0}, {"save-preset", 1}, {"save-scene", 1}, {"load-scene", 1}, {"load-preset", 1}, {"quit", 0},
-            {"overlay", 2}, {"sweep", -1}, {"wait-sweep", 0}, {"long-work", 1}, {"apply-point", 1}, {"save-sweep", 1},
+            {"overlay", 2}, {"sweep", -1}, {"sweep-resolution", 0}, {"wait-sweep", 0}, {"long-work", 1}, {"apply-point", 1}, {"save-sweep", 1},
             {"tool", 1}, {"brush", 2}, {"view", 3}, {"click-tile", 2}, {"drag-tiles", 4}, {"new", 0}, {"fit", 0},
             {"open-dropped", 1}, {"check-glyphs", 1}, {"dump-panels", 1}, {"export-final", 1}, {"select", 1},
             {"character", -1}, {"show", 1}, {"export-tiled", 1}, {"move-lights", 1}, {"save-stats", 1}, {"save-controls", 1},
@@ -385,9 +385,12 @@ void run_script_step(App& app) {
         else if (n == "truth_light") o.truth_light = on;
         else if (n == "truth_difference") o.truth_difference = on;
         else if (n == "heatmap") app.accuracy.heatmap = on, app.accuracy.heatmap_stale = true;
-    } else if (step.op == "sweep") {
+    } else if (step.op == "sweep" || step.op == "sweep-resolution") {
         AccuracyPanel& a = app.accuracy;
-        for (std::size_t i = 0; i < 4; ++i) a.axes[i] = i < step.args.size() ? step.args[i] : "";
+        if (step.op == "sweep")
+            for (std::size_t i = 0; i < 4; ++i) a.axes[i] = i < step.args.size() ? step.args[i] : "";
+        else
+            set_occluder_resolution_axes(app, a);
         a.frames = 2;
         a.repeats = 1;
         a.open = true;

@@ -10,7 +10,7 @@
 //   overlay NAME on|off (obstacles, opacity_maps, delta_y_bands, light_areas, normals,
 //   raw_light, split_view, split_with_3d, truth_light, truth_difference, heatmap,
 //   inspector_normals: the tileset inspector's normal map) | sweep NAME=V1,V2... [...] (the Accuracy
-//   panel's sweep) | wait-sweep | apply-point K | save-sweep PATH (its CSV) |
+//   panel's sweep) | sweep-resolution (its Occluder resolution button, then the sweep) | wait-sweep | apply-point K | save-sweep PATH (its CSV) |
 //   tool NAME (lights, floor, rectangle, fill, place, remove, eraser, eyedropper) |
 //   brush floor|overlay SPRITE | brush tag TAG | view X Y ZOOM (the camera) |
 //   click-tile COL ROW | drag-tiles C0 R0 C1 R1 (a stroke from tile to tile) |

@@ -10,7 +10,7 @@ out=docs/accuracy
 # Each sweep says what it starts (the CLI refuses one beyond the work budget, with its estimate).
 # The town tileset's object kinds, each swept alone (below).
 kinds=$(python3 -c 'import json; print(" ".join(s["name"] for s in json.load(open("assets/town/tileset.json"))["sprites"] if s["kind"] == "overlay"))')
-sweeps_total=$((20 + $(wc -w <<< "$kinds")))
+sweeps_total=$((23 + $(wc -w <<< "$kinds")))
 sweeps_done=0
 sweep() {
   local said
@@ -44,6 +44,12 @@ done
 # Beyond the paper: what stops the rays, on the town tileset (walls, houses, rocks, a mountain, a grove).
 sweep --scene assets/scenes/town.json --param occluders=footprints,solids,shapes --param light_height=4,16,32,64 \
   --reference 3d --frames 8 --repeats 1 --out $out/town_occluders.csv
+# Beyond the paper: the occluders' resolution (occluder_scale), on the three scenes.
+for scene in default forest town; do
+  sweep --scene assets/scenes/$scene.json --param occluders=solids,shapes --param occluder_scale=1,2,4 \
+    --param light_height=4,16,32,64 --reference 3d --allow-huge --frames 8 --repeats 1 \
+    --out $out/${scene}_occluder_scale.csv
+done
 # Each object kind alone on the town scene's map (kind_scene.py), and the models the estimate gives each.
 "$cli" check-tileset assets/town/tileset.json --json > $out/town_models.json
 scenes=$(mktemp -d)

@@ -449,6 +449,23 @@ if timeout 300 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/a
 [ "$(wc -l <"$tmp/sweep.csv" 2>/dev/null)" = "3" ] && ok || bad "the panel's sweep did not write two rows"
 [ "$(json "$tmp/applied.json" "d['ray_skip'], d['blur_radius']")" = "(8, 0)" ] && ok || bad "applying a sweep point did not set its parameters"
 
+# 5b. The Accuracy panel's Occluder resolution button: on the default scene
+#     (footprints) it sweeps occluder_scale 1, 2, 4 with solids and shapes
+#     against 3d; a point applied sets both.
+cat >"$tmp/resolution.script" <<SCRIPT
+wait 2
+sweep-resolution
+wait-sweep
+save-sweep $tmp/resolution.csv
+apply-point 4
+wait 1
+save-preset $tmp/resolution.json
+quit
+SCRIPT
+if timeout 300 "$app" --scene "$src/assets/scenes/default.json" --script "$tmp/resolution.script" >"$tmp/log" 2>&1; then ok; else bad "occluder resolution sweep run"; cat "$tmp/log"; fi
+[ "$(wc -l <"$tmp/resolution.csv" 2>/dev/null)" = "7" ] && ok || bad "the occluder resolution sweep did not write six rows"
+[ "$(json "$tmp/resolution.json" "d['occluder_scale'] > 1, d['occluders'] in ('solids', 'shapes')")" = "(True, True)" ] && ok || bad "applying an occluder resolution point did not set occluder_scale and occluders"
+
 # 7. Terrain editing: a lake (rectangle), a clearing (eraser), a wall of
 #    trees (place), one undo and redo; saved, reopened and saved again the same;
 #    rendered by the app and by isolux-cli within 2/255.
