@@ -134,7 +134,7 @@ void params_panel(App& app) {
     // Rows packed a little closer than the style's: every control within one
     // scroll at 1280x720 (tests/app/gui/app_test.sh).
     ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, ImVec2(ImGui::GetStyle().ItemSpacing.x, 2));
-    ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, ImVec2(ImGui::GetStyle().FramePadding.x, 2));
+    ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, ImVec2(ImGui::GetStyle().FramePadding.x, 1));
     std::vector<std::string_view> groups;
     for (const ParamInfo& info : param_table())
         if (std::find(groups.begin(), groups.end(), info.group) == groups.end()) groups.push_back(info.group);
