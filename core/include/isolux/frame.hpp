@@ -138,6 +138,7 @@ struct FrameState {
     // value then, as obstacles_revision; coarse_of: the obstacles_revision
     // and the scale it was made for).
     OccluderMap coarse_occluders;
+    std::vector<std::uint8_t> coarse_picks;  // coarse_picks(occluders.surface, coarse_occluders, scale)
     std::uint64_t coarse_revision = 0, coarse_of = 0;
     int coarse_scale = 0;
     // With sprite_shading: each pixel's normal and the height of the point it

@@ -219,16 +219,30 @@ OccluderMap coarse_occluders(const OccluderMap& fine, int scale);
 Params coarse_params(const Params& p);
 void start_coarse_mask(LightMask& coarse, const LightMask& fine, int scale, const Params& coarse_p);
 
-// Each pixel of the fine mask's area (in its clip) lit, with its own
-// falloff, where the coarse pixel holding it is lit; unlit elsewhere. In
-// shadow mode every pixel of the clip is reached, as trace_light_solids
-// leaves it.
-void upsample_mask(LightMask& fine, const LightMask& coarse, int scale, const Params& p);
+// Which coarse pixel each fine pixel of `fine` (the fine map's surface)
+// takes its answer from: of its block and the block's eight neighbours (the
+// block first, then the four sides, then the corners), the first of those
+// showing the pixel's own surface (its overlay, or the ground) nearest its
+// height; its block where none does. A sprite pixel whose block samples the
+// ground beside it so takes its sprite's answer, not the ground's. One byte
+// a fine pixel (0 the block), made with the coarse map.
+std::vector<std::uint8_t> coarse_picks(const Surface& fine, const OccluderMap& coarse, int scale);
+
+// Each pixel of the fine mask's area (in its clip, started unlit) lit,
+// with its own falloff, where the coarse pixel it takes its answer from is
+// lit: its block's, or with `fine_surface` and its `picks`
+// (coarse_picks), the one picked (its block's where that lies past the
+// coarse mask's clip). In shadow mode every pixel of the clip is reached,
+// as trace_light_solids leaves it.
+void upsample_mask(LightMask& fine, const LightMask& coarse, int scale, const Params& p,
+                   const Surface* fine_surface = nullptr, const std::vector<std::uint8_t>* picks = nullptr);
 
 // trace_light_solids then, with `sprite_points`, light_sprite_points, over
 // `coarse` (coarse_occluders(fine, scale)): the fine mask (started as
-// trace_light_solids starts it) from the coarse one.
+// trace_light_solids starts it) from the coarse one, by the picks when
+// given (upsample_mask).
 void trace_solids_at_scale(LightMask& fine, const OccluderMap& coarse, int scale, double height, const Params& p,
-                           bool sprite_points, int threads = 1);
+                           bool sprite_points, int threads = 1, const Surface* fine_surface = nullptr,
+                           const std::vector<std::uint8_t>* picks = nullptr);
 
 }  // namespace isolux

@@ -141,6 +141,7 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     if (scale > 1 && (st.coarse_of != st.obstacles_revision || st.coarse_scale != scale)) {
         const auto t0 = Clock::now();
         st.coarse_occluders = coarse_occluders(st.occluders, scale);
+        st.coarse_picks = coarse_picks(st.occluders.surface, st.coarse_occluders, scale);
         st.coarse_of = st.obstacles_revision;
         st.coarse_scale = scale;
         st.coarse_revision = next_obstacles_revision();
@@ -187,7 +188,8 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
             rep.tracer = st.options.tracer(st.obstacles, st.coarse_revision, &st.coarse_occluders, coarse_masks,
                                            heights, cp, correct);
             if (!rep.tracer.empty())
-                for (std::size_t i = 0; i < masks.size(); ++i) upsample_mask(*masks[i], coarse[i], scale, p);
+                for (std::size_t i = 0; i < masks.size(); ++i)
+                    upsample_mask(*masks[i], coarse[i], scale, p, &st.occluders.surface, &st.coarse_picks);
         }
         traced_elsewhere = !rep.tracer.empty();
         if (traced_elsewhere) rep.ms[int(Stage::trace)] += ms_between(t0, Clock::now());
@@ -209,7 +211,8 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
         } else {
             if (solids && !traced_elsewhere && scale > 1) {  // beyond the paper: both passes over the coarse map
                 start_mask(tl.mask, tl.cx, tl.cy, tl.a, tl.b, p, tl.mask.clip, p.mode == Mode::shadow);
-                trace_solids_at_scale(tl.mask, st.coarse_occluders, scale, tl.height, p, correct, light_threads);
+                trace_solids_at_scale(tl.mask, st.coarse_occluders, scale, tl.height, p, correct, light_threads,
+                                      &st.occluders.surface, &st.coarse_picks);
             } else if (solids && !traced_elsewhere)  // beyond the paper: solids with height
                 tl.mask = trace_light_solids(st.occluders, tl.cx, tl.cy, tl.a, tl.b, tl.height, p, tl.mask.clip,
                                              light_threads);

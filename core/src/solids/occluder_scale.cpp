@@ -74,28 +74,85 @@ void start_coarse_mask(LightMask& coarse, const LightMask& fine, int s, const Pa
     start_mask(coarse, cx, cy, a, b, coarse_p, clip, coarse_p.mode == Mode::shadow);
 }
 
-void upsample_mask(LightMask& fine, const LightMask& coarse, int s, const Params& p) {
+namespace {
+
+// A fine pixel's choice among its block (0) and the block's neighbours: the
+// block first, then the four sides, then the corners.
+constexpr int pick_dx[9] = {0, 0, -1, 1, 0, -1, 1, -1, 1};
+constexpr int pick_dy[9] = {0, -1, 0, 0, 1, -1, -1, 1, 1};
+
+}  // namespace
+
+std::vector<std::uint8_t> coarse_picks(const Surface& fine, const OccluderMap& coarse, int s) {
+    std::vector<std::uint8_t> picks(fine.instance.size(), 0);
+    const Surface& cs = coarse.surface;
+    const float inv = 1.0f / float(s);
+    for (int y = fine.rect.y; y < fine.rect.y + fine.rect.h; ++y) {
+        const int Y = floor_div(y, s);
+        for (int x = fine.rect.x; x < fine.rect.x + fine.rect.w; ++x) {
+            const int X = floor_div(x, s);
+            const std::size_t i = std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w) + std::size_t(x - fine.rect.x);
+            const std::int32_t shows = fine.instance[i];
+            const float h = fine.height[i] * inv;
+            int best = -1;
+            float best_gap = 0;
+            for (int k = 0; k < 9 && !(best >= 0 && best_gap == 0); ++k) {  // none nearer than 0: ties keep the first
+                const int u = X + pick_dx[k], v = Y + pick_dy[k];
+                if (!cs.rect.contains(u, v)) continue;
+                const std::size_t j = std::size_t(v - cs.rect.y) * std::size_t(cs.rect.w) + std::size_t(u - cs.rect.x);
+                if (cs.instance[j] != shows) continue;
+                const float gap = std::abs(cs.height[j] - h);
+                if (best < 0 || gap < best_gap) best = k, best_gap = gap;
+            }
+            picks[i] = std::uint8_t(std::max(best, 0));
+        }
+    }
+    return picks;
+}
+
+void upsample_mask(LightMask& fine, const LightMask& coarse, int s, const Params& p, const Surface* fine_surface,
+                   const std::vector<std::uint8_t>* picks) {
     if (p.mode == Mode::shadow) fine.reached.assign(fine.value.size(), 1);
     const Rect area = intersect(Rect{int(fine.cx) - fine.a, int(fine.cy) - fine.b, 2 * fine.a + 1, 2 * fine.b + 1}, fine.clip);
     if (area.empty()) return;
-    std::vector<std::uint8_t> table(std::size_t(std::max(fine.a, fine.b)) + 1);
+    thread_local std::vector<std::uint8_t> table;
+    table.resize(std::size_t(std::max(fine.a, fine.b)) + 1);
     for (std::size_t d = 0; d < table.size(); ++d) table[d] = falloff(std::int64_t(d), p.falloff_scale);
+    const bool by_surface = fine_surface && picks && picks->size() == fine_surface->instance.size();
+    const Rect& fr = by_surface ? fine_surface->rect : Rect{};
+    const std::uint32_t cw = std::uint32_t(coarse.clip.w), ch = std::uint32_t(coarse.clip.h);
     for (int y = area.y; y < area.y + area.h; ++y) {
-        const int cy = floor_div(y, s);
+        const int Y = floor_div(y, s);
         const std::size_t dy = std::size_t(std::llabs(std::int64_t(y) - fine.cy));
-        const std::uint8_t* from = coarse.value.data() + std::size_t(cy - coarse.clip.y) * std::size_t(coarse.clip.w);
         std::uint8_t* to = fine.value.data() + std::size_t(y - fine.clip.y) * std::size_t(fine.clip.w);
-        assert(cy >= coarse.clip.y && cy < coarse.clip.y + coarse.clip.h);
+        assert(Y >= coarse.clip.y && Y < coarse.clip.y + coarse.clip.h);
+        const bool row_picks = by_surface && y >= fr.y && y < fr.y + fr.h;
+        const std::uint8_t* pick = row_picks ? picks->data() + std::size_t(y - fr.y) * std::size_t(fr.w) : nullptr;
+        // The row's pixels with a pick (inside the fine surface), [p0, p1).
+        const int p0 = row_picks ? std::max(area.x, fr.x) : area.x, p1 = row_picks ? std::min(area.x + area.w, fr.x + fr.w) : area.x;
+        const std::uint8_t* from = coarse.value.data() + std::size_t(Y - coarse.clip.y) * cw;
+        const int v = Y - coarse.clip.y;
+        // The block's column kept as x steps (no division a pixel).
+        int X = floor_div(area.x, s), in_block = area.x - X * s;
         for (int x = area.x; x < area.x + area.w; ++x) {
-            const int cx = floor_div(x, s);
+            int u = X - coarse.clip.x;
+            const std::uint8_t* row = from;
+            if (x >= p0 && x < p1) {
+                // The picked neighbour, or the block where it lies past the coarse clip.
+                const int k = pick[x - fr.x];
+                const int pu = u + pick_dx[k], pv = v + pick_dy[k];
+                if (std::uint32_t(pu) < cw && std::uint32_t(pv) < ch) u = pu, row = from + std::ptrdiff_t(pick_dy[k]) * std::ptrdiff_t(cw);
+            }
             const std::size_t d = std::max(dy, std::size_t(std::llabs(std::int64_t(x) - fine.cx)));
-            to[x - fine.clip.x] = from[cx - coarse.clip.x] ? table[d] : 0;
+            to[x - fine.clip.x] = row[u] ? table[d] : 0;
+            if (++in_block == s) in_block = 0, ++X;
         }
     }
 }
 
 void trace_solids_at_scale(LightMask& fine, const OccluderMap& coarse, int s, double height, const Params& p,
-                           bool sprite_points, int threads) {
+                           bool sprite_points, int threads, const Surface* fine_surface,
+                           const std::vector<std::uint8_t>* picks) {
     const Params cp = coarse_params(p);
     thread_local LightMask c;
     start_coarse_mask(c, fine, s, cp);
@@ -104,7 +161,7 @@ void trace_solids_at_scale(LightMask& fine, const OccluderMap& coarse, int s, do
         c = trace_light_solids(coarse, c.cx, c.cy, c.a, c.b, H, cp, c.clip, threads);
         if (sprite_points) light_sprite_points(c, coarse, H, cp, threads);
     }
-    upsample_mask(fine, c, s, p);
+    upsample_mask(fine, c, s, p, fine_surface, picks);
 }
 
 }  // namespace isolux
