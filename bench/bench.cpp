@@ -256,6 +256,12 @@ void register_occluder_map() {
         st.counters["ns_per_pixel"] = benchmark::Counter(double(occ.spans.size()),
                                                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("occluders/coarse_picks/scale:2/default", [](benchmark::State& st) {
+        const OccluderMap c = coarse_occluders(occ, 2);
+        for (auto _ : st) benchmark::DoNotOptimize(coarse_picks(occ.surface, c, 2).data());
+        st.counters["ns_per_pixel"] = benchmark::Counter(double(occ.spans.size()),
+                                                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("occluders/index_surfaces/default", [](benchmark::State& st) {
         SurfaceIds ids{occ.surface.rect, occ.surface.instance, {}};
         for (auto _ : st) {

@@ -38,21 +38,26 @@ OccluderMap coarse_occluders(const OccluderMap& fine, int s) {
     c.surface.height.assign(n, 0.0f);
     const float inv = 1.0f / float(s);
     const bool has_surface = fine.surface.instance.size() == std::size_t(fine.rect.w) * std::size_t(fine.rect.h);
+    const int x0 = fine.rect.x, X0 = floor_div(x0, s), first_in_block = x0 - X0 * s;
     for (int y = fine.rect.y; y < fine.rect.y + fine.rect.h; ++y) {
         const int cy = floor_div(y, s);
         const bool top_row = std::int64_t(cy) * s == y;
-        const std::size_t from = std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w);
-        const std::size_t to_row = std::size_t(cy - c.rect.y) * std::size_t(c.rect.w);
-        for (int x = fine.rect.x; x < fine.rect.x + fine.rect.w; ++x) {
-            const int cx = floor_div(x, s);
-            const std::size_t i = from + std::size_t(x - fine.rect.x), j = to_row + std::size_t(cx - c.rect.x);
-            const Spans& sp = fine.spans[i];
-            if (sp.lower.any()) c.spans[j].add(sp.lower.low * inv, sp.lower.high * inv);
-            if (sp.upper.any()) c.spans[j].add(sp.upper.low * inv, sp.upper.high * inv);
-            if (has_surface && top_row && std::int64_t(cx) * s == x) {
-                c.surface.instance[j] = fine.surface.instance[i];
-                c.surface.height[j] = fine.surface.height[i] * inv;
+        const Spans* from = &fine.spans[std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w)];
+        Spans* to = &c.spans[std::size_t(cy - c.rect.y) * std::size_t(c.rect.w) + std::size_t(X0 - c.rect.x)];
+        // The block's column kept as x steps (no division a pixel).
+        int in_block = first_in_block;
+        std::size_t j = 0;
+        for (int i = 0; i < fine.rect.w; ++i) {
+            const Spans& sp = from[i];
+            if (sp.lower.any()) to[j].add(sp.lower.low * inv, sp.lower.high * inv);
+            if (sp.upper.any()) to[j].add(sp.upper.low * inv, sp.upper.high * inv);
+            if (has_surface && top_row && in_block == 0) {
+                const std::size_t f = std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w) + std::size_t(i);
+                const std::size_t k = std::size_t(cy - c.rect.y) * std::size_t(c.rect.w) + std::size_t(X0 - c.rect.x) + j;
+                c.surface.instance[k] = fine.surface.instance[f];
+                c.surface.height[k] = fine.surface.height[f] * inv;
             }
+            if (++in_block == s) in_block = 0, ++j;
         }
     }
     index_occluders(c);
@@ -87,24 +92,32 @@ std::vector<std::uint8_t> coarse_picks(const Surface& fine, const OccluderMap& c
     std::vector<std::uint8_t> picks(fine.instance.size(), 0);
     const Surface& cs = coarse.surface;
     const float inv = 1.0f / float(s);
+    const int X0 = floor_div(fine.rect.x, s), first_in_block = fine.rect.x - X0 * s;
     for (int y = fine.rect.y; y < fine.rect.y + fine.rect.h; ++y) {
         const int Y = floor_div(y, s);
-        for (int x = fine.rect.x; x < fine.rect.x + fine.rect.w; ++x) {
-            const int X = floor_div(x, s);
-            const std::size_t i = std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w) + std::size_t(x - fine.rect.x);
-            const std::int32_t shows = fine.instance[i];
-            const float h = fine.height[i] * inv;
-            int best = -1;
-            float best_gap = 0;
-            for (int k = 0; k < 9 && !(best >= 0 && best_gap == 0); ++k) {  // none nearer than 0: ties keep the first
-                const int u = X + pick_dx[k], v = Y + pick_dy[k];
-                if (!cs.rect.contains(u, v)) continue;
-                const std::size_t j = std::size_t(v - cs.rect.y) * std::size_t(cs.rect.w) + std::size_t(u - cs.rect.x);
-                if (cs.instance[j] != shows) continue;
-                const float gap = std::abs(cs.height[j] - h);
-                if (best < 0 || gap < best_gap) best = k, best_gap = gap;
+        const std::size_t row = std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w);
+        const std::size_t block_row = std::size_t(Y - cs.rect.y) * std::size_t(cs.rect.w);
+        int X = X0, in_block = first_in_block;
+        for (int i = 0; i < fine.rect.w; ++i) {
+            const std::int32_t shows = fine.instance[row + std::size_t(i)];
+            const float h = fine.height[row + std::size_t(i)] * inv;
+            const std::size_t block = block_row + std::size_t(X - cs.rect.x);
+            // Most pixels show what their block shows at its height (the
+            // ground's 0 above all): the block, with no search.
+            if (!(cs.instance[block] == shows && cs.height[block] == h)) {
+                int best = -1;
+                float best_gap = 0;
+                for (int k = 0; k < 9 && !(best >= 0 && best_gap == 0); ++k) {  // none nearer than 0: ties keep the first
+                    const int u = X + pick_dx[k], v = Y + pick_dy[k];
+                    if (!cs.rect.contains(u, v)) continue;
+                    const std::size_t j = std::size_t(v - cs.rect.y) * std::size_t(cs.rect.w) + std::size_t(u - cs.rect.x);
+                    if (cs.instance[j] != shows) continue;
+                    const float gap = std::abs(cs.height[j] - h);
+                    if (best < 0 || gap < best_gap) best = k, best_gap = gap;
+                }
+                picks[row + std::size_t(i)] = std::uint8_t(std::max(best, 0));
             }
-            picks[i] = std::uint8_t(std::max(best, 0));
+            if (++in_block == s) in_block = 0, ++X;
         }
     }
     return picks;
