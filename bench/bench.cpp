@@ -256,6 +256,28 @@ void register_occluder_map() {
         st.counters["ns_per_pixel"] = benchmark::Counter(double(occ.spans.size()),
                                                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     })->Unit(benchmark::kMillisecond);
+    // The same pan's coarse map and picks at occluder_scale 2, updated in
+    // place (pan_coarse_occluders) and made whole.
+    for (const bool update : {true, false})
+        benchmark::RegisterBenchmark(update ? "occluders/pan_coarse_update/scale:2/default" : "occluders/pan_coarse_build/scale:2/default",
+                                     [update](benchmark::State& st) {
+            const World& w = bench::world("default", 24);
+            const auto [from, to] = pan_regions(w);
+            SolidsCache cache;
+            const OccluderMap maps[2] = {build_occluders(w, p, from, &cache), build_occluders(w, p, to, &cache)};
+            OccluderMap c = coarse_occluders(maps[0], 2);
+            std::vector<std::uint8_t> picks = coarse_picks(maps[0].surface, c, 2);
+            int at = 0;
+            for (auto _ : st) {
+                const OccluderMap& next = maps[1 - at];
+                if (update) pan_coarse_occluders(c, picks, next, maps[at].rect, 2);
+                else c = coarse_occluders(next, 2), picks = coarse_picks(next.surface, c, 2);
+                at = 1 - at;
+                benchmark::DoNotOptimize(picks.data());
+            }
+            st.counters["ns_per_pixel"] = benchmark::Counter(double(to.w) * to.h,
+                                                             benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+        })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("occluders/coarse_picks/scale:2/default", [](benchmark::State& st) {
         const OccluderMap c = coarse_occluders(occ, 2);
         for (auto _ : st) benchmark::DoNotOptimize(coarse_picks(occ.surface, c, 2).data());

@@ -228,6 +228,14 @@ void start_coarse_mask(LightMask& coarse, const LightMask& fine, int scale, cons
 // a fine pixel (0 the block), made with the coarse map.
 std::vector<std::uint8_t> coarse_picks(const Surface& fine, const OccluderMap& coarse, int scale);
 
+// After the fine map panned (update_occluders over a new region, nothing
+// changed) from `old_fine`, its region when `coarse` and `picks` were made
+// from it: both made what coarse_occluders and coarse_picks give the map
+// as it is, the blocks wholly inside the part both regions share kept (and
+// the picks that read only those), the rest made again.
+void pan_coarse_occluders(OccluderMap& coarse, std::vector<std::uint8_t>& picks, const OccluderMap& fine, Rect old_fine,
+                          int scale);
+
 // Each pixel of the fine mask's area (in its clip, started unlit) lit,
 // with its own falloff, where the coarse pixel it takes its answer from is
 // lit: its block's, or with `fine_surface` and its `picks`

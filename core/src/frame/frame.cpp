@@ -227,12 +227,16 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     st.obstacle_heights = p.rays_over_obstacles ? build_obstacle_heights(world.tileset, world.placed, p, st.obstacles)
                                                 : ObstacleHeights{};
     // Beyond the paper: solids with height stop the rays (occluder_map.hpp).
+    const bool occluders_panned = p.occluders != Occluders::footprints && pan && st.occluders.rect == old_region;
     if (p.occluders == Occluders::footprints) st.occluders = OccluderMap{};
-    else if (pan && st.occluders.rect == old_region) update_occluders(st.occluders, world, p, region, Rect{}, &c.solids);
+    else if (occluders_panned) update_occluders(st.occluders, world, p, region, Rect{}, &c.solids);
     else rebuild_occluders(st.occluders, world, p, region, &c.solids);
     if (pan && c.ground.exact && c.ground.rect == old_region) pan_ground_lines(c.ground, world.placed, st.opacity, region);
     else c.ground = ground_lines(world.placed, st.opacity, region);
+    c.pan_from = occluders_panned ? st.obstacles_revision : 0;
+    c.pan_from_rect = old_region;
     st.obstacles_revision = next_obstacles_revision();
+    c.pan_to = occluders_panned ? st.obstacles_revision : 0;
     c.obstacle_params = p;
     c.world_revision = world.revision;
     c.has_obstacles = true;

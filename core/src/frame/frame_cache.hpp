@@ -21,6 +21,11 @@ struct FrameCache {
     Rect obstacle_region;
     SolidsCache solids;  // with occluders solids: each sprite's, estimated once
     NormalsCache normals;  // with sprite_shading: each sprite's normals, made once
+    // The last pan of the occluder map (update_occluders, nothing changed):
+    // from `pan_from_rect` at revision `pan_from`, to revision `pan_to`. The
+    // trace step then updates the coarse map (occluder_scale) in place.
+    Rect pan_from_rect;
+    std::uint64_t pan_from = 0, pan_to = 0;
 
     // Each light's traced and corrected pixels, kept while the obstacle map,
     // the tracing parameters and the light's centre, area and clip are the

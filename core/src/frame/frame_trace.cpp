@@ -140,8 +140,16 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     const int scale = solids ? p.occluder_scale : 1;
     if (scale > 1 && (st.coarse_of != st.obstacles_revision || st.coarse_scale != scale)) {
         const auto t0 = Clock::now();
-        st.coarse_occluders = coarse_occluders(st.occluders, scale);
-        st.coarse_picks = coarse_picks(st.occluders.surface, st.coarse_occluders, scale);
+        // After a pan of the map it was made from: updated in place (the
+        // blocks the two regions share kept), else made whole.
+        const FrameCache& c = *st.cache;
+        if (st.coarse_scale == scale && c.pan_to == st.obstacles_revision && c.pan_from == st.coarse_of &&
+            c.pan_from != 0)
+            pan_coarse_occluders(st.coarse_occluders, st.coarse_picks, st.occluders, c.pan_from_rect, scale);
+        else {
+            st.coarse_occluders = coarse_occluders(st.occluders, scale);
+            st.coarse_picks = coarse_picks(st.occluders.surface, st.coarse_occluders, scale);
+        }
         st.coarse_of = st.obstacles_revision;
         st.coarse_scale = scale;
         st.coarse_revision = next_obstacles_revision();

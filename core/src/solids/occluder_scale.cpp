@@ -24,42 +24,66 @@ Rect cover(Rect r, int s) {
 
 }  // namespace
 
+namespace {
+
+constexpr int border = 2;  // coarse pixels of bare ground all round: the coarse light's a / s + 1, and the tallest point's rounding
+
+Rect coarse_rect_of(Rect fine, int s) {
+    const Rect covered = cover(fine, s);
+    return {covered.x - border, covered.y - border, covered.w + 2 * border, covered.h + 2 * border};
+}
+
+// The blocks of `blocks` (coarse pixels, inside c.rect, starting empty)
+// made from the fine map: the union of their pixels' spans, over s, and
+// their top-left pixel's surface, its height over s.
+void fill_blocks(OccluderMap& c, const OccluderMap& fine, int s, Rect blocks) {
+    const Rect part = intersect(Rect{blocks.x * s, blocks.y * s, blocks.w * s, blocks.h * s}, fine.rect);
+    if (part.empty()) return;
+    const float inv = 1.0f / float(s);
+    const bool has_surface = fine.surface.instance.size() == std::size_t(fine.rect.w) * std::size_t(fine.rect.h);
+    const int X0 = floor_div(part.x, s), first_in_block = part.x - X0 * s;
+    for (int y = part.y; y < part.y + part.h; ++y) {
+        const int cy = floor_div(y, s);
+        const bool top_row = std::int64_t(cy) * s == y;
+        const std::size_t from = std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w) + std::size_t(part.x - fine.rect.x);
+        const std::size_t to = std::size_t(cy - c.rect.y) * std::size_t(c.rect.w) + std::size_t(X0 - c.rect.x);
+        // The block's column kept as x steps (no division a pixel).
+        int in_block = first_in_block;
+        std::size_t j = 0;
+        for (int i = 0; i < part.w; ++i) {
+            const Spans& sp = fine.spans[from + std::size_t(i)];
+            if (sp.lower.any()) c.spans[to + j].add(sp.lower.low * inv, sp.lower.high * inv);
+            if (sp.upper.any()) c.spans[to + j].add(sp.upper.low * inv, sp.upper.high * inv);
+            if (has_surface && top_row && in_block == 0) {
+                c.surface.instance[to + j] = fine.surface.instance[from + std::size_t(i)];
+                c.surface.height[to + j] = fine.surface.height[from + std::size_t(i)] * inv;
+            }
+            if (++in_block == s) in_block = 0, ++j;
+        }
+    }
+}
+
+// The blocks lying wholly inside fine rectangle r.
+Rect blocks_inside(Rect r, int s) {
+    if (r.empty()) return {};
+    const int x0 = -floor_div(-std::int64_t(r.x), s), y0 = -floor_div(-std::int64_t(r.y), s);  // ceil
+    const int x1 = floor_div(std::int64_t(r.x) + r.w, s), y1 = floor_div(std::int64_t(r.y) + r.h, s);
+    return x1 > x0 && y1 > y0 ? Rect{x0, y0, x1 - x0, y1 - y0} : Rect{};
+}
+
+}  // namespace
+
 OccluderMap coarse_occluders(const OccluderMap& fine, int s) {
     assert(s >= 1);
     OccluderMap c;
     if (fine.rect.empty()) return c;
-    const Rect covered = cover(fine.rect, s);
-    constexpr int border = 2;  // the coarse light's a / s + 1, and the tallest point's rounding
-    c.rect = {covered.x - border, covered.y - border, covered.w + 2 * border, covered.h + 2 * border};
+    c.rect = coarse_rect_of(fine.rect, s);
     const std::size_t n = std::size_t(c.rect.w) * std::size_t(c.rect.h);
     c.spans.assign(n, Spans{});
     c.surface.rect = c.rect;
     c.surface.instance.assign(n, -1);
     c.surface.height.assign(n, 0.0f);
-    const float inv = 1.0f / float(s);
-    const bool has_surface = fine.surface.instance.size() == std::size_t(fine.rect.w) * std::size_t(fine.rect.h);
-    const int x0 = fine.rect.x, X0 = floor_div(x0, s), first_in_block = x0 - X0 * s;
-    for (int y = fine.rect.y; y < fine.rect.y + fine.rect.h; ++y) {
-        const int cy = floor_div(y, s);
-        const bool top_row = std::int64_t(cy) * s == y;
-        const Spans* from = &fine.spans[std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w)];
-        Spans* to = &c.spans[std::size_t(cy - c.rect.y) * std::size_t(c.rect.w) + std::size_t(X0 - c.rect.x)];
-        // The block's column kept as x steps (no division a pixel).
-        int in_block = first_in_block;
-        std::size_t j = 0;
-        for (int i = 0; i < fine.rect.w; ++i) {
-            const Spans& sp = from[i];
-            if (sp.lower.any()) to[j].add(sp.lower.low * inv, sp.lower.high * inv);
-            if (sp.upper.any()) to[j].add(sp.upper.low * inv, sp.upper.high * inv);
-            if (has_surface && top_row && in_block == 0) {
-                const std::size_t f = std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w) + std::size_t(i);
-                const std::size_t k = std::size_t(cy - c.rect.y) * std::size_t(c.rect.w) + std::size_t(X0 - c.rect.x) + j;
-                c.surface.instance[k] = fine.surface.instance[f];
-                c.surface.height[k] = fine.surface.height[f] * inv;
-            }
-            if (++in_block == s) in_block = 0, ++j;
-        }
-    }
+    fill_blocks(c, fine, s, c.rect);
     index_occluders(c);
     return c;
 }
@@ -88,20 +112,23 @@ constexpr int pick_dy[9] = {0, -1, 0, 0, 1, -1, -1, 1, 1};
 
 }  // namespace
 
-std::vector<std::uint8_t> coarse_picks(const Surface& fine, const OccluderMap& coarse, int s) {
-    std::vector<std::uint8_t> picks(fine.instance.size(), 0);
+namespace {
+
+// The picks of the fine pixels of `part` (inside fine.rect).
+void pick_pixels(std::vector<std::uint8_t>& picks, const Surface& fine, const OccluderMap& coarse, int s, Rect part) {
     const Surface& cs = coarse.surface;
     const float inv = 1.0f / float(s);
-    const int X0 = floor_div(fine.rect.x, s), first_in_block = fine.rect.x - X0 * s;
-    for (int y = fine.rect.y; y < fine.rect.y + fine.rect.h; ++y) {
+    const int X0 = floor_div(part.x, s), first_in_block = part.x - X0 * s;
+    for (int y = part.y; y < part.y + part.h; ++y) {
         const int Y = floor_div(y, s);
-        const std::size_t row = std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w);
+        const std::size_t row = std::size_t(y - fine.rect.y) * std::size_t(fine.rect.w) + std::size_t(part.x - fine.rect.x);
         const std::size_t block_row = std::size_t(Y - cs.rect.y) * std::size_t(cs.rect.w);
         int X = X0, in_block = first_in_block;
-        for (int i = 0; i < fine.rect.w; ++i) {
+        for (int i = 0; i < part.w; ++i) {
             const std::int32_t shows = fine.instance[row + std::size_t(i)];
             const float h = fine.height[row + std::size_t(i)] * inv;
             const std::size_t block = block_row + std::size_t(X - cs.rect.x);
+            std::uint8_t pick = 0;
             // Most pixels show what their block shows at its height (the
             // ground's 0 above all): the block, with no search.
             if (!(cs.instance[block] == shows && cs.height[block] == h)) {
@@ -115,12 +142,51 @@ std::vector<std::uint8_t> coarse_picks(const Surface& fine, const OccluderMap& c
                     const float gap = std::abs(cs.height[j] - h);
                     if (best < 0 || gap < best_gap) best = k, best_gap = gap;
                 }
-                picks[row + std::size_t(i)] = std::uint8_t(std::max(best, 0));
+                pick = std::uint8_t(std::max(best, 0));
             }
+            picks[row + std::size_t(i)] = pick;
             if (++in_block == s) in_block = 0, ++X;
         }
     }
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> coarse_picks(const Surface& fine, const OccluderMap& coarse, int s) {
+    std::vector<std::uint8_t> picks(fine.instance.size(), 0);
+    pick_pixels(picks, fine, coarse, s, fine.rect);
     return picks;
+}
+
+void pan_coarse_occluders(OccluderMap& c, std::vector<std::uint8_t>& picks, const OccluderMap& fine, Rect old_fine,
+                          int s) {
+    // The blocks wholly inside the part both fine maps hold are the same
+    // blocks: kept, moved to the new layout; the rest made again.
+    const Rect inner = blocks_inside(intersect(old_fine, fine.rect), s);
+    const Rect to = coarse_rect_of(fine.rect, s);
+    move_grid(c.spans, c.rect, to);
+    move_grid(c.surface.instance, c.rect, to, std::int32_t(-1));
+    move_grid(c.surface.height, c.rect, to);
+    c.rect = c.surface.rect = to;
+    for (const Rect& r : inner.empty() ? std::vector<Rect>{to} : outside(to, inner)) {
+        for (int y = r.y; y < r.y + r.h; ++y) {
+            const std::size_t i = std::size_t(y - to.y) * std::size_t(to.w) + std::size_t(r.x - to.x);
+            std::fill_n(&c.spans[i], r.w, Spans{});
+            std::fill_n(&c.surface.instance[i], r.w, std::int32_t(-1));
+            std::fill_n(&c.surface.height[i], r.w, 0.0f);
+        }
+        fill_blocks(c, fine, s, r);
+    }
+    c.padding = 0;
+    index_occluders(c);
+    // A pixel's pick reads its block and the eight around it: kept where
+    // all nine are kept blocks.
+    const Rect same = inner.w > 2 && inner.h > 2 ? Rect{(inner.x + 1) * s, (inner.y + 1) * s, (inner.w - 2) * s, (inner.h - 2) * s}
+                                                 : Rect{};
+    move_grid(picks, old_fine, fine.rect, std::uint8_t(0));
+    const Rect kept = intersect(same, fine.rect);
+    for (const Rect& r : kept.empty() ? std::vector<Rect>{fine.rect} : outside(fine.rect, kept))
+        pick_pixels(picks, fine.surface, c, s, r);
 }
 
 void upsample_mask(LightMask& fine, const LightMask& coarse, int s, const Params& p, const Surface* fine_surface,

@@ -155,6 +155,72 @@ TEST(OccluderScale, eachPixelTakesItsBlocksAnswerWithItsOwnFalloff) {
     }
 }
 
+// Every field of two coarse maps, and their picks, equal.
+void expect_same_coarse(const OccluderMap& a, const OccluderMap& b, const std::string& what) {
+    SCOPED_TRACE(what);
+    EXPECT_EQ(a.rect, b.rect);
+    EXPECT_TRUE(a.spans == b.spans);
+    EXPECT_EQ(a.surface.rect, b.surface.rect);
+    EXPECT_EQ(a.surface.instance, b.surface.instance);
+    EXPECT_EQ(a.surface.height, b.surface.height);
+    EXPECT_EQ(a.flags, b.flags);
+    EXPECT_EQ(a.shown_start, b.shown_start);
+    EXPECT_TRUE(a.shown == b.shown);
+    EXPECT_EQ(a.tallest, b.tallest);
+    EXPECT_EQ(a.padding, b.padding);
+}
+
+TEST(OccluderScale, aPannedCoarseMapIsTheCoarseMapOfThePannedMap) {
+    // The occluder map of a view's region, panned by odd and even steps,
+    // across and out of the old region: the coarse map and picks updated in
+    // place are those made whole from the panned map.
+    Params p;
+    p.occluders = Occluders::solids;
+    const World& w = default_world();
+    const Rect b = w.placed.bounds;
+    const Rect first{b.x + 100, b.y + 60, 500, 320};
+    SolidsCache cache;
+    const OccluderMap from = build_occluders(w, p, first, &cache);
+    int pans = 0;
+    for (int s : {2, 3})
+        for (const auto& [dx, dy] : std::vector<std::pair<int, int>>{{37, 0}, {-64, 21}, {5, -3}, {260, 170}, {900, 0}}) {
+            const Rect to{first.x + dx, first.y + dy, first.w + (dx % 2), first.h};
+            const OccluderMap panned = build_occluders(w, p, to, &cache);
+            OccluderMap c = coarse_occluders(from, s);
+            std::vector<std::uint8_t> picks = coarse_picks(from.surface, c, s);
+            pan_coarse_occluders(c, picks, panned, first, s);
+            const OccluderMap whole = coarse_occluders(panned, s);
+            const std::string what = "scale " + std::to_string(s) + " by " + std::to_string(dx) + "," + std::to_string(dy);
+            expect_same_coarse(c, whole, what);
+            EXPECT_EQ(picks, coarse_picks(panned.surface, whole, s)) << what;
+            ++pans;
+        }
+    EXPECT_EQ(pans, 10);
+}
+
+TEST(OccluderScale, aPanningCameraTracedCoarseGivesTheFreshFramesBytes) {
+    // The default scene under the game preset at s = 2, the camera moving
+    // by odd steps (past the region's margin twice in 8 frames, where the
+    // coarse map is updated in place): each frame equals a fresh state's
+    // frame there.
+    Scene scene = load_scene(std::string(ISOLUX_ASSETS_DIR) + "/scenes/default.json");
+    const World w = make_world(test::default_tileset(), scene);
+    scene.params = builtin_preset("game");
+    scene.params.occluder_scale = 2;
+    const Rect b = w.placed.bounds;
+    FrameState moving;
+    for (int f = 0; f < 8; ++f) {
+        const Camera cam{double(b.x + 100 + 151 * f), double(b.y + 60 + 67 * f), 640, 360};
+        render_frame(moving, w, scene, cam, f);
+        FrameState fresh;
+        render_frame(fresh, w, scene, cam, f);
+        ASSERT_EQ(moving.traced.rect, fresh.traced.rect) << "frame " << f;
+        EXPECT_EQ(moving.traced.texels, fresh.traced.texels) << "frame " << f;
+        EXPECT_EQ(moving.final.rgba, fresh.final.rgba) << "frame " << f;
+        EXPECT_GT(std::count_if(fresh.traced.texels.begin(), fresh.traced.texels.end(), [](std::uint8_t v) { return v != 0; }), 5000);
+    }
+}
+
 TEST(OccluderScale, aSpritePixelWhoseBlockShowsTheGroundTakesItsSpritesAnswer) {
     // Fine columns 0..7 of one row band: ground at x = 0..2, an overlay
     // (instance 5) at x = 3..7, its height rising 2 a column. At s = 2 the
