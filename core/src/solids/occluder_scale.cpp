@@ -22,10 +22,6 @@ Rect cover(Rect r, int s) {
     return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
 }
 
-}  // namespace
-
-namespace {
-
 constexpr int border = 2;  // coarse pixels of bare ground all round: the coarse light's a / s + 1, and the tallest point's rounding
 
 Rect coarse_rect_of(Rect fine, int s) {
@@ -109,10 +105,6 @@ namespace {
 // block first, then the four sides, then the corners.
 constexpr int pick_dx[9] = {0, 0, -1, 1, 0, -1, 1, -1, 1};
 constexpr int pick_dy[9] = {0, -1, 0, 0, 1, -1, -1, 1, 1};
-
-}  // namespace
-
-namespace {
 
 // The picks of the fine pixels of `part` (inside fine.rect).
 void pick_pixels(std::vector<std::uint8_t>& picks, const Surface& fine, const OccluderMap& coarse, int s, Rect part) {
