@@ -48,6 +48,17 @@ struct EstimatedObject {
     std::vector<double> steps;
     // The prism's height over screen column sx (relative to the axis).
     double step_at(double sx) const;
+    // A stepped prism's ground per screen column (indexed as steps): how far
+    // toward the viewer it reaches, the screen row (relative to the foot)
+    // under the column's lowest pixel. Boxes side by side (a town's) leave
+    // ground in front of those set back, which the rectangle would fill,
+    // and a column the sprite leaves empty holds nothing: what stands there
+    // would show. Empty: the rectangle's ground.
+    std::vector<double> fronts;
+    // The front over screen column sx (relative to the axis); +inf: none.
+    double front_at(double sx) const;
+    // Whether the ground point (x, y) relative to the foot lies behind its column's front.
+    bool behind_front(double x, double y) const { return (x + y) / 2 <= front_at(x - y); }
     // The cross-section from height z to z + 1, an ellipse about the axis,
     // ground pixels: radius[z] its semi-axis in depth (ground direction
     // (1, 1), along screen y; 0: none), across[z] its semi-axis across the

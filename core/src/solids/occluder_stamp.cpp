@@ -123,7 +123,7 @@ void stamp_spans(const EstimatedObject& o, SpanStamp& stamp) {
             for (int i = 0; i < r.w; ++i) {
                 const double sx = r.x + i + 0.5 - o.center_x;
                 const Vec3 q = ground_frame(sx, r.y + j + 0.5 - o.center_y, 0);
-                if (std::abs(q.x) > o.half_x || std::abs(q.y) > o.half_y) continue;
+                if (std::abs(q.x) > o.half_x || std::abs(q.y) > o.half_y || !o.behind_front(q.x, q.y)) continue;
                 const double top = std::min(o.height(), std::ceil(o.step_at(q.x - q.y)));
                 if (top > 0) stamp.spans[std::size_t(j) * r.w + std::size_t(i)] = {0.f, float(top)};
             }

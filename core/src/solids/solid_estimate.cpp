@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -110,7 +111,8 @@ bool EstimatedObject::holds(std::size_t z, double x, double y) const {
     const double d = radius[z], a = across_at(z);
     if (d <= 0) return false;
     if (model == ObjectModel::prism)
-        return std::abs(x) <= half_x && std::abs(y) <= half_y && (steps.empty() || double(z) < step_at(x - y));
+        return std::abs(x) <= half_x && std::abs(y) <= half_y && (steps.empty() || double(z) < step_at(x - y)) &&
+               behind_front(x, y);
     const double u = (x - y) / sqrt2, v = (x + y) / sqrt2;  // across the view, in depth
     return (u * u) / (a * a) + (v * v) / (d * d) <= 1;
 }
@@ -119,6 +121,12 @@ double EstimatedObject::step_at(double sx) const {
     if (steps.empty()) return height();
     const double i = std::floor(sx + half_x + half_y);
     return steps[std::size_t(std::clamp(i, 0.0, double(steps.size() - 1)))];
+}
+
+double EstimatedObject::front_at(double sx) const {
+    if (fronts.empty()) return std::numeric_limits<double>::infinity();
+    const double i = std::floor(sx + half_x + half_y);
+    return fronts[std::size_t(std::clamp(i, 0.0, double(fronts.size() - 1)))];
 }
 
 bool EstimatedObject::span_at(double x, double y, double& z_low, double& z_high) const {
@@ -842,11 +850,12 @@ void step_prism(const Mask& object, EstimatedObject& o) {
     const double xb = o.center_x - o.half_x + o.half_y, yb = o.center_y - reach / 2;  // the back corner on screen
     const std::size_t n = std::size_t(std::ceil(2 * reach));
     if (n == 0) return;
-    std::vector<double> rise(n, -1);
+    std::vector<double> rise(n, -1), front(n, -1e300);
     for (const ColumnExtent& c : column_extents(object)) {
         const double i = std::floor(c.x - o.center_x + reach);
         if (i < 0 || i >= double(n)) continue;
         rise[std::size_t(i)] = yb + std::abs(c.x - xb) / 2 - c.top;
+        front[std::size_t(i)] = c.ground - o.center_y;
     }
     // Empty columns take their nearest measured neighbour's rise (left first).
     std::vector<double> filled = rise;
@@ -873,6 +882,7 @@ void step_prism(const Mask& object, EstimatedObject& o) {
     // their front walls (measured worse against 3D, docs/beyond.md).
     if (jump < prism_step_jump * o.height()) return;
     o.steps = std::move(steps);
+    o.fronts = std::move(front);
     o.radius.assign(std::size_t(top), o.radius.empty() ? std::hypot(o.half_x, o.half_y) : o.radius[0]);
 }
 
@@ -957,9 +967,9 @@ namespace {
 
 // A prism's silhouette: the pixels whose view line meets its rectangle at
 // a height in [0, its column's step). On the view line through (sx, sy) from the foot
-// the point z high is (t + sx / 2, t - sx / 2) with t = sy + z, so the
-// pixel is drawn when the three ranges of t (the rectangle's two sides and
-// the heights) meet.
+// the point z high is (t + sx / 2, t - sx / 2) with t = sy + z (t is its
+// ground point's screen row), so the pixel is drawn when the ranges of t
+// (the rectangle's two sides, the heights and the column's front) meet.
 void draw_prism(const EstimatedObject& o, Mask& m) {
     const double reach = o.half_x + o.half_y;
     const int x0 = std::max(int(std::floor(o.center_x - reach)), 0), x1 = std::min(int(std::ceil(o.center_x + reach)), m.width - 1);
@@ -969,7 +979,7 @@ void draw_prism(const EstimatedObject& o, Mask& m) {
         for (int x = x0; x <= x1; ++x) {
             const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y, top = o.step_at(sx);
             const double lo = std::max({-o.half_x - sx / 2, -o.half_y + sx / 2, sy});
-            const double hi = std::min({o.half_x - sx / 2, o.half_y + sx / 2, sy + top});
+            const double hi = std::min({o.half_x - sx / 2, o.half_y + sx / 2, sy + top, o.front_at(sx)});
             if (lo <= hi) m.set(x, y);
         }
 }

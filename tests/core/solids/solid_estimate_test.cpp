@@ -416,6 +416,38 @@ TEST(SolidModels, boxesSideBySideGiveAStepPerColumn) {
     EXPECT_TRUE(box->steps.empty());
 }
 
+// A low box set back beside a tall one (a town's): the rectangle both
+// stand in holds ground in front of the low box, which the sprite shows
+// bare. The stepped prism's ground ends at each column's lowest pixel, so
+// it holds none of that ground, and more of the boxes' volume than the
+// rectangle does.
+TEST(SolidModels, aBoxSetBackLeavesTheGroundInFrontOfItEmpty) {
+    const int w = 200, h = 140, ax = 100, ay = 110;
+    const std::vector<Solid> boxes{Solid{SolidKind::box, {-36, -12, 0}, {0, 12, 40}},
+                                   Solid{SolidKind::box, {0, -36, 0}, {36, -12, 12}}};
+    const Mask object = drawn(boxes, w, h, ax, ay);
+    const std::optional<EstimatedObject> flat = fit_prism(object);
+    ASSERT_TRUE(flat.has_value());
+    EstimatedObject stepped = *flat;
+    step_prism(object, stepped);
+    ASSERT_FALSE(stepped.steps.empty());
+    ASSERT_FALSE(stepped.fronts.empty());
+    // Ground frame relative to the prism's foot, from the anchor's.
+    const Vec3 foot = ground_frame(stepped.center_x - ax, stepped.center_y - ay, 0);
+    const auto at = [&](double x, double y, double z) { return stepped.contains({x - foot.x, y - foot.y, z}); };
+    EXPECT_TRUE(at(18, -24, 6)) << "inside the low box";
+    EXPECT_TRUE(at(-18, 0, 30)) << "inside the tall box";
+    EXPECT_FALSE(at(18, 0, 0.5)) << "the bare ground in front of the low box";
+    EXPECT_FALSE(at(30, 6, 0.5));
+    EstimatedObject rectangle = stepped;
+    rectangle.fronts.clear();
+    EXPECT_TRUE(rectangle.contains({18 - foot.x, 0 - foot.y, 0.5})) << "the rectangle alone fills it";
+    const double overlap = volume_overlap({stepped}, ax, ay, boxes), filled = volume_overlap({rectangle}, ax, ay, boxes);
+    std::printf("fronts: %.3f of the boxes' volume, the rectangle's ground %.3f\n", overlap, filled);
+    EXPECT_GT(overlap, filled + 0.05);
+    EXPECT_GE(silhouette_fit({stepped}, object), silhouette_fit({rectangle}, object));
+}
+
 // A half ellipsoid on the ground: the mound's base and height are its own,
 // where the largest solid of revolution stands far taller. (Its outline is
 // filled about as well by that solid, which keeps such ties: a user picks
