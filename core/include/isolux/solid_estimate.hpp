@@ -53,7 +53,8 @@ struct EstimatedObject {
     // under the column's lowest pixel. Boxes side by side (a town's) leave
     // ground in front of those set back, which the rectangle would fill,
     // and a column the sprite leaves empty holds nothing: what stands there
-    // would show. Empty: the rectangle's ground.
+    // would show. Empty: the rectangle's ground. A user's height replaces
+    // the steps and keeps the fronts: the ground the sprite shows is the same.
     std::vector<double> fronts;
     // The front over screen column sx (relative to the axis); +inf: none.
     double front_at(double sx) const;

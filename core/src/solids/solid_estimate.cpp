@@ -117,16 +117,24 @@ bool EstimatedObject::holds(std::size_t z, double x, double y) const {
     return (u * u) / (a * a) + (v * v) / (d * d) <= 1;
 }
 
+namespace {
+
+// The entry of a per-column table (a prism's steps or fronts) for screen
+// column sx relative to the axis: columns from -reach, one a pixel, the
+// outermost standing for any beyond.
+double column_entry(const std::vector<double>& table, double sx, double reach) {
+    const double i = std::floor(sx + reach);
+    return table[std::size_t(std::clamp(i, 0.0, double(table.size() - 1)))];
+}
+
+}  // namespace
+
 double EstimatedObject::step_at(double sx) const {
-    if (steps.empty()) return height();
-    const double i = std::floor(sx + half_x + half_y);
-    return steps[std::size_t(std::clamp(i, 0.0, double(steps.size() - 1)))];
+    return steps.empty() ? height() : column_entry(steps, sx, half_x + half_y);
 }
 
 double EstimatedObject::front_at(double sx) const {
-    if (fronts.empty()) return std::numeric_limits<double>::infinity();
-    const double i = std::floor(sx + half_x + half_y);
-    return fronts[std::size_t(std::clamp(i, 0.0, double(fronts.size() - 1)))];
+    return fronts.empty() ? std::numeric_limits<double>::infinity() : column_entry(fronts, sx, half_x + half_y);
 }
 
 bool EstimatedObject::span_at(double x, double y, double& z_low, double& z_high) const {
