@@ -788,6 +788,7 @@ int main(int argc, char** argv) {
         if (std::strcmp(argv[i], "--ratios") == 0) return ratios();
         else if (std::strcmp(argv[i], "--endless-ratios") == 0) return bench::print_endless_ratios(), 0;  // those alone
         else if (std::strcmp(argv[i], "--solids-frame-ratios") == 0) return bench::print_solids_frame_ratios(11), 0;  // those alone
+        else if (std::strcmp(argv[i], "--gpu-figures") == 0) return bench::print_gpu_figures(), 0;  // gpu_trace_identical, solids_gpu_cpu_ms
         else if (std::strcmp(argv[i], "--walk-ratios") == 0) return print_walk_ratios(11), 0;  // trace_every4_cost, solids_trace_cost
     benchmark::Initialize(&argc, argv);
     benchmark::RunSpecifiedBenchmarks();

@@ -5,6 +5,7 @@
 #include <array>
 #include <chrono>
 #include <cstring>
+#include <ctime>
 #include <functional>
 #include <map>
 #include <memory>
@@ -330,6 +331,30 @@ void print_solids_frame_ratios(int pairs) {
         print_ratio("occluder_scale2_over_full",
                     interleaved([&] { step(*half_frame, 32); }, 1, [&] { step(*full_frame, 32); }, 1, pairs), nullptr, 3);
     }
+}
+
+std::vector<double> solids_frame_thread_ms(const LightTracer& tracer, int frames, bool& same) {
+    auto solids = [](Params& p) { p.occluders = Occluders::solids; };
+    auto gpu = make_screen("default", 1, 32, solids), cpu = make_screen("default", 1, 32, solids);
+    gpu->frame.options.tracer = tracer;
+    gpu->frame.options.cpu_sprites = gpu->frame.options.cpu_blur_and_composite = false;
+    auto thread_ms = [] {
+        timespec t{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+        return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+    };
+    std::vector<double> ms;
+    same = true;
+    step(*gpu, 32);  // warm: the occluder map uploaded
+    step(*cpu, 32);
+    for (int i = 0; i < frames; ++i) {
+        const double t0 = thread_ms();
+        const FrameReport rep = step(*gpu, 32);
+        ms.push_back(thread_ms() - t0);
+        step(*cpu, 32);
+        same = same && rep.tracer == "gpu" && gpu->frame.traced.texels == cpu->frame.traced.texels;
+    }
+    return ms;
 }
 
 void print_floor_ratios() {

@@ -2,6 +2,9 @@
 // same bytes, measured in the same run), stage by stage, and what one moved
 // light costs against all of them moving.
 #pragma once
+#include <vector>
+
+#include "isolux/frame.hpp"
 
 namespace isolux::bench {
 
@@ -14,5 +17,12 @@ void print_floor_ratios();
 // over footprints' (solids_frame_cost_scale2) and over full resolution's
 // (occluder_scale2_over_full).
 void print_solids_frame_ratios(int pairs);
+
+// The screen scene's whole frame against solids, every light moved, as the
+// app runs it: traced by `tracer` (its GPU), the sprites, blur and
+// composite left to the GPU, one thread. The calling thread's CPU time
+// (its thread clock, not the wall) of each of `frames` frames, in ms; and
+// in `same`, whether each frame's light texture is the CPU-traced frame's.
+std::vector<double> solids_frame_thread_ms(const LightTracer& tracer, int frames, bool& same);
 
 }  // namespace isolux::bench

@@ -12,12 +12,15 @@
 // up to `most` disjoint sorted intervals (beyond, the two nearest join). A
 // ray passes a step's spans own_steps steps after it reaches them: a
 // point's last steps hold its own solid at about its height.
-// Points are written where lit into `lit` (cleared to 0): rays that reach
+// Points are written where lit into `lit` (started by start_layers.comp; the
+// ground pass leaves the area's sprite pixels to this one): rays that reach
 // the same point write the same value (it depends on the pixel only).
+// One dispatch serves every light of a frame: light gl_WorkGroupID.y, its
+// ray gl_GlobalInvocationID.x, its layer of `lit`.
 layout(local_size_x = 64) in;
 
-layout(r8ui, binding = 0) uniform writeonly uimage2D lit;                    // the clip: texel (0, 0) is world clip.xy
-layout(std430, binding = 0) readonly buffer Targets { ivec2 targets[]; };    // offsets from the centre
+layout(r8ui, binding = 0) uniform writeonly uimage2DArray lit;               // per light its clip: texel (0, 0) is world clip.xy
+layout(std430, binding = 0) readonly buffer Targets { ivec2 targets[]; };    // offsets from the centre, each light's run in turn
 layout(std430, binding = 1) readonly buffer Falloff { uint falloff[]; };     // by distance max(|dx|, |dy|)
 layout(std430, binding = 2) readonly buffer Spans { vec4 spans[]; };        // (low, high) of the lower span, then the upper's
 struct Shown {
@@ -26,14 +29,21 @@ struct Shown {
 };                 // (an edit's padding: rows 2^30, outside every area, so skipped)
 layout(std430, binding = 4) readonly buffer ShownStart { uint shown_start[]; };  // per ground pixel, and one past the last
 layout(std430, binding = 5) readonly buffer ShownPoints { Shown shown[]; };
+struct Light {  // as trace_solids.comp's
+    ivec2 centre;
+    ivec2 extent;
+    ivec2 ground_rays;
+    ivec2 sprite_rays;  // the first of its targets (the area grown by the tallest point's rows), and their count
+    ivec4 clip;
+    ivec4 area;         // the light's area within the clip: only its points are lit
+    double height;
+    int layer;
+    int unused;
+};
+layout(std430, binding = 6) readonly buffer Lights { Light lights[]; };
 
-uniform ivec2 centre;
-uniform ivec4 clip;         // x, y, w, h
-uniform ivec4 area;         // the light's area within the clip: only its points are lit
 uniform ivec2 span_origin;  // the occluder map's rect: spans and shown_start
 uniform ivec2 span_size;
-uniform int ray_count;
-uniform double light_height;  // H >= 0
 
 const int own_steps = 2;
 const int most = 16;
@@ -103,9 +113,12 @@ bool blocks(double u) {
 bool on_map(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, span_size)); }
 
 void main() {
+    Light light = lights[gl_WorkGroupID.y];
     int id = int(gl_GlobalInvocationID.x);
-    if (id >= ray_count) return;
-    ivec2 t = targets[id];
+    if (id >= light.sprite_rays.y) return;
+    ivec2 t = targets[light.sprite_rays.x + id];
+    ivec2 centre = light.centre;
+    ivec4 clip = light.clip, area = light.area;
     ivec2 diagonal = ivec2(sign(t.x), sign(t.y));
     int longest = abs(t.x), shortest = abs(t.y);
     ivec2 straight = ivec2(diagonal.x, 0);
@@ -116,7 +129,7 @@ void main() {
     }
     int numerator = longest >> 1;
     ivec2 p = centre;
-    double H = light_height;
+    double H = light.height;
     vec4 passed[own_steps + 1];  // the spans of the last steps
     for (int i = 0; i <= longest; ++i) {
         int s = i - own_steps;
@@ -132,7 +145,7 @@ void main() {
                 double u = i > 0 ? (H - double(shown[k].height)) / double(i) : 0.0;
                 if (i <= own_steps || !blocks(u)) {
                     ivec2 d = abs(at - centre);
-                    imageStore(lit, at - clip.xy, uvec4(falloff[max(d.x, d.y)]));
+                    imageStore(lit, ivec3(at - clip.xy, light.layer), uvec4(falloff[max(d.x, d.y)]));
                 }
             }
         numerator += shortest;

@@ -1,7 +1,8 @@
 // Paper Algorithm 2 as an OpenGL 4.3 compute shader (shaders/trace.comp):
 // the same bytes as core's trace_light, held to it by tests/app/gpu/gl_test.cpp; and
-// the ground pass against solids with height (shaders/trace_solids.comp), the
-// same bytes as core's trace_light_solids. The app lets the frame call them
+// both passes against solids with height (shaders/trace_solids.comp,
+// sprite_points.comp, sprite_pixels.comp), the same bytes as core's
+// trace_light_solids and light_sprite_points. The app lets the frame call them
 // through FrameOptions::tracer.
 #pragma once
 #include <cstdint>
@@ -21,8 +22,18 @@ struct GpuTracer {
     Rect obstacles_rect;
     GLuint solids_program = 0, spans = 0, overflow = 0;
     std::uint64_t spans_revision = ~0ull;  // what `spans` holds
-    GLuint points_program = 0, points = 0, shown_start = 0, shown = 0;  // the sprite pass
+    GLuint points_program = 0, shown_start = 0, shown = 0;  // the sprite pass
     std::uint64_t shown_revision = ~0ull;  // what `shown_start` and `shown` hold
+    GLuint pixels_program = 0, surface_height = 0, surface_sprite = 0;  // each light's layer started (start_layers.comp)
+    std::uint64_t surface_revision = ~0ull;  // what `surface_height` and `surface_sprite` hold
+    Rect surface_rect;
+    // A frame's lights against solids, traced together: their records, rays
+    // and falloff, and one layer each of `layers` (layers_w x layers_h x
+    // layer_count) for their masks.
+    GLuint lights = 0, sprite_targets = 0, layers = 0;
+    int layers_w = 0, layers_h = 0, layer_count = 0;
+    GLint max_layers = 0;  // GL_MAX_ARRAY_TEXTURE_LAYERS
+    bool get_sub_image = false;  // glGetTextureSubImage (GL 4.5): a batch reads back its own layers alone
     Rect spans_rect;
     GLint max_storage = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
     int lit_w = 0, lit_h = 0;
@@ -50,11 +61,12 @@ bool gpu_trace(GpuTracer& t, const Mask& obstacles, std::uint64_t obstacles_revi
 // shapes; light and shadow modes) into every mask, each light at its
 // `heights` entry: trace_light_solids's bytes, `occluders_revision` changing
 // whenever the occluder map does; with `sprite_points`, the sprite pass
-// after it too (light_sprite_points's bytes; start_sprite_points, the
-// pixels no ray reaches, on the CPU). False, leaving the masks to the CPU,
-// for what it does not do: centres beyond int range, an occluder map larger
-// than a storage buffer, or a ray with more live shades than the shader
-// holds.
+// after it too (light_sprite_points's bytes, its pixels no ray reaches
+// included). All the lights go in one dispatch a pass (in
+// batches of at most max_layers lights and 64 MiB of masks) and come back
+// in one read-back a batch. False, leaving the masks to the CPU, for what it
+// does not do: centres beyond int range, an occluder map larger than a
+// storage buffer, or a ray with more live shades than the shader holds.
 bool gpu_trace_solids(GpuTracer& t, const OccluderMap& occluders, std::uint64_t occluders_revision,
                       const std::vector<LightMask*>& masks, const std::vector<double>& heights, const Params& p,
                       bool sprite_points);

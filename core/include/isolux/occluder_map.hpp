@@ -191,15 +191,6 @@ LightMask trace_light_solids(const OccluderMap& occ, std::int64_t cx, std::int64
 // own line from the light's centre. `threads` as trace_light_solids.
 void light_sprite_points(LightMask& mask, const OccluderMap& occ, double height, const Params& p, int threads = 1);
 
-// The sprite pass's first step (light_sprite_points takes it; a tracer that
-// walks the sprite pass's rays elsewhere, the app's GPU, takes it before
-// them): every sprite pixel of the mask's area unlit, but those whose
-// ground point no ray of the pass walks (outside the map), each tested
-// along its own line from the light's centre. The rays then light what
-// they reach (shaders/sprite_points.comp).
-void start_sprite_points(LightMask& mask, const OccluderMap& occ, double height, const Params& p);
-
-
 // Beyond the paper: the occluders' resolution as an accuracy-for-time knob
 // (Params::occluder_scale, s). Both passes run over a map s times coarser
 // in x, y and height (the projection is the same at any scale, so the

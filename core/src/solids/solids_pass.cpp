@@ -179,6 +179,43 @@ LightMask trace_light_solids_by_rays(const OccluderMap& occ, std::int64_t cx, st
 
 namespace {
 
+// The sprite pass's first step: every sprite pixel of the mask's area
+// unlit, but those whose ground point no ray of the pass walks (outside the
+// map), each tested along its own line from the light's centre. The rays
+// then light what they reach. (shaders/sprite_pixels.comp gives each GPU
+// light's sprite pixels the same answers after its rays.)
+void start_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
+    if (m.clip.empty()) return;
+    const double H = std::max(height, 0.0);
+    const Surface& surface = occ.surface;
+    const std::int64_t cx = m.cx, cy = m.cy;
+    const Rect area = intersect(Rect{int(cx) - m.a, int(cy) - m.b, 2 * m.a + 1, 2 * m.b + 1}, m.clip);
+    auto at = [&](std::int64_t x, std::int64_t y) {
+        return std::size_t(y - surface.rect.y) * surface.rect.w + std::size_t(x - surface.rect.x);
+    };
+    // The rays run to the border of the light's area grown by the tallest
+    // point's rows, so a sprite standing below the area whose top shows in
+    // it is reached too (the tree's rays are the same bytes). One whose
+    // ground point no ray walks (off the map) is tested along its own line
+    // (own_line_lit).
+    const Rect ray_area{int(cx) - m.a, int(cy) - m.b - occ.tallest, 2 * m.a + 1, 2 * (m.b + occ.tallest) + 1};
+    const Rect rows = intersect(area, surface.rect);  // outside the surface: no sprite
+    for (int y = rows.y; y < rows.y + rows.h; ++y) {
+        const std::int32_t* instance = &surface.instance[at(rows.x, y)];
+        const float* heights = &surface.height[at(rows.x, y)];
+        std::uint8_t* value = &m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(rows.x - m.clip.x)];
+        for (int i = 0; i < rows.w; ++i) {
+            if (instance[i] < 0) continue;
+            value[i] = 0;
+            const double h = heights[i];
+            const std::int64_t gx = rows.x + i, gy = y + rows_above(h);
+            if (ray_area.contains(int(gx), int(gy)) && surface.rect.contains(int(gx), int(gy))) continue;
+            if (own_line_lit(occ, cx, cy, gx, gy, h, H))
+                value[i] = falloff(std::max(std::llabs(gx - cx), std::llabs(std::int64_t(y) - cy)), p.falloff_scale);
+        }
+    }
+}
+
 // The sprite pass ray by ray: the reference the tree pass is held to, and
 // what serves every light the tree does not.
 void sprite_points_by_rays(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
@@ -216,37 +253,6 @@ void sprite_points_by_rays(LightMask& m, const OccluderMap& occ, double height, 
 
 }  // namespace
 
-void start_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
-    if (m.clip.empty()) return;
-    const double H = std::max(height, 0.0);
-    const Surface& surface = occ.surface;
-    const std::int64_t cx = m.cx, cy = m.cy;
-    const Rect area = intersect(Rect{int(cx) - m.a, int(cy) - m.b, 2 * m.a + 1, 2 * m.b + 1}, m.clip);
-    auto at = [&](std::int64_t x, std::int64_t y) {
-        return std::size_t(y - surface.rect.y) * surface.rect.w + std::size_t(x - surface.rect.x);
-    };
-    // The rays run to the border of the light's area grown by the tallest
-    // point's rows, so a sprite standing below the area whose top shows in
-    // it is reached too (the tree's rays are the same bytes). One whose
-    // ground point no ray walks (off the map) is tested along its own line
-    // (own_line_lit).
-    const Rect ray_area{int(cx) - m.a, int(cy) - m.b - occ.tallest, 2 * m.a + 1, 2 * (m.b + occ.tallest) + 1};
-    const Rect rows = intersect(area, surface.rect);  // outside the surface: no sprite
-    for (int y = rows.y; y < rows.y + rows.h; ++y) {
-        const std::int32_t* instance = &surface.instance[at(rows.x, y)];
-        const float* heights = &surface.height[at(rows.x, y)];
-        std::uint8_t* value = &m.value[std::size_t(y - m.clip.y) * m.clip.w + std::size_t(rows.x - m.clip.x)];
-        for (int i = 0; i < rows.w; ++i) {
-            if (instance[i] < 0) continue;
-            value[i] = 0;
-            const double h = heights[i];
-            const std::int64_t gx = rows.x + i, gy = y + rows_above(h);
-            if (ray_area.contains(int(gx), int(gy)) && surface.rect.contains(int(gx), int(gy))) continue;
-            if (own_line_lit(occ, cx, cy, gx, gy, h, H))
-                value[i] = falloff(std::max(std::llabs(gx - cx), std::llabs(std::int64_t(y) - cy)), p.falloff_scale);
-        }
-    }
-}
 
 void light_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p, int threads) {
     if (m.clip.empty()) return;

@@ -454,6 +454,77 @@ TEST(Gl, theGpuSkipsAnEditedMapsPaddingAsTheCpuDoes) {
     EXPECT_EQ(compared, 8);
 }
 
+// Beyond the paper: a frame's lights against solids go to the GPU together,
+// one dispatch a pass (shaders/trace_solids.comp, sprite_points.comp, then
+// sprite_pixels.comp for the sprite pixels of each light) and one read-back:
+// lights of different sizes, heights, clips and ray skips in one call, some
+// standing past the map's edge (their sprite pixels whose ground point no ray
+// walks tested along their own lines), each mask the CPU's bytes.
+TEST(Gl, aFramesLightsTracedTogetherAgainstSolidsAreEachTheCpus) {
+    ASSERT_NE(gl().window, nullptr) << "no GL context (run under xvfb-run): " << gl().error;
+    GpuTracer tracer;
+    std::string error;
+    ASSERT_TRUE(gpu_tracer_init(tracer, error)) << error;
+    std::uint64_t revision = 5000;
+    int compared = 0, sprite_pixels_lit = 0, own_lines = 0;
+    for (const World* wp : {&world(), &town_world()}) {
+        // The map's top two thirds: sprites standing on its lower edge show
+        // pixels whose ground point lies past it.
+        const Rect b{wp->placed.bounds.x, wp->placed.bounds.y, wp->placed.bounds.w, wp->placed.bounds.h * 2 / 3};
+        Params base;
+        base.occluders = Occluders::solids;
+        const OccluderMap occ = build_occluders(*wp, base, b);
+        ++revision;
+        for (Mode mode : {Mode::light, Mode::shadow}) {
+            Params p = base;
+            p.mode = mode;
+            p.falloff_scale = 8;
+            p.ray_skip = mode == Mode::light ? 1 : 3;
+            Pcg32 rng(mode == Mode::light ? 11 : 12);
+            std::vector<LightMask> got(12), want(12);
+            std::vector<LightMask*> masks;
+            std::vector<double> heights;
+            for (std::size_t k = 0; k < got.size(); ++k) {
+                const int a = 20 + int(rng.below(130)), bb = 20 + int(rng.below(130));
+                const double height = std::array<double, 4>{0, 8, 32, 120}[k % 4];
+                const bool edge = k % 3 == 0;  // at or past the map's edge
+                const std::int64_t cx = edge ? b.x - 10 + std::int64_t(rng.below(20)) : b.x + std::int64_t(rng.below(std::uint32_t(b.w)));
+                const std::int64_t cy = edge && k % 2 ? b.y + b.h - 30 + std::int64_t(rng.below(40))
+                                                      : b.y + std::int64_t(rng.below(std::uint32_t(b.h)));
+                Rect clip{int(cx) - a, int(cy) - bb, 2 * a + 1, 2 * bb + 1};
+                if (k % 4 == 1) clip = intersect(clip, {int(cx) - a / 2, int(cy) - bb / 2, a, bb});  // a view cuts it
+                want[k] = trace_light_solids(occ, cx, cy, a, bb, height, p, clip);
+                light_sprite_points(want[k], occ, height, p);
+                start_mask(got[k], cx, cy, a, bb, p, clip, mode == Mode::shadow);
+                masks.push_back(&got[k]);
+                heights.push_back(height);
+            }
+            ASSERT_TRUE(gpu_trace_solids(tracer, occ, revision, masks, heights, p, true)) << to_string(mode);
+            for (std::size_t k = 0; k < got.size(); ++k) {
+                EXPECT_EQ(got[k].value, want[k].value) << to_string(mode) << " light " << k;
+                EXPECT_EQ(got[k].reached, want[k].reached) << to_string(mode) << " light " << k;
+                const Rect c = want[k].clip;
+                for (int y = 0; y < c.h; ++y)
+                    for (int x = 0; x < c.w; ++x)
+                        if (occ.surface.rect.contains(c.x + x, c.y + y)) {
+                            const std::size_t at = std::size_t(c.y + y - occ.surface.rect.y) * occ.surface.rect.w +
+                                                   std::size_t(c.x + x - occ.surface.rect.x);
+                            if (occ.surface.instance[at] < 0) continue;
+                            const bool lit = want[k].value[std::size_t(y) * c.w + x] != 0;
+                            sprite_pixels_lit += lit;
+                            // Lit along its own line: its ground point off the map.
+                            own_lines += lit && !occ.surface.rect.contains(c.x + x, c.y + y + int(rows_above(occ.surface.height[at])));
+                        }
+                ++compared;
+            }
+        }
+    }
+    EXPECT_EQ(compared, 48);
+    EXPECT_GT(sprite_pixels_lit, 10000) << "the lights must light sprite pixels";
+    EXPECT_GT(own_lines, 100) << "and some whose ground point no ray walks";
+    gpu_tracer_free(tracer);
+}
+
 // Beyond the paper: the ground pass against solids with height on the GPU
 // (shaders/trace_solids.comp) gives trace_light_solids's bytes, and the
 // sprite pass after it (shaders/sprite_points.comp) light_sprite_points's:
