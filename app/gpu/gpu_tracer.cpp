@@ -100,10 +100,10 @@ bool gpu_tracer_init(GpuTracer& t, std::string& error) {
     if (!t.solids_program) return false;
     t.points_program = build_program(shader_folder(), {{GL_COMPUTE_SHADER, "sprite_points.comp"}}, error);
     if (!t.points_program) return false;
-    t.pixels_program = build_program(shader_folder(), {{GL_COMPUTE_SHADER, "start_layers.comp"}}, error);
-    if (!t.pixels_program) return false;
+    t.start_program = build_program(shader_folder(), {{GL_COMPUTE_SHADER, "start_layers.comp"}}, error);
+    if (!t.start_program) return false;
     for (GLuint* buf : {&t.targets, &t.falloff, &t.spans, &t.overflow, &t.shown_start, &t.shown, &t.surface_height,
-                        &t.surface_sprite, &t.lights, &t.sprite_targets})
+                        &t.surface_sprite, &t.lights, &t.ray_targets})
         glGenBuffers(1, buf);
     for (GLuint buf : {t.surface_height, t.surface_sprite}) buffer_data(buf, 0, nullptr, GL_STATIC_DRAW);  // none yet
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &t.max_layers);
@@ -121,12 +121,12 @@ bool gpu_tracer_init(GpuTracer& t, std::string& error) {
 }
 
 void gpu_tracer_free(GpuTracer& t) {
-    for (GLuint prog : {t.program, t.solids_program, t.points_program, t.pixels_program})
+    for (GLuint prog : {t.program, t.solids_program, t.points_program, t.start_program})
         if (prog) glDeleteProgram(prog);
     for (GLuint* tex : {&t.obstacles, &t.lit, &t.reached, &t.layers})
         if (*tex) glDeleteTextures(1, tex);
     for (GLuint* buf : {&t.targets, &t.falloff, &t.spans, &t.overflow, &t.shown_start, &t.shown, &t.surface_height,
-                        &t.surface_sprite, &t.lights, &t.sprite_targets})
+                        &t.surface_sprite, &t.lights, &t.ray_targets})
         if (*buf) glDeleteBuffers(1, buf);
     t = GpuTracer{};
 }
@@ -266,27 +266,46 @@ void set_map_uniforms(GLuint program, const GpuTracer& t, bool surface = false) 
     glUniform2i(glGetUniformLocation(program, "surface_size"), t.surface_rect.w, t.surface_rect.h);
 }
 
+// Every ray target of lights of half-extents `keys` (a, b) in
+// t.ray_targets, each extent's run of offsets from the centre (in the CPU
+// tracers' order) in t.rays.run. Kept across frames: uploaded again only
+// when an extent is new or the rays changed (at most 64 extents kept).
+void ray_runs(GpuTracer& t, const std::vector<RayRuns::Key>& keys, const Params& p) {
+    RayRuns& r = t.rays;
+    const bool same_rays = r.rays == p.rays && r.skip == p.ray_skip;
+    bool all = same_rays;
+    for (const RayRuns::Key& k : keys) all = all && r.run.count(k);
+    if (all) return;
+    if (!same_rays || r.run.size() + keys.size() > 64) r.run.clear(), r.targets.clear();
+    r.rays = p.rays, r.skip = p.ray_skip;
+    for (const RayRuns::Key& k : keys) {
+        if (r.run.count(k)) continue;
+        const GLint first = GLint(r.targets.size() / 2);
+        for_each_ray_target(0, 0, k[0], k[1], p, [&](std::int64_t x, std::int64_t y) {
+            r.targets.push_back(GLint(x));
+            r.targets.push_back(GLint(y));
+        });
+        r.run[k] = {first, GLint(r.targets.size() / 2) - first};
+    }
+    buffer_data(t.ray_targets, r.targets.size() * sizeof(GLint), r.targets.data(), GL_STATIC_DRAW);
+}
+
 // One batch of lights: both passes, each in one dispatch, then the sprite
 // pixels made each light's, and everything read back at once. False when a
 // ray held more live shades than the ground pass does.
 bool trace_batch(GpuTracer& t, const OccluderMap& occ, const std::vector<LightMask*>& masks,
                  const std::vector<double>& heights, const Params& p, bool sprite_points) {
     const int count = int(masks.size());
-    // The lights' records, their rays (offsets from the centre, in the CPU
-    // tracers' order; the sprite pass's to the area grown by the tallest
-    // point's rows) and one falloff table for all.
+    // The lights' records, with their rays' runs (ray_runs), and one falloff
+    // table for all.
     std::vector<GpuLight> lights(masks.size());
-    std::vector<GLint> ground, sprite;
     int w = 1, h = 1, most_ground = 0, most_sprite = 0, reach = 0;
-    auto rays = [&](const LightMask& m, int grow, std::vector<GLint>& into, GLint* first_count) {
-        first_count[0] = GLint(into.size() / 2);
-        for_each_ray_target(m.cx, m.cy, m.a, m.b + grow, p, [&](std::int64_t x, std::int64_t y) {
-            into.push_back(GLint(x - m.cx));
-            into.push_back(GLint(y - m.cy));
-        });
-        first_count[1] = GLint(into.size() / 2) - first_count[0];
-        return first_count[1];
-    };
+    std::vector<RayRuns::Key> keys;
+    for (const LightMask* m : masks) {
+        keys.push_back({m->a, m->b});
+        if (sprite_points) keys.push_back({m->a, m->b + occ.tallest});
+    }
+    ray_runs(t, keys, p);
     for (int k = 0; k < count; ++k) {
         const LightMask& m = *masks[std::size_t(k)];
         GpuLight& l = lights[std::size_t(k)];
@@ -296,15 +315,19 @@ bool trace_batch(GpuTracer& t, const OccluderMap& occ, const std::vector<LightMa
         l.area[0] = area.x, l.area[1] = area.y, l.area[2] = area.w, l.area[3] = area.h;
         l.height = std::max(heights[std::size_t(k)], 0.0);
         l.layer = k;
-        most_ground = std::max(most_ground, rays(m, 0, ground, l.ground_rays));
+        const auto ground = t.rays.run.at({m.a, m.b});
+        l.ground_rays[0] = ground[0], l.ground_rays[1] = ground[1];
+        most_ground = std::max(most_ground, int(ground[1]));
         l.sprite_rays[0] = l.sprite_rays[1] = 0;
-        if (sprite_points) most_sprite = std::max(most_sprite, rays(m, occ.tallest, sprite, l.sprite_rays));
+        if (sprite_points) {
+            const auto sprite = t.rays.run.at({m.a, m.b + occ.tallest});
+            l.sprite_rays[0] = sprite[0], l.sprite_rays[1] = sprite[1];
+            most_sprite = std::max(most_sprite, int(sprite[1]));
+        }
         w = std::max(w, m.clip.w), h = std::max(h, m.clip.h), reach = std::max({reach, m.a, m.b});
     }
     std::vector<GLuint> table(std::size_t(reach) + 1);
     for (std::size_t d = 0; d < table.size(); ++d) table[d] = falloff(std::int64_t(d), p.falloff_scale);
-    buffer_data(t.targets, ground.size() * sizeof(GLint), ground.data(), GL_STREAM_DRAW);
-    buffer_data(t.sprite_targets, sprite.size() * sizeof(GLint), sprite.data(), GL_STREAM_DRAW);
     buffer_data(t.falloff, table.size() * sizeof(GLuint), table.data(), GL_STREAM_DRAW);
     buffer_data(t.lights, lights.size() * sizeof(GpuLight), lights.data(), GL_STREAM_DRAW);
     const GLuint no = 0;
@@ -319,24 +342,23 @@ bool trace_batch(GpuTracer& t, const OccluderMap& occ, const std::vector<LightMa
     glBindImageTexture(0, t.layers, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8UI);
 
     // Each layer started: unlit, but the sprite pixels no ray walks.
-    glUseProgram(t.pixels_program);
-    set_map_uniforms(t.pixels_program, t, true);
-    glUniform1i(glGetUniformLocation(t.pixels_program, "tallest"), occ.tallest);
-    glUniform1i(glGetUniformLocation(t.pixels_program, "sprite_points"), sprite_points ? 1 : 0);
+    glUseProgram(t.start_program);
+    set_map_uniforms(t.start_program, t, true);
+    glUniform1i(glGetUniformLocation(t.start_program, "tallest"), occ.tallest);
+    glUniform1i(glGetUniformLocation(t.start_program, "sprite_points"), sprite_points ? 1 : 0);
     glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), GLuint(count));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     // The ground pass: every light's rays (the area's sprite pixels left to the sprite pass).
     glUseProgram(t.solids_program);
     set_map_uniforms(t.solids_program, t, true);
     glUniform1i(glGetUniformLocation(t.solids_program, "skip_sprites"), sprite_points ? 1 : 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, t.targets);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, t.ray_targets);
     glDispatchCompute(GLuint((most_ground + 63) / 64), GLuint(count), 1);
     if (sprite_points) {
         // The sprite pass: the points its rays light.
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glUseProgram(t.points_program);
         set_map_uniforms(t.points_program, t);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, t.sprite_targets);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, t.shown_start);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, t.shown);
         glDispatchCompute(GLuint((most_sprite + 63) / 64), GLuint(count), 1);

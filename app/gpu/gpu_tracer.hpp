@@ -1,11 +1,13 @@
 // Paper Algorithm 2 as an OpenGL 4.3 compute shader (shaders/trace.comp):
 // the same bytes as core's trace_light, held to it by tests/app/gpu/gl_test.cpp; and
 // both passes against solids with height (shaders/trace_solids.comp,
-// sprite_points.comp, sprite_pixels.comp), the same bytes as core's
+// sprite_points.comp, start_layers.comp), the same bytes as core's
 // trace_light_solids and light_sprite_points. The app lets the frame call them
 // through FrameOptions::tracer.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +18,16 @@
 
 namespace isolux::app {
 
+// The ray targets of each light extent (a, b) a GPU tracer keeps: a run
+// (first, count) of offsets from the centre each, for these rays.
+struct RayRuns {
+    using Key = std::array<int, 2>;
+    std::map<Key, std::array<GLint, 2>> run;
+    std::vector<GLint> targets;  // x, y pairs
+    Rays rays = Rays::border;
+    int skip = -1;
+};
+
 struct GpuTracer {
     GLuint program = 0, obstacles = 0, lit = 0, reached = 0, targets = 0, falloff = 0;
     std::uint64_t obstacles_revision = ~0ull;  // what `obstacles` holds
@@ -24,13 +36,14 @@ struct GpuTracer {
     std::uint64_t spans_revision = ~0ull;  // what `spans` holds
     GLuint points_program = 0, shown_start = 0, shown = 0;  // the sprite pass
     std::uint64_t shown_revision = ~0ull;  // what `shown_start` and `shown` hold
-    GLuint pixels_program = 0, surface_height = 0, surface_sprite = 0;  // each light's layer started (start_layers.comp)
+    GLuint start_program = 0, surface_height = 0, surface_sprite = 0;  // each light's layer started (start_layers.comp)
     std::uint64_t surface_revision = ~0ull;  // what `surface_height` and `surface_sprite` hold
     Rect surface_rect;
     // A frame's lights against solids, traced together: their records, rays
     // and falloff, and one layer each of `layers` (layers_w x layers_h x
     // layer_count) for their masks.
-    GLuint lights = 0, sprite_targets = 0, layers = 0;
+    GLuint lights = 0, ray_targets = 0, layers = 0;
+    RayRuns rays;  // what ray_targets holds
     int layers_w = 0, layers_h = 0, layer_count = 0;
     GLint max_layers = 0;  // GL_MAX_ARRAY_TEXTURE_LAYERS
     bool get_sub_image = false;  // glGetTextureSubImage (GL 4.5): a batch reads back its own layers alone

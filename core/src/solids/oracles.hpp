@@ -8,7 +8,7 @@ namespace isolux {
 // The same two passes ray by ray, every ray walked whole: the reference
 // whose bytes trace_light_solids and light_sprite_points give (they walk the rays' shared prefixes
 // once, and only the parts that can light a pixel of the clip), and what
-// shaders/trace_solids.comp, sprite_points.comp and sprite_pixels.comp do on
+// shaders/trace_solids.comp, sprite_points.comp and start_layers.comp do on
 // the GPU.
 LightMask trace_light_solids_by_rays(const OccluderMap& occ, std::int64_t cx, std::int64_t cy, int a, int b,
                                      double height, const Params& p, Rect clip);

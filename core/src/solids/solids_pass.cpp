@@ -182,8 +182,8 @@ namespace {
 // The sprite pass's first step: every sprite pixel of the mask's area
 // unlit, but those whose ground point no ray of the pass walks (outside the
 // map), each tested along its own line from the light's centre. The rays
-// then light what they reach. (shaders/sprite_pixels.comp gives each GPU
-// light's sprite pixels the same answers after its rays.)
+// then light what they reach. (shaders/start_layers.comp starts each GPU
+// light's layer so.)
 void start_sprite_points(LightMask& m, const OccluderMap& occ, double height, const Params& p) {
     if (m.clip.empty()) return;
     const double H = std::max(height, 0.0);

@@ -455,8 +455,8 @@ TEST(Gl, theGpuSkipsAnEditedMapsPaddingAsTheCpuDoes) {
 }
 
 // Beyond the paper: a frame's lights against solids go to the GPU together,
-// one dispatch a pass (shaders/trace_solids.comp, sprite_points.comp, then
-// sprite_pixels.comp for the sprite pixels of each light) and one read-back:
+// one dispatch a pass (shaders/start_layers.comp, trace_solids.comp,
+// sprite_points.comp) and one read-back:
 // lights of different sizes, heights, clips and ray skips in one call, some
 // standing past the map's edge (their sprite pixels whose ground point no ray
 // walks tested along their own lines), each mask the CPU's bytes.
