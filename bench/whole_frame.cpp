@@ -462,6 +462,26 @@ void print_floor_ratios() {
         };
         auto rebuild = [&] { return seconds([&] { rebuild_occluders(rebuilt, w, p, region, &cache); }); };
         print_ratio("solids_edit_cost", interleaved_costs(edit, rebuild, pairs), "<= 0.05", 3);
+
+        // The same edit at occluder_scale 2: the coarse map and its picks
+        // updated over the edit's part, over both made whole from the
+        // edited map.
+        OccluderMap coarse = coarse_occluders(edited, 2), whole;
+        std::vector<std::uint8_t> picks = coarse_picks(edited.surface, coarse, 2), whole_picks;
+        auto edit_coarse = [&] {
+            planted = !planted;
+            const Rect c = set_tile(w, col, row, floor, planted ? std::vector<int>{tree} : std::vector<int>{});
+            const Rect around{c.x - reach, c.y - reach, c.w + 2 * reach, c.h + 2 * reach};
+            update_occluders(edited, w, p, region, around, &cache);
+            return seconds([&] { edit_coarse_occluders(coarse, picks, edited, around, 2); });
+        };
+        auto coarse_whole = [&] {
+            return seconds([&] {
+                whole = coarse_occluders(edited, 2);
+                whole_picks = coarse_picks(edited.surface, whole, 2);
+            });
+        };
+        print_ratio("solids_edit_cost_scale2", interleaved_costs(edit_coarse, coarse_whole, pairs), nullptr, 3);
     }
 
     print_solids_frame_ratios(pairs);

@@ -227,6 +227,15 @@ std::vector<std::uint8_t> coarse_picks(const Surface& fine, const OccluderMap& c
 void pan_coarse_occluders(OccluderMap& coarse, std::vector<std::uint8_t>& picks, const OccluderMap& fine, Rect old_fine,
                           int scale);
 
+// After an edit changed the fine map's spans and surface within `changed`
+// alone (update_occluders with solids, in the same region): `coarse` and
+// `picks` made what coarse_occluders and coarse_picks give the map as it
+// is, only the blocks holding a changed pixel made again, their index
+// relisted in place (OccluderMap::padding where lists shrink), and the
+// picks that read those blocks.
+void edit_coarse_occluders(OccluderMap& coarse, std::vector<std::uint8_t>& picks, const OccluderMap& fine, Rect changed,
+                           int scale);
+
 // Each pixel of the fine mask's area (in its clip, started unlit) lit,
 // with its own falloff, where the coarse pixel it takes its answer from is
 // lit: its block's, or with `fine_surface` and its `picks`

@@ -173,11 +173,16 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
             build_obstacle_part(st.obstacles, world, p, ch.part, c.footprints);
             if (p.rays_over_obstacles)
                 st.obstacle_heights = build_obstacle_heights(world.tileset, world.placed, p, st.obstacles);
+            const Rect occluders_part = grow(delta.region, occluder_reach(world.tileset));
             if (p.occluders != Occluders::footprints)
-                update_occluders(st.occluders, world, p, c.obstacle_region, grow(delta.region, occluder_reach(world.tileset)),
-                                 &c.solids);
+                update_occluders(st.occluders, world, p, c.obstacle_region, occluders_part, &c.solids);
             repaint_ground_lines(c.ground, world.placed, st.opacity, ch.part);
+            // (The manifest's shapes may reach anywhere: an edit remakes them whole.)
+            const bool local = p.occluders == Occluders::solids;
+            c.edit_from = local ? st.obstacles_revision : 0;
+            c.edit_part = intersect(occluders_part, c.obstacle_region);
             st.obstacles_revision = next_obstacles_revision();
+            c.edit_to = local ? st.obstacles_revision : 0;
         }
         c.world_revision = world.revision;
         rep.rebuilt = ch.part;
@@ -237,6 +242,7 @@ ObstacleChange update_obstacle_map(FrameState& st, const World& world, const Par
     c.pan_from_rect = old_region;
     st.obstacles_revision = next_obstacles_revision();
     c.pan_to = occluders_panned ? st.obstacles_revision : 0;
+    c.edit_from = c.edit_to = 0;
     c.obstacle_params = p;
     c.world_revision = world.revision;
     c.has_obstacles = true;

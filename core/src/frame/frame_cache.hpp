@@ -26,6 +26,12 @@ struct FrameCache {
     // trace step then updates the coarse map (occluder_scale) in place.
     Rect pan_from_rect;
     std::uint64_t pan_from = 0, pan_to = 0;
+    // The last hand edit of the occluder map with solids (update_occluders
+    // in the same region), which changed it within `edit_part` alone: from
+    // revision `edit_from` to `edit_to`. The trace step then updates the
+    // coarse map there alone.
+    Rect edit_part;
+    std::uint64_t edit_from = 0, edit_to = 0;
 
     // Each light's traced and corrected pixels, kept while the obstacle map,
     // the tracing parameters and the light's centre, area and clip are the

@@ -141,11 +141,14 @@ void trace_and_accumulate(FrameState& st, const World& world, const Params& p, L
     if (scale > 1 && (st.coarse_of != st.obstacles_revision || st.coarse_scale != scale)) {
         const auto t0 = Clock::now();
         // After a pan of the map it was made from: updated in place (the
-        // blocks the two regions share kept), else made whole.
+        // blocks the two regions share kept); after an edit, the edit's
+        // blocks made again; else made whole.
         const FrameCache& c = *st.cache;
-        if (st.coarse_scale == scale && c.pan_to == st.obstacles_revision && c.pan_from == st.coarse_of &&
-            c.pan_from != 0)
+        const bool same_scale = st.coarse_scale == scale;
+        if (same_scale && c.pan_to == st.obstacles_revision && c.pan_from == st.coarse_of && c.pan_from != 0)
             pan_coarse_occluders(st.coarse_occluders, st.coarse_picks, st.occluders, c.pan_from_rect, scale);
+        else if (same_scale && c.edit_to == st.obstacles_revision && c.edit_from == st.coarse_of && c.edit_from != 0)
+            edit_coarse_occluders(st.coarse_occluders, st.coarse_picks, st.occluders, c.edit_part, scale);
         else {
             st.coarse_occluders = coarse_occluders(st.occluders, scale);
             st.coarse_picks = coarse_picks(st.occluders.surface, st.coarse_occluders, scale);

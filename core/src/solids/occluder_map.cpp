@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "isolux/error.hpp"
+#include "solids/occluder_index.hpp"
 
 namespace isolux {
 
@@ -391,6 +392,14 @@ const SpriteSolids& cached_solids(SolidsCache& cache, const Tileset& tileset, st
         cache.made[index] = 1;
     }
     return cache.sprites[index];
+}
+
+void reindex_part(OccluderMap& m, Rect part) {
+    part = intersect(part, m.rect);
+    if (m.flags.size() != m.spans.size()) return index_occluders(m);  // never indexed
+    if (part.empty()) return;
+    flag_spans(m, part);
+    relist_shown(m, intersect(m.rect, Rect{part.x, part.y, part.w, part.h + m.reach_rows}));
 }
 
 void index_occluders(OccluderMap& m) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "isolux/occluder_map.hpp"
+#include "solids/occluder_index.hpp"
 
 namespace isolux {
 
@@ -179,6 +180,31 @@ void pan_coarse_occluders(OccluderMap& c, std::vector<std::uint8_t>& picks, cons
     const Rect kept = intersect(same, fine.rect);
     for (const Rect& r : kept.empty() ? std::vector<Rect>{fine.rect} : outside(fine.rect, kept))
         pick_pixels(picks, fine.surface, c, s, r);
+}
+
+void edit_coarse_occluders(OccluderMap& c, std::vector<std::uint8_t>& picks, const OccluderMap& fine, Rect changed,
+                           int s) {
+    // The blocks that hold a changed pixel, made again; then their index.
+    const Rect blocks = intersect(cover(intersect(changed, fine.rect), s), c.rect);
+    if (blocks.empty()) return;
+    for (int y = blocks.y; y < blocks.y + blocks.h; ++y) {
+        const std::size_t i = std::size_t(y - c.rect.y) * std::size_t(c.rect.w) + std::size_t(blocks.x - c.rect.x);
+        std::fill_n(&c.spans[i], blocks.w, Spans{});
+        std::fill_n(&c.surface.instance[i], blocks.w, std::int32_t(-1));
+        std::fill_n(&c.surface.height[i], blocks.w, 0.0f);
+    }
+    fill_blocks(c, fine, s, blocks);
+    for (int y = blocks.y; y < blocks.y + blocks.h; ++y)
+        for (int x = blocks.x; x < blocks.x + blocks.w; ++x) {
+            const std::size_t i = std::size_t(y - c.rect.y) * std::size_t(c.rect.w) + std::size_t(x - c.rect.x);
+            if (c.surface.instance[i] >= 0)
+                c.reach_rows = std::max(c.reach_rows, int(rows_above(std::max(c.surface.height[i], 0.f))));
+        }
+    reindex_part(c, blocks);
+    // A fine pixel's pick reads its block and the eight around it.
+    const Rect near{(blocks.x - 1) * s, (blocks.y - 1) * s, (blocks.w + 2) * s, (blocks.h + 2) * s};
+    if (picks.size() == fine.surface.instance.size()) pick_pixels(picks, fine.surface, c, s, intersect(near, fine.rect));
+    else picks = coarse_picks(fine.surface, c, s);
 }
 
 void upsample_mask(LightMask& fine, const LightMask& coarse, int s, const Params& p, const Surface* fine_surface,

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "isolux/edits.hpp"
 #include "isolux/error.hpp"
 #include "isolux/frame.hpp"
 #include "isolux/occluder_map.hpp"
@@ -183,6 +184,80 @@ TEST(OccluderScale, aPannedCoarseMapIsTheCoarseMapOfThePannedMap) {
             ++pans;
         }
     EXPECT_EQ(pans, 10);
+}
+
+TEST(OccluderScale, anEditedCoarseMapIsTheCoarseMapOfTheEditedMap) {
+    // A tree planted, changed and taken away on one tile, again and again,
+    // the fine map updated in place: the coarse map and picks updated over
+    // the edit's part alone are those made whole from the edited map, and
+    // the fine map changed somewhere each time.
+    Params p;
+    p.occluders = Occluders::solids;
+    int edits = 0;
+    for (int s : {2, 3}) {
+        World w = default_world();
+        const Rect b = w.placed.bounds;
+        const int reach = occluder_reach(w.tileset);
+        OccluderMap fine = build_occluders(w, p, b);
+        OccluderMap c = coarse_occluders(fine, s);
+        std::vector<std::uint8_t> picks = coarse_picks(fine.surface, c, s);
+        for (const char* overlay : {"oak", "pine", "", "oak", ""}) {
+            TileEdit e;
+            e.col = 7, e.row = 7;
+            e.overlays = *overlay ? std::vector<std::string>{overlay} : std::vector<std::string>{};
+            const Rect changed = set_edits(w, {e});
+            const Rect part{changed.x - reach, changed.y - reach, changed.w + 2 * reach, changed.h + 2 * reach};
+            const OccluderMap before = c;
+            update_occluders(fine, w, p, b, part);
+            edit_coarse_occluders(c, picks, fine, part, s);
+            const OccluderMap whole = coarse_occluders(fine, s);
+            const std::string what = "scale " + std::to_string(s) + " after " + (*overlay ? overlay : "clearing");
+            test::expect_same_map(c, whole, what);
+            EXPECT_EQ(picks, coarse_picks(fine.surface, whole, s)) << what;
+            EXPECT_FALSE(before.spans == whole.spans) << what << ": the edit changed the coarse map";
+            ++edits;
+        }
+    }
+    EXPECT_EQ(edits, 10);
+}
+
+TEST(OccluderScale, editedFramesTracedCoarseGiveTheFreshFramesBytes) {
+    // The default scene at s = 2 under the game preset, a tree planted and
+    // taken away by hand between frames (the coarse map then updated over
+    // the edit alone): each frame equals a fresh state's frame.
+    Scene scene = load_scene(std::string(ISOLUX_ASSETS_DIR) + "/scenes/default.json");
+    World w = make_world(test::default_tileset(), scene);
+    scene.params = builtin_preset("game");
+    scene.params.occluder_scale = 2;
+    // The view centred on the edited tile, so that its lights reach it.
+    TileEdit probe;
+    probe.col = 8, probe.row = 6;
+    probe.overlays = std::vector<std::string>{"oak"};
+    World copy = w;
+    const Rect tile = set_edits(copy, {probe});
+    ASSERT_FALSE(tile.empty());
+    const Camera cam{double(tile.x + tile.w / 2 - 320), double(tile.y + tile.h / 2 - 180), 640, 360};
+    scene.lights.push_back(Light{double(tile.x + tile.w / 2) + 0.5, double(tile.y + tile.h - 40) + 0.5});  // before the tree
+    FrameState editing;
+    render_frame(editing, w, scene, cam, 0);
+    std::vector<std::uint8_t> last = editing.traced.texels;
+    int f = 1;
+    for (const char* overlay : {"oak", "", "pine"}) {
+        TileEdit e = probe;
+        e.overlays = *overlay ? std::vector<std::string>{overlay} : std::vector<std::string>{};
+        set_edits(w, {e});
+        const FrameReport rep = render_frame(editing, w, scene, cam, f);
+        FrameState fresh;
+        render_frame(fresh, w, scene, cam, f++);
+        EXPECT_FALSE(rep.rebuilt.empty()) << overlay;
+        EXPECT_LT(double(rep.rebuilt.w) * rep.rebuilt.h, 0.5 * double(editing.occluders.rect.w) * editing.occluders.rect.h)
+            << "an edit, not a rebuild";
+        ASSERT_EQ(editing.traced.rect, fresh.traced.rect) << overlay;
+        EXPECT_EQ(editing.traced.texels, fresh.traced.texels) << overlay;
+        EXPECT_EQ(editing.final.rgba, fresh.final.rgba) << overlay;
+        EXPECT_NE(fresh.traced.texels, last) << overlay << ": the edit changes the light";
+        last = fresh.traced.texels;
+    }
 }
 
 TEST(OccluderScale, aPanningCameraTracedCoarseGivesTheFreshFramesBytes) {
