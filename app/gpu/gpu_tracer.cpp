@@ -269,7 +269,8 @@ void set_map_uniforms(GLuint program, const GpuTracer& t, bool surface = false) 
 // Every ray target of lights of half-extents `keys` (a, b) in
 // t.ray_targets, each extent's run of offsets from the centre (in the CPU
 // tracers' order) in t.rays.run. Kept across frames: uploaded again only
-// when an extent is new or the rays changed (at most 64 extents kept).
+// when an extent is new or the rays changed (at most 64 extents kept
+// besides the frame's own). `keys` holds each extent once.
 void ray_runs(GpuTracer& t, const std::vector<RayRuns::Key>& keys, const Params& p) {
     RayRuns& r = t.rays;
     const bool same_rays = r.rays == p.rays && r.skip == p.ray_skip;
@@ -290,9 +291,10 @@ void ray_runs(GpuTracer& t, const std::vector<RayRuns::Key>& keys, const Params&
     buffer_data(t.ray_targets, r.targets.size() * sizeof(GLint), r.targets.data(), GL_STATIC_DRAW);
 }
 
-// One batch of lights: both passes, each in one dispatch, then the sprite
-// pixels made each light's, and everything read back at once. False when a
-// ray held more live shades than the ground pass does.
+// One batch of lights: each light's layer started, then the ground pass and
+// the sprite pass, each one dispatch for all of them, and every layer read
+// back at once. False when a ray held more live shades than the ground pass
+// does.
 bool trace_batch(GpuTracer& t, const OccluderMap& occ, const std::vector<LightMask*>& masks,
                  const std::vector<double>& heights, const Params& p, bool sprite_points) {
     const int count = int(masks.size());
@@ -305,6 +307,8 @@ bool trace_batch(GpuTracer& t, const OccluderMap& occ, const std::vector<LightMa
         keys.push_back({m->a, m->b});
         if (sprite_points) keys.push_back({m->a, m->b + occ.tallest});
     }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
     ray_runs(t, keys, p);
     for (int k = 0; k < count; ++k) {
         const LightMask& m = *masks[std::size_t(k)];
