@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -515,8 +516,15 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
         relist_shown(m, intersect(region, Rect{edited.x, edited.y, edited.w, edited.h + m.reach_rows}));
         return;
     }
-    // A pan: the old lists trade places with the last pan's (their storage
-    // kept per thread).
+    // A pan: the parts that came into the region built, and what the world
+    // changed.
+    pan_occluder_map(m, region, keep, edited.empty() ? std::vector<Rect>{} : std::vector<Rect>{edited}, build_part);
+}
+
+void pan_occluder_map(OccluderMap& m, Rect to, Rect keep, const std::vector<Rect>& changed,
+                      const std::function<void(Rect)>& make) {
+    // The old lists trade places with the last pan's (their storage kept
+    // per thread).
     drop_padding(m);
     thread_local KeptIndex kept;
     kept.rect = m.rect;
@@ -524,26 +532,26 @@ void update_occluders(OccluderMap& m, const World& world, const Params& p, Rect 
     kept.anew.clear();
     kept.start.swap(m.shown_start);
     kept.shown.swap(m.shown);
-    move_grid(m.spans, m.rect, region);
-    move_grid(m.surface.instance, m.rect, region, -1);
-    move_grid(m.surface.height, m.rect, region);
-    move_grid(m.flags, m.rect, region);
-    m.rect = m.surface.rect = region;
-    // What came into the region, and what the world changed: built.
-    std::vector<Rect> parts = outside(region, keep);
-    if (!edited.empty()) parts.push_back(edited);
-    for (Rect r : parts) build_part(r);
-    // The lists that cannot change after a pan: all but the rows below a
-    // top that moved, within reach of the sprites above it, which came or
-    // went. A pan and an edit at once: listed whole.
-    if (!edited.empty()) {
+    move_grid(m.spans, m.rect, to);
+    move_grid(m.surface.instance, m.rect, to, -1);
+    move_grid(m.surface.height, m.rect, to);
+    move_grid(m.flags, m.rect, to);
+    m.rect = m.surface.rect = to;
+    keep = intersect(keep, to);
+    std::vector<Rect> parts = keep.empty() ? std::vector<Rect>{to} : outside(to, keep);
+    parts.insert(parts.end(), changed.begin(), changed.end());
+    for (Rect r : parts) make(r);
+    // The lists that cannot change after a pan: all but the rows below the
+    // kept part's top where anything above it was made or dropped, within
+    // reach of the sprites there. A pan and a change at once: listed whole.
+    if (!changed.empty()) {
         index_shown(m);
     } else {
-        if (region.y != kept.rect.y) {
-            const int top = std::max(region.y, kept.rect.y) + m.reach_rows;
+        if (keep.y > to.y || keep.y > kept.rect.y) {
+            const int top = keep.y + m.reach_rows;
             kept.unchanged = {intersect(keep, Rect{keep.x, top, keep.w, std::max(0, keep.y + keep.h - top)})};
         }
-        kept.anew = kept.unchanged[0].empty() ? std::vector<Rect>{region} : outside(region, kept.unchanged[0]);
+        kept.anew = kept.unchanged[0].empty() ? std::vector<Rect>{to} : outside(to, kept.unchanged[0]);
         index_shown(m, &kept);
     }
     // A large map's spare lists are not kept past the update.

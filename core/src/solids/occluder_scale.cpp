@@ -60,6 +60,25 @@ void fill_blocks(OccluderMap& c, const OccluderMap& fine, int s, Rect blocks) {
     }
 }
 
+// The blocks of `blocks` (inside c.rect) made again from the fine map: their
+// spans, surface and has_span flags; reach_rows grown by their heights.
+void remake_blocks(OccluderMap& c, const OccluderMap& fine, int s, Rect blocks) {
+    for (int y = blocks.y; y < blocks.y + blocks.h; ++y) {
+        const std::size_t i = std::size_t(y - c.rect.y) * std::size_t(c.rect.w) + std::size_t(blocks.x - c.rect.x);
+        std::fill_n(&c.spans[i], blocks.w, Spans{});
+        std::fill_n(&c.surface.instance[i], blocks.w, std::int32_t(-1));
+        std::fill_n(&c.surface.height[i], blocks.w, 0.0f);
+    }
+    fill_blocks(c, fine, s, blocks);
+    for (int y = blocks.y; y < blocks.y + blocks.h; ++y)
+        for (int x = blocks.x; x < blocks.x + blocks.w; ++x) {
+            const std::size_t i = std::size_t(y - c.rect.y) * std::size_t(c.rect.w) + std::size_t(x - c.rect.x);
+            c.flags[i] = std::uint8_t(c.spans[i].any() ? OccluderMap::has_span : 0);
+            if (c.surface.instance[i] >= 0)
+                c.reach_rows = std::max(c.reach_rows, int(rows_above(std::max(c.surface.height[i], 0.f))));
+        }
+}
+
 // The blocks lying wholly inside fine rectangle r.
 Rect blocks_inside(Rect r, int s) {
     if (r.empty()) return {};
@@ -155,23 +174,10 @@ void pan_coarse_occluders(OccluderMap& c, std::vector<std::uint8_t>& picks, cons
                           int s) {
     // The blocks wholly inside the part both fine maps hold are the same
     // blocks: kept, moved to the new layout; the rest made again.
+    // Their sprite index too, but for the rows below a top that moved.
     const Rect inner = blocks_inside(intersect(old_fine, fine.rect), s);
     const Rect to = coarse_rect_of(fine.rect, s);
-    move_grid(c.spans, c.rect, to);
-    move_grid(c.surface.instance, c.rect, to, std::int32_t(-1));
-    move_grid(c.surface.height, c.rect, to);
-    c.rect = c.surface.rect = to;
-    for (const Rect& r : inner.empty() ? std::vector<Rect>{to} : outside(to, inner)) {
-        for (int y = r.y; y < r.y + r.h; ++y) {
-            const std::size_t i = std::size_t(y - to.y) * std::size_t(to.w) + std::size_t(r.x - to.x);
-            std::fill_n(&c.spans[i], r.w, Spans{});
-            std::fill_n(&c.surface.instance[i], r.w, std::int32_t(-1));
-            std::fill_n(&c.surface.height[i], r.w, 0.0f);
-        }
-        fill_blocks(c, fine, s, r);
-    }
-    c.padding = 0;
-    index_occluders(c);
+    pan_occluder_map(c, to, inner, {}, [&](Rect r) { remake_blocks(c, fine, s, r); });
     // A pixel's pick reads its block and the eight around it: kept where
     // all nine are kept blocks.
     const Rect same = inner.w > 2 && inner.h > 2 ? Rect{(inner.x + 1) * s, (inner.y + 1) * s, (inner.w - 2) * s, (inner.h - 2) * s}
@@ -187,19 +193,7 @@ void edit_coarse_occluders(OccluderMap& c, std::vector<std::uint8_t>& picks, con
     // The blocks that hold a changed pixel, made again; then their index.
     const Rect blocks = intersect(cover(intersect(changed, fine.rect), s), c.rect);
     if (blocks.empty()) return;
-    for (int y = blocks.y; y < blocks.y + blocks.h; ++y) {
-        const std::size_t i = std::size_t(y - c.rect.y) * std::size_t(c.rect.w) + std::size_t(blocks.x - c.rect.x);
-        std::fill_n(&c.spans[i], blocks.w, Spans{});
-        std::fill_n(&c.surface.instance[i], blocks.w, std::int32_t(-1));
-        std::fill_n(&c.surface.height[i], blocks.w, 0.0f);
-    }
-    fill_blocks(c, fine, s, blocks);
-    for (int y = blocks.y; y < blocks.y + blocks.h; ++y)
-        for (int x = blocks.x; x < blocks.x + blocks.w; ++x) {
-            const std::size_t i = std::size_t(y - c.rect.y) * std::size_t(c.rect.w) + std::size_t(x - c.rect.x);
-            if (c.surface.instance[i] >= 0)
-                c.reach_rows = std::max(c.reach_rows, int(rows_above(std::max(c.surface.height[i], 0.f))));
-        }
+    remake_blocks(c, fine, s, blocks);
     reindex_part(c, blocks);
     // A fine pixel's pick reads its block and the eight around it.
     const Rect near{(blocks.x - 1) * s, (blocks.y - 1) * s, (blocks.w + 2) * s, (blocks.h + 2) * s};
