@@ -8,11 +8,11 @@
 
 namespace isolux {
 
-// After the spans and surface of `part` changed (reach_rows already grown
-// by its sprite pixels' heights): its has_span flags, and the lists of the
-// ground pixels its sprite pixels' points can land on (its columns, from
-// its top to reach_rows below it), made again in place as an edit's are
-// (padding where they shrink): the same lists index_occluders makes.
+// After the spans, surface and has_span flags of `part` changed (reach_rows
+// already grown by its sprite pixels' heights): the lists of the ground
+// pixels its sprite pixels' points can land on (its columns, from its top
+// to reach_rows below it), made again in place as an edit's are (padding
+// where they shrink): the same lists index_occluders makes.
 void reindex_part(OccluderMap& m, Rect part);
 
 // A pan of `m` to region `to`: what it holds of `keep` (in both regions)

@@ -399,7 +399,6 @@ void reindex_part(OccluderMap& m, Rect part) {
     part = intersect(part, m.rect);
     if (m.flags.size() != m.spans.size()) return index_occluders(m);  // never indexed
     if (part.empty()) return;
-    flag_spans(m, part);
     relist_shown(m, intersect(m.rect, Rect{part.x, part.y, part.w, part.h + m.reach_rows}));
 }
 

@@ -174,7 +174,8 @@ void pan_coarse_occluders(OccluderMap& c, std::vector<std::uint8_t>& picks, cons
                           int s) {
     // The blocks wholly inside the part both fine maps hold are the same
     // blocks: kept, moved to the new layout; the rest made again.
-    // Their sprite index too, but for the rows below a top that moved.
+    // Their sprite index too, but for the rows within reach below the kept
+    // blocks' top (pan_occluder_map).
     const Rect inner = blocks_inside(intersect(old_fine, fine.rect), s);
     const Rect to = coarse_rect_of(fine.rect, s);
     pan_occluder_map(c, to, inner, {}, [&](Rect r) { remake_blocks(c, fine, s, r); });
