@@ -60,6 +60,14 @@ struct EstimatedObject {
     double front_at(double sx) const;
     // Whether the ground point (x, y) relative to the foot lies behind its column's front.
     bool behind_front(double x, double y) const { return (x + y) / 2 <= front_at(x - y); }
+    // A prism's visual hull: the object's pixels (sprite pixels, as
+    // center_x/center_y). A point of the prism whose level's middle lies on
+    // the view line of a pixel the sprite leaves empty would show there, so
+    // the prism holds none there: a fence's gaps under and between its
+    // rails let light through. Empty: the prism is not carved.
+    Mask hull;
+    // Whether level z over the ground-frame point (x, y) relative to the foot lies on a hull pixel.
+    bool in_hull(std::size_t z, double x, double y) const;
     // The cross-section from height z to z + 1, an ellipse about the axis,
     // ground pixels: radius[z] its semi-axis in depth (ground direction
     // (1, 1), along screen y; 0: none), across[z] its semi-axis across the

@@ -118,14 +118,20 @@ void stamp_spans(const EstimatedObject& o, SpanStamp& stamp) {
     stamp.spans.assign(std::size_t(r.w) * std::size_t(r.h), {0.f, 0.f});
     if (o.model == ObjectModel::prism) {
         // A prism fills its rectangle from the ground to its column's step
-        // (a stepped prism's level is several runs along a row): per pixel.
+        // (a stepped prism's level is several runs along a row), less the
+        // levels its hull carves: per pixel. A level its hull carves between
+        // two it holds stays in the span (one span a pixel).
         for (int j = 0; j < r.h; ++j)
             for (int i = 0; i < r.w; ++i) {
                 const double sx = r.x + i + 0.5 - o.center_x;
                 const Vec3 q = ground_frame(sx, r.y + j + 0.5 - o.center_y, 0);
                 if (std::abs(q.x) > o.half_x || std::abs(q.y) > o.half_y || !o.behind_front(q.x, q.y)) continue;
-                const double top = std::min(o.height(), std::ceil(o.step_at(q.x - q.y)));
-                if (top > 0) stamp.spans[std::size_t(j) * r.w + std::size_t(i)] = {0.f, float(top)};
+                const int top = int(std::min(o.height(), std::ceil(o.step_at(q.x - q.y))));
+                // Its hull may carve levels off the bottom and the top (a fence's gap under its rails).
+                int lo = 0, hi = top;
+                while (lo < hi && !o.in_hull(std::size_t(lo), q.x, q.y)) ++lo;
+                while (hi > lo && !o.in_hull(std::size_t(hi - 1), q.x, q.y)) --hi;
+                if (hi > lo) stamp.spans[std::size_t(j) * r.w + std::size_t(i)] = {float(lo), float(hi)};
             }
         return;
     }

@@ -112,9 +112,15 @@ bool EstimatedObject::holds(std::size_t z, double x, double y) const {
     if (d <= 0) return false;
     if (model == ObjectModel::prism)
         return std::abs(x) <= half_x && std::abs(y) <= half_y && (steps.empty() || double(z) < step_at(x - y)) &&
-               behind_front(x, y);
+               behind_front(x, y) && in_hull(z, x, y);
     const double u = (x - y) / sqrt2, v = (x + y) / sqrt2;  // across the view, in depth
     return (u * u) / (a * a) + (v * v) / (d * d) <= 1;
+}
+
+bool EstimatedObject::in_hull(std::size_t z, double x, double y) const {
+    // The level's middle, z + 1/2 high, shows at screen (x - y, (x + y) / 2 - z - 1/2) from the foot.
+    return hull.bits.empty() ||
+           hull.get(int(std::floor(center_x + x - y)), int(std::floor(center_y + (x + y) / 2 - double(z) - 0.5)));
 }
 
 namespace {
@@ -680,6 +686,22 @@ std::vector<EstimatedObject> revolution_objects(const Mask& object, const Mask& 
 
 // The user's foot and height applied to a prism or a mound: the solid
 // moved so its base's centre stands on the foot, its height replaced.
+// The object's pixels grown by one pixel up and down: a prism's hull. A
+// level's middle shows half a pixel off its face's rows, and the outline's
+// top and bottom pixels are partly covered (some below the threshold), so
+// the hull carves only what stands a pixel clear of the outline: a fence's
+// gaps under and between its rails, not its rails' own edges (grown each
+// way it kept less of a fence's gaps; not grown, the rails' edges let light
+// through them onto their far sides).
+Mask prism_hull(const Mask& object) {
+    Mask hull(Rect{object.x0, object.y0 - 1, object.width, object.height + 2});
+    for (int y = object.y0; y < object.y0 + object.height; ++y)
+        for (int x = object.x0; x < object.x0 + object.width; ++x)
+            if (object.get(x, y))
+                for (int dy = -1; dy <= 1; ++dy) hull.set(x, y + dy);
+    return hull;
+}
+
 void apply_correction(EstimatedObject& o, const FootprintSpec& c) {
     if (c.object_foot) {
         const double dx = c.object_foot->first + 0.5 - o.center_x, dy = c.object_foot->second + 0.5 - o.center_y;
@@ -729,6 +751,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
         std::optional<EstimatedObject>& o = *chosen == ObjectModel::prism ? prism : mound;
         if (!o) return revolution_objects(object, footprint, correction, trunks, whole_base, crowns);
         if (o->model == ObjectModel::prism && !o->flat_top) step_prism(object, *o);
+        if (o->model == ObjectModel::prism) o->hull = prism_hull(object);
         apply_correction(*o, *correction);
         return {*o};
     }
@@ -764,6 +787,9 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     // The model is picked on one height (the steps would fit any outline's
     // top, a tree's too); the prism taken gets its steps.
     if (prism_taken && !out[0].flat_top) step_prism(object, out[0]);
+    // Carved by the object's pixels once taken: the pick compares the
+    // models' shapes, where carving would favour the prism everywhere.
+    if (prism_taken) out[0].hull = prism_hull(object);
     return out;
 }
 
@@ -977,7 +1003,8 @@ namespace {
 // a height in [0, its column's step). On the view line through (sx, sy) from the foot
 // the point z high is (t + sx / 2, t - sx / 2) with t = sy + z (t is its
 // ground point's screen row), so the pixel is drawn when the ranges of t
-// (the rectangle's two sides, the heights and the column's front) meet.
+// (the rectangle's two sides, the heights and the column's front) meet, and
+// the pixel is one of its hull's (every point on its view line shows there).
 void draw_prism(const EstimatedObject& o, Mask& m) {
     const double reach = o.half_x + o.half_y;
     const int x0 = std::max(int(std::floor(o.center_x - reach)), 0), x1 = std::min(int(std::ceil(o.center_x + reach)), m.width - 1);
@@ -988,7 +1015,7 @@ void draw_prism(const EstimatedObject& o, Mask& m) {
             const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y, top = o.step_at(sx);
             const double lo = std::max({-o.half_x - sx / 2, -o.half_y + sx / 2, sy});
             const double hi = std::min({o.half_x - sx / 2, o.half_y + sx / 2, sy + top, o.front_at(sx)});
-            if (lo <= hi) m.set(x, y);
+            if (lo <= hi && (o.hull.bits.empty() || o.hull.get(x, y))) m.set(x, y);
         }
 }
 

@@ -354,6 +354,47 @@ TEST(SolidModels, wallsAndHousesArePrismsAndShareMoreOfTheirTrueVolume) {
     }
 }
 
+// A prism is carved by its hull (docs/beyond.md, *Prisms*): nothing stands
+// on a view line the sprite leaves empty. The town's fence: its prism holds
+// its posts from the ground but leaves the gap under its lower rail (true:
+// 5 px) open between them, where the uncarved prism filled it, so a low
+// light reaches the ground behind it; and it shares more of the fence's
+// true volume than the uncarved prism.
+TEST(SolidModels, aFencesPrismLeavesTheGapUnderItsRailsOpen) {
+    const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
+    const Sprite* fence = nullptr;
+    for (const Sprite& c : town.sprites)
+        if (c.name == "fence") fence = &c;
+    ASSERT_NE(fence, nullptr);
+    const auto objects = sprite_objects(town, *fence, Params{});
+    ASSERT_EQ(objects.size(), 1u);
+    const EstimatedObject& o = objects[0];
+    ASSERT_EQ(o.model, ObjectModel::prism);
+    ASSERT_FALSE(o.hull.bits.empty());
+    EstimatedObject uncarved = o;
+    uncarved.hull = Mask{};
+    // The span over the fence's line at true ground point (X, 0), relative to the anchor.
+    auto span = [&](const EstimatedObject& e, double X, double& lo, double& hi) {
+        const Vec3 q = ground_frame(fence->anchor_x + X - e.center_x, fence->anchor_y + X / 2 - e.center_y, 0);
+        return e.span_at(q.x, q.y, lo, hi);
+    };
+    double lo = 0, hi = 0;
+    for (double X : {-13.0, 13.0}) {  // between the posts (true: at X = -26, 0 and 26)
+        ASSERT_TRUE(span(uncarved, X, lo, hi)) << X;
+        EXPECT_EQ(lo, 0) << X;
+        ASSERT_TRUE(span(o, X, lo, hi)) << X;
+        EXPECT_GE(lo, 3) << "the gap under the lower rail at X = " << X;
+        EXPECT_LE(lo, 6) << "the lower rail itself at X = " << X;
+        EXPECT_GE(hi, 16) << "the upper rail at X = " << X;
+    }
+    ASSERT_TRUE(span(o, 0, lo, hi));
+    EXPECT_EQ(lo, 0) << "the middle post stands on the ground";
+    const double carved = volume_overlap({o}, fence->anchor_x, fence->anchor_y, fence->shape),
+                 filled = volume_overlap({uncarved}, fence->anchor_x, fence->anchor_y, fence->shape);
+    std::printf("fence: carved prism shares %.3f of the true volume, uncarved %.3f\n", carved, filled);
+    EXPECT_GT(carved, filled) << "carving takes off more empty space than fence";
+}
+
 // A box drawn from its true shape: the prism's rectangle and height are the
 // box's within a pixel or two, and its solid holds the box's inside and not
 // its outside.
