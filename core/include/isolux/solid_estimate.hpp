@@ -66,6 +66,8 @@ struct EstimatedObject {
     // the prism holds none there: a fence's gaps under and between its
     // rails let light through. Empty: the prism is not carved.
     Mask hull;
+    // Whether sprite pixel (x, y) is one of the hull's (every pixel where there is none).
+    bool hull_shows(int x, int y) const { return hull.bits.empty() || hull.get(x, y); }
     // Whether level z over the ground-frame point (x, y) relative to the foot lies on a hull pixel.
     bool in_hull(std::size_t z, double x, double y) const;
     // The cross-section from height z to z + 1, an ellipse about the axis,

@@ -119,8 +119,7 @@ bool EstimatedObject::holds(std::size_t z, double x, double y) const {
 
 bool EstimatedObject::in_hull(std::size_t z, double x, double y) const {
     // The level's middle, z + 1/2 high, shows at screen (x - y, (x + y) / 2 - z - 1/2) from the foot.
-    return hull.bits.empty() ||
-           hull.get(int(std::floor(center_x + x - y)), int(std::floor(center_y + (x + y) / 2 - double(z) - 0.5)));
+    return hull_shows(int(std::floor(center_x + x - y)), int(std::floor(center_y + (x + y) / 2 - double(z) - 0.5)));
 }
 
 namespace {
@@ -684,8 +683,6 @@ std::vector<EstimatedObject> revolution_objects(const Mask& object, const Mask& 
     return {moved};
 }
 
-// The user's foot and height applied to a prism or a mound: the solid
-// moved so its base's centre stands on the foot, its height replaced.
 // The object's pixels grown by one pixel up and down: a prism's hull. A
 // level's middle shows half a pixel off its face's rows, and the outline's
 // top and bottom pixels are partly covered (some below the threshold), so
@@ -702,6 +699,8 @@ Mask prism_hull(const Mask& object) {
     return hull;
 }
 
+// The user's foot and height applied to a prism or a mound: the solid
+// moved so its base's centre stands on the foot, its height replaced.
 void apply_correction(EstimatedObject& o, const FootprintSpec& c) {
     if (c.object_foot) {
         const double dx = c.object_foot->first + 0.5 - o.center_x, dy = c.object_foot->second + 0.5 - o.center_y;
@@ -1015,7 +1014,7 @@ void draw_prism(const EstimatedObject& o, Mask& m) {
             const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y, top = o.step_at(sx);
             const double lo = std::max({-o.half_x - sx / 2, -o.half_y + sx / 2, sy});
             const double hi = std::min({o.half_x - sx / 2, o.half_y + sx / 2, sy + top, o.front_at(sx)});
-            if (lo <= hi && (o.hull.bits.empty() || o.hull.get(x, y))) m.set(x, y);
+            if (lo <= hi && o.hull_shows(x, y)) m.set(x, y);
         }
 }
 

@@ -122,7 +122,7 @@ TEST(OccluderStamp, eachStampPixelHoldsItsObjectsSpanAndTheSilhouetteEachCrossSe
                 ++prisms;
                 for (int y = 0; y < sp.image.height; ++y)
                     for (int x = 0; x < sp.image.width; ++x)
-                        for (double z = 0; z <= o.height() && (o.hull.bits.empty() || o.hull.get(x, y)); z += 1.0 / 32) {
+                        for (double z = 0; z <= o.height() && o.hull_shows(x, y); z += 1.0 / 32) {
                             const Vec3 q = ground_frame(x + 0.5 - o.center_x, y + 0.5 - o.center_y, z);
                             if (std::abs(q.x) <= o.half_x && std::abs(q.y) <= o.half_y && z <= o.step_at(q.x - q.y) &&
                                 o.behind_front(q.x, q.y)) {

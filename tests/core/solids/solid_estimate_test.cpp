@@ -19,6 +19,13 @@ using namespace isolux;
 
 namespace {
 
+// The sprite of `set` named `name` (nullptr: none).
+const Sprite* find_sprite(const Tileset& set, const std::string& name) {
+    for (const Sprite& c : set.sprites)
+        if (c.name == name) return &c;
+    return nullptr;
+}
+
 // The opaque pixels of `shape` drawn by the projection with its anchor at
 // (ax, ay) of a w x h sprite: where the view line meets a solid.
 Mask drawn(const std::vector<Solid>& shape, int w, int h, int ax, int ay) {
@@ -362,9 +369,7 @@ TEST(SolidModels, wallsAndHousesArePrismsAndShareMoreOfTheirTrueVolume) {
 // true volume than the uncarved prism.
 TEST(SolidModels, aFencesPrismLeavesTheGapUnderItsRailsOpen) {
     const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
-    const Sprite* fence = nullptr;
-    for (const Sprite& c : town.sprites)
-        if (c.name == "fence") fence = &c;
+    const Sprite* fence = find_sprite(town, "fence");
     ASSERT_NE(fence, nullptr);
     const auto objects = sprite_objects(town, *fence, Params{});
     ASSERT_EQ(objects.size(), 1u);
@@ -679,9 +684,7 @@ TEST(SolidModels, aGroveTreeBehindReachesBehindTheTreeInFront) {
 // base's front (its footprint) that a user could force.
 TEST(SolidModels, aMountainIsAPeak) {
     const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
-    const Sprite* s = nullptr;
-    for (const Sprite& c : town.sprites)
-        if (c.name == "mountain") s = &c;
+    const Sprite* s = find_sprite(town, "mountain");
     ASSERT_NE(s, nullptr);
     const auto objects = sprite_objects(town, *s, Params{});
     ASSERT_EQ(objects.size(), 1u);
