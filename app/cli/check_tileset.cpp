@@ -54,11 +54,15 @@ int run_check_tileset(const CheckArgs& a) {
         // and how much of the manifest's shape it shares, where there is one.
         const std::vector<EstimatedObject> objects = estimate_objects(fr, fp, &s.footprint);
         e["objects"] = nlohmann::json::array();
-        for (const EstimatedObject& o : objects)
-            e["objects"].push_back({{"center", {std::round(o.center_x * 10) / 10, std::round(o.center_y * 10) / 10}},
-                                    {"rect", {o.rect.x, o.rect.y, o.rect.w, o.rect.h}},
-                                    {"height", o.height()},
-                                    {"model", std::string(to_string(o.model))}});
+        for (const EstimatedObject& o : objects) {
+            nlohmann::json j = {{"center", {std::round(o.center_x * 10) / 10, std::round(o.center_y * 10) / 10}},
+                                {"rect", {o.rect.x, o.rect.y, o.rect.w, o.rect.h}},
+                                {"height", o.height()},
+                                {"model", std::string(to_string(o.model))}};
+            // A prism under a pitched roof: the ridge's ground axis and the eaves' height.
+            if (o.ridge_axis >= 0) j["roof"] = {{"ridge", o.ridge_axis == 0 ? "x" : "y"}, {"eaves", o.eaves}};
+            e["objects"].push_back(std::move(j));
+        }
         e["solid_overlap"] = s.shape.empty() ? nlohmann::json(nullptr)
                                              : nlohmann::json(std::round(volume_overlap(objects, s.anchor_x, s.anchor_y,
                                                                                         s.shape) * 1000) / 1000);

@@ -58,6 +58,15 @@ struct EstimatedObject {
     std::vector<double> fronts;
     // The front over screen column sx (relative to the axis); +inf: none.
     double front_at(double sx) const;
+    // A prism under a pitched roof (a house's): its top falls from height()
+    // over the ridge, the rectangle's centre line along one ground axis
+    // (ridge_axis 0: x, the roof sloping in y; 1: y, sloping in x), to
+    // `eaves` at the rectangle's sides. -1: no ridge.
+    int ridge_axis = -1;
+    double eaves = 0;
+    // The prism's top over the ground-frame point (x, y) relative to the
+    // foot: its column's step under its roof.
+    double top_at(double x, double y) const;
     // Whether the ground point (x, y) relative to the foot lies behind its column's front.
     bool behind_front(double x, double y) const { return (x + y) / 2 <= front_at(x - y); }
     // A prism's visual hull: the object's pixels (sprite pixels, as
@@ -157,6 +166,15 @@ std::optional<EstimatedObject> fit_prism(const Mask& object, double* v_share = n
 // nearest neighbour's), taken where two neighbouring columns' rises differ
 // by a third of the prism's height or more. Else `o` is left as it is.
 void step_prism(const Mask& object, EstimatedObject& o);
+
+// Prism `o` (fit_prism's, its top neither flat nor stepped) under a pitched
+// roof where one fits its top rows clearly better than a flat top: the
+// ridge along one ground axis over the rectangle's centre line, its height
+// and its eaves' those whose projected top rows miss the object's least
+// (each column's miss capped). Else `o` is left as it is.
+void ridge_prism(const Mask& object, EstimatedObject& o);
+// A taken prism's top: flat, else stepped (step_prism), else pitched (ridge_prism).
+void top_prism(const Mask& object, EstimatedObject& o);
 
 // The mound (a half ellipsoid on the ground) whose projection fits the
 // object's pixels: its base from the widest row and the lowest row, its

@@ -75,7 +75,7 @@ void topmost_points(const EstimatedObject& o, std::int32_t index, int w, int h, 
     for (int x = 0; x < w; ++x) {
         const double sx = x + 0.5 - o.center_x, u = sx / sqrt2;
         // A prism's flat top or its step over this column: a face its points lie on.
-        const double face = o.flat_top ? o.height() : o.steps.empty() ? -1 : o.step_at(sx);
+        const double face = o.flat_top ? o.height() : o.steps.empty() || o.ridge_axis >= 0 ? -1 : o.step_at(sx);
         rows.clear();
         for (int n = 0; n < heights; ++n) {
             const double z = top - 0.5 * n;
@@ -126,7 +126,7 @@ void stamp_spans(const EstimatedObject& o, SpanStamp& stamp) {
                 const double sx = r.x + i + 0.5 - o.center_x;
                 const Vec3 q = ground_frame(sx, r.y + j + 0.5 - o.center_y, 0);
                 if (std::abs(q.x) > o.half_x || std::abs(q.y) > o.half_y || !o.behind_front(q.x, q.y)) continue;
-                const int top = int(std::min(o.height(), std::ceil(o.step_at(q.x - q.y))));
+                const int top = int(std::min(o.height(), std::ceil(o.top_at(q.x, q.y))));
                 // Its hull may carve levels off the bottom and the top (a fence's gap under its rails).
                 int lo = 0, hi = top;
                 while (lo < hi && !o.in_hull(std::size_t(lo), q.x, q.y)) ++lo;

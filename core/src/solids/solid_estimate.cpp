@@ -52,6 +52,15 @@ constexpr double prism_clear_margin = 0.05;
 constexpr double mound_equator_rise = 3;
 // ... or this share of its base's depth on screen, where that is more.
 constexpr double mound_equator_share = 0.1;
+// How much less a pitched roof's top rows must miss the object's than a
+// flat top's (ridge_prism), and how far, pixels, its ridge must rise above
+// its eaves.
+constexpr double ridge_fit_margin = 0.25;
+constexpr int ridge_least_rise = 3;
+// How much better than the dome alone, at most, the union of a mound's dome
+// and the object's solid of revolution may fit its silhouette for the
+// mound to be a heap of both (the union hides nothing the dome does not).
+constexpr double heap_fit_gain = 0.01;
 // How much better than the dome a peak's cone must fit a mound's silhouette.
 constexpr double cone_fit_margin = 0.05;
 
@@ -111,8 +120,8 @@ bool EstimatedObject::holds(std::size_t z, double x, double y) const {
     const double d = radius[z], a = across_at(z);
     if (d <= 0) return false;
     if (model == ObjectModel::prism)
-        return std::abs(x) <= half_x && std::abs(y) <= half_y && (steps.empty() || double(z) < step_at(x - y)) &&
-               behind_front(x, y) && in_hull(z, x, y);
+        return std::abs(x) <= half_x && std::abs(y) <= half_y &&
+               ((steps.empty() && ridge_axis < 0) || double(z) < top_at(x, y)) && behind_front(x, y) && in_hull(z, x, y);
     const double u = (x - y) / sqrt2, v = (x + y) / sqrt2;  // across the view, in depth
     return (u * u) / (a * a) + (v * v) / (d * d) <= 1;
 }
@@ -136,6 +145,13 @@ double column_entry(const std::vector<double>& table, double sx, double reach) {
 
 double EstimatedObject::step_at(double sx) const {
     return steps.empty() ? height() : column_entry(steps, sx, half_x + half_y);
+}
+
+double EstimatedObject::top_at(double x, double y) const {
+    const double step = step_at(x - y);
+    if (ridge_axis < 0) return step;
+    const double off = ridge_axis == 0 ? std::abs(y) / half_y : std::abs(x) / half_x;
+    return std::min(step, height() - (height() - eaves) * std::min(off, 1.0));
 }
 
 double EstimatedObject::front_at(double sx) const {
@@ -164,9 +180,16 @@ Vec3 EstimatedObject::normal_at(Vec3 p) const {
     const Vec3 up{0, 0, 1};
     if (radius.empty()) return up;
     if (model == ObjectModel::prism) {
-        const double to_top = std::abs(step_at(p.x - p.y) - p.z);
+        const double to_top = std::abs(top_at(p.x, p.y) - p.z);
         const double to_x = half_x - std::abs(p.x), to_y = half_y - std::abs(p.y);
-        if (to_top <= to_x && to_top <= to_y) return up;
+        if (to_top <= to_x && to_top <= to_y) {
+            if (ridge_axis < 0) return up;
+            // A roof's slope falls (height - eaves) over the half-width across its ridge.
+            const double fall = height() - eaves;
+            const Vec3 n = ridge_axis == 0 ? Vec3{0, (p.y < 0 ? -1 : 1) * fall / half_y, 1}
+                                           : Vec3{(p.x < 0 ? -1 : 1) * fall / half_x, 0, 1};
+            return glm::normalize(n);
+        }
         return to_x <= to_y ? Vec3{p.x < 0 ? -1 : 1, 0, 0} : Vec3{0, p.y < 0 ? -1 : 1, 0};
     }
     const long n = long(radius.size()), level = std::clamp(long(std::floor(p.z)), 0L, n - 1);
@@ -711,7 +734,7 @@ void apply_correction(EstimatedObject& o, const FootprintSpec& c) {
         const std::size_t n = std::size_t(c.object_height);
         if (o.model == ObjectModel::prism) {
             o.radius.assign(n, o.radius[0]);
-            o.steps.clear();  // the user's height is the whole prism's
+            o.steps.clear(), o.ridge_axis = -1;  // the user's height is the whole prism's
         } else {  // a mound keeps its profile, stretched to the new height
             std::vector<double> r(n), a(n);
             for (std::size_t z = 0; z < n; ++z) {
@@ -749,7 +772,7 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
     if (chosen) {  // the user's model; where it finds no fit, the estimate's own
         std::optional<EstimatedObject>& o = *chosen == ObjectModel::prism ? prism : mound;
         if (!o) return revolution_objects(object, footprint, correction, trunks, whole_base, crowns);
-        if (o->model == ObjectModel::prism && !o->flat_top) step_prism(object, *o);
+        if (o->model == ObjectModel::prism) top_prism(object, *o);
         if (o->model == ObjectModel::prism) o->hull = prism_hull(object);
         apply_correction(*o, *correction);
         return {*o};
@@ -778,14 +801,22 @@ std::vector<EstimatedObject> estimate_objects(const Mask& object, const Mask& fo
                       mound->radius[mound->radius.size() / 2] < 0.6 * mound->radius[0] &&
                       !hidden_below_widest(object, revolution[0]);
     double best = revolution_fit + model_fit_margin;
-    std::vector<EstimatedObject> out = std::move(revolution);
+    std::vector<EstimatedObject> out = revolution;
     bool prism_taken = false;
     if (prism && prism_fit > best) best = prism_fit, out = {*prism}, prism_taken = true;
     const double mound_needs = peak && !prism_taken ? revolution_fit : best;
-    if (mound && mound_fit > mound_needs) out = {*mound}, prism_taken = false;
+    if (mound && mound_fit > mound_needs) {
+        // A dome that hides the solid of revolution (their union's
+        // silhouette fits no better than the dome's) is a heap: the dome,
+        // lowest where the outline's top is its broad back, and the solid
+        // of revolution, the summit over its front, are both kept.
+        const bool heap = !peak && silhouette_fit({*mound, revolution[0]}, object) <= mound_fit + heap_fit_gain;
+        out = heap ? std::vector<EstimatedObject>{*mound, revolution[0]} : std::vector<EstimatedObject>{*mound};
+        prism_taken = false;
+    }
     // The model is picked on one height (the steps would fit any outline's
-    // top, a tree's too); the prism taken gets its steps.
-    if (prism_taken && !out[0].flat_top) step_prism(object, out[0]);
+    // top, a tree's too); the prism taken gets its steps or its roof.
+    if (prism_taken) top_prism(object, out[0]);
     // Carved by the object's pixels once taken: the pick compares the
     // models' shapes, where carving would favour the prism everywhere.
     if (prism_taken) out[0].hull = prism_hull(object);
@@ -919,6 +950,68 @@ void step_prism(const Mask& object, EstimatedObject& o) {
     o.radius.assign(std::size_t(top), o.radius.empty() ? std::hypot(o.half_x, o.half_y) : o.radius[0]);
 }
 
+void ridge_prism(const Mask& object, EstimatedObject& o) {
+    if (!o.steps.empty() || o.flat_top || o.half_x <= 0 || o.half_y <= 0) return;
+    // Per column inside the rectangle: its view lines' ground rows [lo, hi]
+    // (relative to the foot) and the object's top row there.
+    struct Column {
+        double sx, lo, hi, top;
+    };
+    std::vector<Column> cols;
+    double tallest = 1;
+    for (const ColumnExtent& c : column_extents(object)) {
+        const double sx = c.x - o.center_x;
+        const double lo = std::max(-o.half_x - sx / 2, -o.half_y + sx / 2), hi = std::min(o.half_x - sx / 2, o.half_y + sx / 2);
+        if (lo >= hi) continue;
+        cols.push_back({sx, lo, hi, c.top - o.center_y});
+        tallest = std::max(tallest, lo - (c.top - o.center_y));
+    }
+    if (cols.size() < 6) return;
+    // How far a roof's predicted top rows lie from the object's (capped, as
+    // fit_prism's V: a chimney or a gap counts once). On a column the view
+    // lines' topmost point is the least of t - top(t), convex along it: at
+    // an end or over the ridge.
+    constexpr double cap = 6;
+    auto cost = [&](int axis, double eaves, double ridge) {
+        double sum = 0;
+        for (const Column& c : cols) {
+            auto row = [&](double t) {
+                const double off = axis == 0 ? std::abs(t - c.sx / 2) / o.half_y : std::abs(t + c.sx / 2) / o.half_x;
+                return t - (ridge - (ridge - eaves) * std::min(off, 1.0));
+            };
+            const double over = axis == 0 ? c.sx / 2 : -c.sx / 2;
+            double best = std::min(row(c.lo), row(c.hi));
+            if (c.lo < over && over < c.hi) best = std::min(best, row(over));
+            sum += std::min(std::abs(best - c.top), cap);
+        }
+        return sum;
+    };
+    const int most = int(std::ceil(tallest)) + 1;
+    // Whole pixels up to 64 heights, coarser beyond (a huge sprite's search
+    // stays bounded: at most 64 x 64 roofs an axis).
+    const int step = std::max(1, (most + 63) / 64);
+    double flat = 1e300;
+    for (int h = 1; h <= most; h += step) flat = std::min(flat, cost(0, h, h));
+    double best = 1e300;
+    int best_axis = -1, best_eaves = 0, best_ridge = 0;
+    for (int axis = 0; axis < 2; ++axis)
+        for (int ridge = 2; ridge <= most; ridge += step)
+            for (int eaves = 1; eaves + ridge_least_rise <= ridge; eaves += step) {
+                const double c = cost(axis, eaves, ridge);
+                if (c < best) best = c, best_axis = axis, best_eaves = eaves, best_ridge = ridge;
+            }
+    if (best_axis < 0 || best > (1 - ridge_fit_margin) * flat) return;
+    o.ridge_axis = best_axis;
+    o.eaves = best_eaves;
+    o.radius.assign(std::size_t(best_ridge), std::hypot(o.half_x, o.half_y));
+}
+
+void top_prism(const Mask& object, EstimatedObject& o) {
+    if (o.flat_top) return;
+    step_prism(object, o);
+    ridge_prism(object, o);
+}
+
 std::optional<EstimatedObject> fit_mound(const Mask& object) {
     // The base, taken round: its width from the widest row, its front from
     // the object's lowest row, so its centre's row lies half its depth on
@@ -1011,10 +1104,17 @@ void draw_prism(const EstimatedObject& o, Mask& m) {
               y1 = std::min(int(std::ceil(o.center_y + reach / 2)), m.height - 1);
     for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
-            const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y, top = o.step_at(sx);
+            const double sx = x + 0.5 - o.center_x, sy = y + 0.5 - o.center_y;
             const double lo = std::max({-o.half_x - sx / 2, -o.half_y + sx / 2, sy});
-            const double hi = std::min({o.half_x - sx / 2, o.half_y + sx / 2, sy + top, o.front_at(sx)});
-            if (lo <= hi && o.hull_shows(x, y)) m.set(x, y);
+            const double hi = std::min({o.half_x - sx / 2, o.half_y + sx / 2, o.front_at(sx)});
+            if (lo > hi || !o.hull_shows(x, y)) continue;
+            // Some t in [lo, hi] below the top: top_at - (t - sy) is concave
+            // along the view line (a step under a ridge's tent), so its
+            // greatest is at an end or over the ridge.
+            auto below_top = [&](double t) { return t - sy <= o.top_at(t + sx / 2, t - sx / 2); };
+            const double over_ridge = o.ridge_axis == 0 ? sx / 2 : -sx / 2;
+            if (below_top(lo) || below_top(hi) || (o.ridge_axis >= 0 && lo < over_ridge && over_ridge < hi && below_top(over_ridge)))
+                m.set(x, y);
         }
 }
 

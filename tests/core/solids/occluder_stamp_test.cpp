@@ -124,7 +124,7 @@ TEST(OccluderStamp, eachStampPixelHoldsItsObjectsSpanAndTheSilhouetteEachCrossSe
                     for (int x = 0; x < sp.image.width; ++x)
                         for (double z = 0; z <= o.height() && o.hull_shows(x, y); z += 1.0 / 32) {
                             const Vec3 q = ground_frame(x + 0.5 - o.center_x, y + 0.5 - o.center_y, z);
-                            if (std::abs(q.x) <= o.half_x && std::abs(q.y) <= o.half_y && z <= o.step_at(q.x - q.y) &&
+                            if (std::abs(q.x) <= o.half_x && std::abs(q.y) <= o.half_y && z <= o.top_at(q.x, q.y) &&
                                 o.behind_front(q.x, q.y)) {
                                 sampled.set(x, y);
                                 break;

@@ -429,6 +429,87 @@ TEST(SolidModels, aBoxFitsThePrismOfItsRectangleAndHeight) {
     EXPECT_EQ(estimated[0].model, ObjectModel::revolution);
 }
 
+// A house drawn from its true shapes (walls under a roof stepped up to a
+// ridge along one ground axis), in both orientations: the prism takes a
+// pitched roof along that axis, its ridge and eaves near the true ones, and
+// holds more of the house's volume, and fits its silhouette better, than
+// the flat top fit_prism gives it.
+TEST(SolidModels, aHousesRoofIsPitchedAlongItsRidge) {
+    const int w = 160, h = 150, ax = 80, ay = 115;
+    for (int axis = 0; axis < 2; ++axis) {
+        // Ground extents (along the ridge, across it) as box corners for this axis.
+        auto box = [&](double along, double across, double z0, double z1) {
+            return axis == 0 ? Solid{SolidKind::box, {-along, -across, z0}, {along, across, z1}}
+                             : Solid{SolidKind::box, {-across, -along, z0}, {across, along, z1}};
+        };
+        const std::vector<Solid> house = {box(24, 16, 0, 20), box(24, 12, 20, 26), box(24, 7, 26, 32), box(24, 2, 32, 36)};
+        const Mask object = drawn(house, w, h, ax, ay);
+        const std::optional<EstimatedObject> flat = fit_prism(object);
+        ASSERT_TRUE(flat.has_value()) << axis;
+        ASSERT_FALSE(flat->flat_top) << axis;
+        EstimatedObject o = *flat;
+        top_prism(object, o);
+        EXPECT_EQ(o.ridge_axis, axis);
+        EXPECT_TRUE(o.steps.empty()) << axis;
+        EXPECT_NEAR(o.height(), 36, 4) << axis;
+        EXPECT_GE(o.eaves, 16) << axis;
+        EXPECT_LE(o.eaves, 28) << axis;
+        // Under the ridge the roof stands high; at the eaves it does not.
+        const Vec3 ridge = axis == 0 ? Vec3{10, 0, 32} : Vec3{0, 10, 32}, eave = axis == 0 ? Vec3{10, 14, 32} : Vec3{14, 10, 32};
+        EXPECT_TRUE(o.contains(ridge)) << axis;
+        EXPECT_FALSE(o.contains(eave)) << axis;
+        const double pitched = volume_overlap({o}, ax, ay, house), flat_overlap = volume_overlap({*flat}, ax, ay, house);
+        std::printf("axis %d: pitched roof shares %.3f of the true volume, a flat top %.3f; silhouettes %.3f, %.3f\n", axis,
+                    pitched, flat_overlap, silhouette_fit({o}, object), silhouette_fit({*flat}, object));
+        EXPECT_GT(pitched, flat_overlap + 0.02) << axis;
+        EXPECT_GT(silhouette_fit({o}, object), silhouette_fit({*flat}, object)) << axis;
+    }
+}
+
+// The town's house (a stepped roof along ground x) gets its pitched roof
+// through the rule; its long wall (crenellations) and its hedge do not.
+TEST(SolidModels, theTownsHouseIsPitchedAndItsWallsAreNot) {
+    const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
+    for (const char* name : {"house", "long_wall", "hedge", "fence"}) {
+        const Sprite* s = find_sprite(town, name);
+        ASSERT_NE(s, nullptr) << name;
+        const auto objects = sprite_objects(town, *s, Params{});
+        ASSERT_EQ(objects.size(), 1u) << name;
+        EXPECT_EQ(objects[0].ridge_axis, std::string(name) == "house" ? 0 : -1) << name;
+    }
+}
+
+// A heap (the town's boulder pile: three boulders with a fourth on top) is
+// its mound's dome and its solid of revolution together: the dome's
+// outline hides the summit standing over the pile's front, and both share
+// more of the pile's true volume than the dome alone. The low rocks' right
+// rock, whose solid of revolution shows past its dome, stays a dome alone.
+TEST(SolidModels, aBoulderPileIsAHeapOfDomeAndSummit) {
+    const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
+    const Sprite* pile = find_sprite(town, "boulder_pile");
+    ASSERT_NE(pile, nullptr);
+    const auto objects = sprite_objects(town, *pile, Params{});
+    ASSERT_EQ(objects.size(), 2u);
+    EXPECT_EQ(objects[0].model, ObjectModel::mound);
+    EXPECT_EQ(objects[1].model, ObjectModel::revolution);
+    EXPECT_GT(objects[1].height(), objects[0].height() + 8) << "the summit stands above the dome";
+    EXPECT_GT(objects[1].center_y, objects[0].center_y) << "the summit stands over the pile's front";
+    Sprite dome_only = *pile;
+    dome_only.footprint.object_model = ObjectModel::mound;  // the user's mound: the dome alone
+    const auto dome = sprite_objects(town, dome_only, Params{});
+    ASSERT_EQ(dome.size(), 1u);
+    const double heap = volume_overlap(objects, pile->anchor_x, pile->anchor_y, pile->shape),
+                 alone = volume_overlap(dome, pile->anchor_x, pile->anchor_y, pile->shape);
+    std::printf("boulder pile: the heap shares %.3f of the true volume, the dome alone %.3f\n", heap, alone);
+    EXPECT_GT(heap, alone + 0.08);
+    const Sprite* rocks = find_sprite(town, "low_rocks");
+    ASSERT_NE(rocks, nullptr);
+    int mounds = 0;
+    for (const EstimatedObject& o : sprite_objects(town, *rocks, Params{})) mounds += o.model == ObjectModel::mound;
+    EXPECT_EQ(mounds, 1);
+    EXPECT_EQ(sprite_objects(town, *rocks, Params{}).size(), 2u);
+}
+
 // Boxes side by side (a town's houses): the prism steps with them, each
 // column as tall as the box that tops it, and holds more of their volume
 // than one height does. One box does not step.

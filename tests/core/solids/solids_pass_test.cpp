@@ -324,17 +324,16 @@ TEST(SolidsPass, solidsHalveThePapersErrorOnTheAccuracyScenes) {
 
 // The town scene (the town tileset: walls, houses, a town in one tile,
 // rocks, a mountain, a grove, drawn in another look): solids never mislight
-// more ground or sprite pixels than footprints; at most half as many
-// ground and sprite pixels under lights 4, 16 and 32 px high. (Half is not
-// met under the light 64 px high yet: docs/accuracy.md.)
+// more ground or sprite pixels than footprints: at most half as many
+// ground and sprite pixels at every light height (docs/accuracy.md).
 TEST(SolidsPass, solidsNeverWorseThanFootprintsOnTheTownScene) {
     const Tileset town = load_tileset(std::string(ISOLUX_ASSETS_DIR) + "/town/tileset.json");
     const auto points = paper_and_solids("town", town);
     ASSERT_EQ(points.size(), 4u);
     for (std::size_t h = 0; h < points.size(); ++h) {  // light heights 4, 16, 32, 64
         const PaperAndSolids& p = points[h];
-        EXPECT_LE(p.solids.sprite.lit_mismatch, (h < 3 ? 0.5 : 1.0) * p.paper.sprite.lit_mismatch) << p.where;
-        EXPECT_LE(p.solids.floor.lit_mismatch, (h < 3 ? 0.5 : 1.0) * p.paper.floor.lit_mismatch) << p.where;
+        EXPECT_LE(p.solids.sprite.lit_mismatch, 0.5 * p.paper.sprite.lit_mismatch) << p.where;
+        EXPECT_LE(p.solids.floor.lit_mismatch, 0.5 * p.paper.floor.lit_mismatch) << p.where;
     }
 }
 
